@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: MIT
+#include "core/chaining.h"
+
+namespace inkline::core {
+namespace {
+
+constexpr uint8_t kNotFeature = 0xff;
+
+class Chainer {
+  public:
+    Chainer(const FeatureEdges& features, const EdgeTable& table)
+        : table_(table), kind_(table.edge_count(), kNotFeature), used_(table.edge_count(), 0) {
+        for (const FeatureEdge& fe : features.edges) kind_[fe.edge] = uint8_t(fe.kind);
+    }
+
+    // Same-kind feature edges meeting at a vertex.
+    int degree(uint32_t vertex, uint8_t kind) const {
+        int n = 0;
+        for (uint32_t e : table_.edges_around(vertex)) n += kind_[e] == kind;
+        return n;
+    }
+
+    bool available(uint32_t edge) const { return kind_[edge] != kNotFeature && !used_[edge]; }
+
+    // Follows unused same-kind edges from `start` along `first` until an end or a closed loop.
+    Chain walk(uint32_t start, uint32_t first) {
+        Chain chain;
+        const uint8_t kind = kind_[first];
+        chain.kind = LineKind(kind);
+        chain.vertices.push_back(start);
+        uint32_t vertex = start;
+        uint32_t edge = first;
+        while (true) {
+            used_[edge] = 1;
+            chain.edges.push_back(edge);
+            vertex = table_.other_vertex(edge, vertex);
+            chain.vertices.push_back(vertex);
+            if (vertex == start || degree(vertex, kind) != 2) break;
+            uint32_t next = kNoIndex;
+            for (uint32_t e : table_.edges_around(vertex)) {
+                if (kind_[e] == kind && !used_[e]) {
+                    next = e;
+                    break;
+                }
+            }
+            if (next == kNoIndex) break;
+            edge = next;
+        }
+        chain.closed = chain.vertices.size() > 2 && chain.vertices.front() == chain.vertices.back();
+        return chain;
+    }
+
+    uint8_t kind_of(uint32_t edge) const { return kind_[edge]; }
+
+  private:
+    const EdgeTable& table_;
+    std::vector<uint8_t> kind_;
+    std::vector<uint8_t> used_;
+};
+
+}  // namespace
+
+std::vector<Chain> chain_feature_edges(const FeatureEdges& features, const EdgeTable& table) {
+    Chainer chainer(features, table);
+    std::vector<Chain> chains;
+    // Open chains first: start at every end (a vertex where the count is not 2).
+    for (const FeatureEdge& fe : features.edges) {
+        for (uint32_t v : {table.edge_vertices[fe.edge].x, table.edge_vertices[fe.edge].y}) {
+            if (chainer.available(fe.edge) && chainer.degree(v, uint8_t(fe.kind)) != 2) {
+                chains.push_back(chainer.walk(v, fe.edge));
+            }
+        }
+    }
+    // What is left lies on closed loops through vertices of count 2.
+    for (const FeatureEdge& fe : features.edges) {
+        if (chainer.available(fe.edge)) chains.push_back(chainer.walk(table.edge_vertices[fe.edge].x, fe.edge));
+    }
+    return chains;
+}
+
+}  // namespace inkline::core

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// Error types by who is at fault: bad input, unwritable output, and bugs (INKLINE_CHECK).
+#pragma once
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace inkline {
+
+// Input that cannot be drawn: a broken file, a bad scene key, an impossible camera.
+// what() is one line naming the file or key first, e.g. "scene.json: key 'image.width': ...".
+class InputError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// An output that cannot be written: unwritable folder, full disk.
+class OutputError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// A broken internal invariant: a bug in inkline, never the user's fault.
+class InternalError : public std::logic_error {
+  public:
+    using std::logic_error::logic_error;
+};
+
+namespace detail {
+[[noreturn]] void check_failed(const char* file, int line, const std::string& message);
+
+template <typename A, typename B>
+[[noreturn]] void check_eq_failed(const char* file, int line, const char* a_text,
+                                  const char* b_text, const A& a, const B& b) {
+    std::ostringstream out;
+    out << a_text << " == " << b_text << " failed: " << a << " vs " << b;
+    check_failed(file, line, out.str());
+}
+}  // namespace detail
+
+}  // namespace inkline
+
+#define INKLINE_CHECK(cond)                                                       \
+    do {                                                                          \
+        if (!(cond)) ::inkline::detail::check_failed(__FILE__, __LINE__, #cond);  \
+    } while (false)
+
+#define INKLINE_CHECK_EQ(a, b)                                                          \
+    do {                                                                                \
+        const auto& inkline_a_ = (a);                                                   \
+        const auto& inkline_b_ = (b);                                                   \
+        if (!(inkline_a_ == inkline_b_))                                                \
+            ::inkline::detail::check_eq_failed(__FILE__, __LINE__, #a, #b, inkline_a_, \
+                                               inkline_b_);                             \
+    } while (false)

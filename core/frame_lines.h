@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// What one frame produces: its camera, light, visible feature polylines and statistics.
+// The writers in export/ read this; nothing here knows about file formats.
+#pragma once
+
+#include "core/camera.h"
+#include "core/features.h"
+#include "core/scene.h"
+#include "core/visibility.h"
+
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace inkline::core {
+
+struct FrameStats {
+    size_t faces = 0;
+    size_t edges = 0;
+    size_t edges_tested = 0;
+    size_t faces_tested = 0;
+    std::array<size_t, kLineKindCount> feature_edges{};         // by LineKind
+    std::array<double, kLineKindCount> visible_length_px{};     // by LineKind
+    std::vector<std::pair<std::string, double>> ms;             // stage name -> milliseconds
+};
+
+struct FrameLines {
+    int frame = 0;
+    ImageSize image;
+    Camera camera;
+    Light light;
+    std::vector<Polyline> strokes;
+    FrameStats stats;
+};
+
+// Sums the visible length of the strokes per kind into stats.visible_length_px.
+void tally_visible_length(FrameLines& frame);
+
+}  // namespace inkline::core

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+#include "core/mesh.h"
+
+#include <glm/geometric.hpp>
+
+namespace inkline::core {
+
+void Bounds::add(const glm::dvec3& p) {
+    if (!valid) {
+        min = max = p;
+        valid = true;
+        return;
+    }
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+}
+
+double Bounds::radius() const { return valid ? 0.5 * glm::length(max - min) : 0.0; }
+
+Bounds bounds_of(const std::vector<glm::vec3>& positions) {
+    Bounds b;
+    for (const glm::vec3& p : positions) b.add(glm::dvec3(p));
+    return b;
+}
+
+glm::dvec3 face_normal(const std::vector<glm::vec3>& positions, const glm::uvec3& tri) {
+    const glm::dvec3 a(positions[tri.x]);
+    const glm::dvec3 b(positions[tri.y]);
+    const glm::dvec3 c(positions[tri.z]);
+    return glm::cross(b - a, c - a);
+}
+
+}  // namespace inkline::core

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// A triangle mesh as plain arrays: positions in object space and counter-clockwise triangles.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace inkline::core {
+
+struct Mesh {
+    std::vector<glm::vec3> positions;   // #V, object space
+    std::vector<glm::uvec3> triangles;  // #F, counter-clockwise vertex indices
+};
+
+// Axis-aligned bounds of a set of points; empty() when there are none.
+struct Bounds {
+    glm::dvec3 min{0.0};
+    glm::dvec3 max{0.0};
+    bool valid = false;
+
+    void add(const glm::dvec3& p);
+    glm::dvec3 center() const { return (min + max) * 0.5; }
+    double radius() const;  // half the diagonal
+};
+
+Bounds bounds_of(const std::vector<glm::vec3>& positions);
+
+// Unnormalised face normal (cross product of two edges), in double precision.
+glm::dvec3 face_normal(const std::vector<glm::vec3>& positions, const glm::uvec3& tri);
+
+}  // namespace inkline::core

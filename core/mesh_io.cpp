@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: MIT
+#include "core/mesh_io.h"
+
+#include "core/error.h"
+
+#include <OpenMesh/Core/IO/IOManager.hh>
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <optional>
+
+namespace inkline::core {
+namespace {
+
+using OpenMesh::FaceHandle;
+using OpenMesh::HalfedgeHandle;
+using OpenMesh::VertexHandle;
+
+// Collects OpenMesh's reader output as a triangle soup. OpenMesh's own mesh kernel refuses
+// non-manifold faces; inkline draws those too, so it keeps the soup and builds its own edge table.
+class SoupImporter final : public OpenMesh::IO::BaseImporter {
+  public:
+    explicit SoupImporter(LoadedMesh& r_out) : out_(r_out) {}
+
+    std::optional<std::string> error;  // the first fatal problem, reported after reading
+
+    VertexHandle add_vertex(const OpenMesh::Vec3f& p) override {
+        return add_vertex(OpenMesh::Vec3d(p[0], p[1], p[2]));
+    }
+    VertexHandle add_vertex(const OpenMesh::Vec3d& p) override {
+        if (!error && !(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) {
+            error = "vertex " + std::to_string(out_.mesh.positions.size() + 1) +
+                    " has a non-finite coordinate";
+        }
+        out_.mesh.positions.emplace_back(float(p[0]), float(p[1]), float(p[2]));
+        return VertexHandle(int(out_.mesh.positions.size()) - 1);
+    }
+    VertexHandle add_vertex() override { return add_vertex(OpenMesh::Vec3d(0, 0, 0)); }
+
+    FaceHandle add_face(const VHandles& corners) override {
+        ++polygons_;
+        if (corners.size() < 3) {
+            ++short_faces_;
+            return FaceHandle();
+        }
+        const auto n_vertices = out_.mesh.positions.size();
+        for (const VertexHandle& v : corners) {
+            if (v.idx() < 0 || size_t(v.idx()) >= n_vertices) {
+                if (!error) {
+                    error = "face " + std::to_string(polygons_) + " references vertex " +
+                            std::to_string(v.idx() + 1) + "; the file has " +
+                            std::to_string(n_vertices) + " vertices so far";
+                }
+                return FaceHandle();
+            }
+        }
+        // Fan triangulation keeps the polygon's winding.
+        for (size_t i = 1; i + 1 < corners.size(); ++i) {
+            out_.mesh.triangles.emplace_back(corners[0].idx(), corners[i].idx(),
+                                             corners[i + 1].idx());
+        }
+        return FaceHandle(int(out_.mesh.triangles.size()) - 1);
+    }
+
+    size_t short_faces() const { return short_faces_; }
+
+    // Attributes inkline does not use are accepted and dropped.
+    HalfedgeHandle add_edge(VertexHandle, VertexHandle) override { return HalfedgeHandle(); }
+    FaceHandle add_face(HalfedgeHandle) override { return FaceHandle(); }
+    void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec2f>&) override {}
+    void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec3f>&) override {}
+    void set_face_texindex(FaceHandle, int) override {}
+    void set_point(VertexHandle v, const OpenMesh::Vec3f& p) override {
+        if (v.idx() >= 0 && size_t(v.idx()) < out_.mesh.positions.size())
+            out_.mesh.positions[size_t(v.idx())] = glm::vec3(p[0], p[1], p[2]);
+    }
+    void set_halfedge(VertexHandle, HalfedgeHandle) override {}
+    void set_normal(VertexHandle, const OpenMesh::Vec3f&) override {}
+    void set_normal(VertexHandle, const OpenMesh::Vec3d&) override {}
+    void set_color(VertexHandle, const OpenMesh::Vec3uc&) override {}
+    void set_color(VertexHandle, const OpenMesh::Vec4uc&) override {}
+    void set_color(VertexHandle, const OpenMesh::Vec3f&) override {}
+    void set_color(VertexHandle, const OpenMesh::Vec4f&) override {}
+    void set_texcoord(VertexHandle, const OpenMesh::Vec2f&) override {}
+    void set_status(VertexHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void set_next(HalfedgeHandle, HalfedgeHandle) override {}
+    void set_face(HalfedgeHandle, FaceHandle) override {}
+    void request_face_texcoords2D() override {}
+    void set_texcoord(HalfedgeHandle, const OpenMesh::Vec2f&) override {}
+    void set_texcoord(VertexHandle, const OpenMesh::Vec3f&) override {}
+    void set_texcoord(HalfedgeHandle, const OpenMesh::Vec3f&) override {}
+    void set_status(HalfedgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec3uc&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec4uc&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec3f&) override {}
+    void set_color(OpenMesh::EdgeHandle, const OpenMesh::Vec4f&) override {}
+    void set_status(OpenMesh::EdgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void set_normal(FaceHandle, const OpenMesh::Vec3f&) override {}
+    void set_normal(FaceHandle, const OpenMesh::Vec3d&) override {}
+    void set_color(FaceHandle, const OpenMesh::Vec3uc&) override {}
+    void set_color(FaceHandle, const OpenMesh::Vec4uc&) override {}
+    void set_color(FaceHandle, const OpenMesh::Vec3f&) override {}
+    void set_color(FaceHandle, const OpenMesh::Vec4f&) override {}
+    void set_status(FaceHandle, const OpenMesh::Attributes::StatusInfo&) override {}
+    void add_texture_information(int, std::string) override {}
+
+    bool is_triangle_mesh() const override { return false; }
+    size_t n_vertices() const override { return out_.mesh.positions.size(); }
+    size_t n_faces() const override { return out_.mesh.triangles.size(); }
+    size_t n_edges() const override { return 0; }
+
+  private:
+    LoadedMesh& out_;
+    size_t polygons_ = 0;
+    size_t short_faces_ = 0;
+};
+
+// OpenMesh's OBJ reader silently skips a vertex line it cannot parse ("v nan 0 0"), which shifts
+// every later index. This pass finds such lines first and names them.
+void check_obj_vertices(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    for (size_t number = 1; std::getline(in, line); ++number) {
+        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+        const char* cursor = line.c_str() + 2;
+        for (int axis = 0; axis < 3; ++axis) {
+            char* end = nullptr;
+            const double value = std::strtod(cursor, &end);
+            if (end == cursor) {
+                throw InputError(path.string() + ":" + std::to_string(number) +
+                                 ": vertex needs three numbers");
+            }
+            if (!std::isfinite(value)) {
+                throw InputError(path.string() + ":" + std::to_string(number) +
+                                 ": vertex has a non-finite coordinate");
+            }
+            cursor = end;
+        }
+    }
+}
+
+// OpenMesh reports through global streams; inkline reports through its own errors instead.
+void silence_openmesh_streams() {
+    omlog().disable();
+    omout().disable();
+    omerr().disable();
+}
+
+}  // namespace
+
+LoadedMesh load_mesh(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw InputError(name + ": file not found");
+    if (std::filesystem::is_directory(path, ec)) throw InputError(name + ": is a folder, not a mesh file");
+    if (std::filesystem::file_size(path, ec) == 0) throw InputError(name + ": file is empty");
+
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+    if (extension == ".obj") check_obj_vertices(path);
+
+    silence_openmesh_streams();
+    LoadedMesh out;
+    SoupImporter importer(out);
+    OpenMesh::IO::Options options;
+    const bool ok = OpenMesh::IO::IOManager().read(name, importer, options);
+    if (importer.error) throw InputError(name + ": " + *importer.error);
+    if (!ok) {
+        throw InputError(name + ": cannot read as a mesh (supported: .obj .off .ply .stl; "
+                                "the file may be damaged)");
+    }
+    if (out.mesh.triangles.empty()) throw InputError(name + ": mesh has no faces");
+    if (importer.short_faces() > 0) {
+        out.warnings.push_back(name + ": skipped " + std::to_string(importer.short_faces()) +
+                               " face(s) with fewer than 3 vertices");
+    }
+    return out;
+}
+
+}  // namespace inkline::core

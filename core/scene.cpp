@@ -1,0 +1,339 @@
+// SPDX-License-Identifier: MIT
+#include "core/scene.h"
+
+#include "core/error.h"
+#include "core/frame_pattern.h"
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/gtx/rotate_vector.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+
+namespace inkline::core {
+namespace {
+
+using nlohmann::json;
+
+// Below this, a vector counts as zero (eye on target, zero axis) or two directions as parallel.
+constexpr double kDegenerateVector = 1e-9;
+
+// Reads one JSON object strictly: every key is known, every value has the right type, and
+// every error names the file and the dotted key path.
+class Reader {
+  public:
+    Reader(std::string file, const json& value, std::string path)
+        : file_(std::move(file)), value_(value), path_(std::move(path)) {}
+
+    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+        throw InputError(file_ + ": key '" + join(key) + "': " + message);
+    }
+
+    void expect_object() const {
+        if (!value_.is_object()) fail("", "expected an object");
+    }
+
+    void allow_only(std::initializer_list<const char*> keys) const {
+        expect_object();
+        const std::set<std::string> allowed(keys.begin(), keys.end());
+        for (const auto& item : value_.items()) {
+            if (!allowed.count(item.key())) {
+                std::string list;
+                for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
+                fail(item.key(), "unknown key (allowed here: " + list + ")");
+            }
+        }
+    }
+
+    bool has(const std::string& key) const { return value_.contains(key); }
+    const json& at(const std::string& key) const {
+        if (!value_.contains(key)) fail(key, "is required");
+        return value_.at(key);
+    }
+    Reader child(const std::string& key) const { return Reader(file_, at(key), join(key)); }
+
+    double number(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_number()) fail(key, "expected a number, got " + type_name(v));
+        const double d = v.get<double>();
+        if (!std::isfinite(d)) fail(key, "must be finite");
+        return d;
+    }
+    double number_or(const std::string& key, double fallback) const {
+        return has(key) ? number(key) : fallback;
+    }
+    int integer(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_number_integer()) fail(key, "expected an integer, got " + type_name(v));
+        const auto i = v.get<int64_t>();
+        if (i < -1000000000 || i > 1000000000) fail(key, "out of range");
+        return int(i);
+    }
+    bool boolean_or(const std::string& key, bool fallback) const {
+        if (!has(key)) return fallback;
+        const json& v = at(key);
+        if (!v.is_boolean()) fail(key, "expected true or false, got " + type_name(v));
+        return v.get<bool>();
+    }
+    std::string string(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_string()) fail(key, "expected a string, got " + type_name(v));
+        return v.get<std::string>();
+    }
+    glm::dvec3 vec3(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_array() || v.size() != 3) fail(key, "expected an array of 3 numbers");
+        glm::dvec3 out;
+        for (int i = 0; i < 3; ++i) {
+            if (!v[size_t(i)].is_number()) fail(key, "expected an array of 3 numbers");
+            out[i] = v[size_t(i)].get<double>();
+            if (!std::isfinite(out[i])) fail(key, "must be finite");
+        }
+        return out;
+    }
+
+    const json& value() const { return value_; }
+    const std::string& file() const { return file_; }
+    std::string join(const std::string& key) const {
+        if (key.empty()) return path_;
+        return path_.empty() ? key : path_ + "." + key;
+    }
+
+  private:
+    static std::string type_name(const json& v) { return v.type_name(); }
+
+    std::string file_;
+    const json& value_;
+    std::string path_;
+};
+
+Rotation read_rotation(const Reader& r) {
+    r.allow_only({"axis", "degrees", "center"});
+    Rotation rot;
+    rot.axis = r.vec3("axis");
+    if (glm::length(rot.axis) < kDegenerateVector) r.fail("axis", "must not be the zero vector");
+    rot.axis = glm::normalize(rot.axis);
+    rot.degrees = r.number("degrees");
+    if (r.has("center")) rot.center = r.vec3("center");
+    return rot;
+}
+
+void check_pose(const Reader& r, const CameraPose& pose) {
+    if (!(pose.fov_y_deg > 0.0 && pose.fov_y_deg < 180.0))
+        r.fail("fov_y_deg", "must be between 0 and 180 degrees (exclusive)");
+    const glm::dvec3 view = pose.target - pose.eye;
+    if (glm::length(view) < kDegenerateVector) r.fail("eye", "equals the target; the camera has no view direction");
+    if (glm::length(pose.up) < kDegenerateVector) r.fail("up", "must not be the zero vector");
+    if (glm::length(glm::cross(glm::normalize(view), glm::normalize(pose.up))) < 1e-6)
+        r.fail("up", "is parallel to the view direction");
+}
+
+CameraPose read_pose(const Reader& r) {
+    CameraPose pose;
+    pose.eye = r.vec3("eye");
+    pose.target = r.vec3("target");
+    pose.up = r.has("up") ? r.vec3("up") : glm::dvec3(0.0, 1.0, 0.0);
+    pose.fov_y_deg = r.number_or("fov_y_deg", 35.0);
+    check_pose(r, pose);
+    return pose;
+}
+
+CameraSpec read_camera(const Reader& r) {
+    CameraSpec spec;
+    if (r.has("frames")) {
+        r.allow_only({"frames", "near", "far"});
+        const json& list = r.at("frames");
+        if (!list.is_array() || list.empty()) r.fail("frames", "expected a non-empty array of camera objects");
+        for (size_t i = 0; i < list.size(); ++i) {
+            const Reader item(r.file(), list[i], r.join("frames") + "[" + std::to_string(i) + "]");
+            item.allow_only({"frame", "eye", "target", "up", "fov_y_deg"});
+            const int frame = item.integer("frame");
+            if (spec.per_frame.count(frame)) item.fail("frame", "frame " + std::to_string(frame) + " is given twice");
+            spec.per_frame[frame] = read_pose(item);
+        }
+    } else {
+        r.allow_only({"eye", "target", "up", "fov_y_deg", "orbit", "near", "far"});
+        spec.pose = read_pose(r);
+        if (r.has("orbit")) spec.orbit = read_rotation(r.child("orbit"));
+    }
+    if (r.has("near")) {
+        spec.near = r.number("near");
+        if (!(*spec.near > 0.0)) r.fail("near", "must be greater than 0");
+    }
+    if (r.has("far")) {
+        spec.far = r.number("far");
+        if (!(*spec.far > spec.near.value_or(0.0))) r.fail("far", "must be greater than near");
+    }
+    return spec;
+}
+
+MeshSource read_mesh(const Reader& r, const std::filesystem::path& base) {
+    MeshSource source;
+    const json& v = r.at("mesh");
+    std::string path;
+    if (v.is_string()) {
+        path = v.get<std::string>();
+    } else if (v.is_object()) {
+        const Reader m = r.child("mesh");
+        m.allow_only({"sequence"});
+        path = m.string("sequence");
+        if (!has_frame_field(path)) m.fail("sequence", "needs a frame field such as %04d");
+        source.is_sequence = true;
+    } else {
+        r.fail("mesh", "expected a file path or {\"sequence\": \"pattern\"}");
+    }
+    if (path.empty()) r.fail("mesh", "is empty");
+    source.path = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : base / path;
+    return source;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file) {
+    const std::string name = scene_file.string();
+    json root;
+    try {
+        root = json::parse(json_text);
+    } catch (const json::parse_error& e) {
+        // nlohmann reports the byte offset; the message after the prefix is already one line.
+        std::string what = e.what();
+        const auto colon = what.find("parse error");
+        throw InputError(name + ": not valid JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
+    }
+    const Reader r(name, root, "");
+    r.allow_only({"version", "mesh", "frames", "image", "camera", "object", "light", "lines"});
+
+    Scene scene;
+    scene.file = scene_file;
+    if (r.has("version") && r.integer("version") != 1) r.fail("version", "only version 1 is supported");
+    scene.mesh = read_mesh(r, scene_file.parent_path());
+
+    if (r.has("frames")) {
+        const json& f = r.at("frames");
+        if (!f.is_array() || f.size() != 2 || !f[0].is_number_integer() || !f[1].is_number_integer())
+            r.fail("frames", "expected [first, last] as two integers");
+        scene.first_frame = f[0].get<int>();
+        scene.last_frame = f[1].get<int>();
+        if (scene.first_frame > scene.last_frame) r.fail("frames", "first frame is after the last");
+    }
+    if (r.has("image")) {
+        const Reader img = r.child("image");
+        img.allow_only({"width", "height"});
+        scene.image = {img.integer("width"), img.integer("height")};
+        for (const char* key : {"width", "height"}) {
+            const int side = std::string(key) == "width" ? scene.image.width : scene.image.height;
+            if (side <= 0) img.fail(key, "must be a positive number of pixels");
+            if (side > kMaxImageSide) img.fail(key, "exceeds the limit of " + std::to_string(kMaxImageSide) + " px");
+        }
+    }
+    scene.camera = read_camera(r.child("camera"));
+    if (r.has("object")) {
+        const Reader obj = r.child("object");
+        obj.allow_only({"rotate"});
+        if (obj.has("rotate")) scene.object_rotation = read_rotation(obj.child("rotate"));
+    }
+    if (r.has("light")) {
+        const Reader l = r.child("light");
+        l.allow_only({"direction", "position"});
+        if (l.has("direction") == l.has("position")) l.fail("", "give exactly one of direction or position");
+        if (l.has("direction")) {
+            scene.light.direction = l.vec3("direction");
+            if (glm::length(scene.light.direction) < kDegenerateVector) l.fail("direction", "must not be the zero vector");
+            scene.light.direction = glm::normalize(scene.light.direction);
+        } else {
+            scene.light.is_point = true;
+            scene.light.position = l.vec3("position");
+        }
+    }
+    if (r.has("lines")) {
+        const Reader l = r.child("lines");
+        l.allow_only({"silhouette", "boundary", "crease", "crease_angle_deg", "hidden"});
+        scene.lines.silhouette = l.boolean_or("silhouette", true);
+        scene.lines.boundary = l.boolean_or("boundary", true);
+        scene.lines.crease = l.boolean_or("crease", true);
+        scene.lines.crease_angle_deg = l.number_or("crease_angle_deg", 60.0);
+        if (!(scene.lines.crease_angle_deg >= 0.0 && scene.lines.crease_angle_deg <= 180.0))
+            l.fail("crease_angle_deg", "must be between 0 and 180");
+        scene.lines.hidden = l.boolean_or("hidden", false);
+    }
+    return scene;
+}
+
+Scene load_scene(const std::filesystem::path& scene_file) {
+    std::ifstream in(scene_file, std::ios::binary);
+    if (!in) throw InputError(scene_file.string() + ": cannot open scene file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_scene(text.str(), scene_file);
+}
+
+Scene default_turntable_scene(const std::filesystem::path& mesh_file, const Bounds& bounds) {
+    Scene scene;
+    scene.mesh.path = mesh_file;
+    scene.first_frame = 1;
+    scene.last_frame = 48;
+    const glm::dvec3 center = bounds.center();
+    const double radius = std::max(bounds.radius(), 1e-6);
+    constexpr double kFovDeg = 35.0;
+    constexpr double kElevationDeg = 20.0;
+    // Fit the bounding sphere in the vertical field of view with a 10% margin.
+    const double distance = 1.1 * radius / std::sin(glm::radians(kFovDeg / 2.0));
+    const double elevation = glm::radians(kElevationDeg);
+    scene.camera.pose.target = center;
+    scene.camera.pose.eye = center + distance * glm::dvec3(0.0, std::sin(elevation), std::cos(elevation));
+    scene.camera.pose.up = {0.0, 1.0, 0.0};
+    scene.camera.pose.fov_y_deg = kFovDeg;
+    scene.camera.orbit = Rotation{{0.0, 1.0, 0.0}, 360.0, center};
+    return scene;
+}
+
+double motion_fraction(const Scene& scene, int frame) {
+    const double count = double(scene.last_frame) - double(scene.first_frame) + 1.0;
+    return (double(frame) - double(scene.first_frame)) / count;
+}
+
+glm::dmat4 world_from_object_at(const Scene& scene, int frame) {
+    if (!scene.object_rotation) return glm::dmat4(1.0);
+    const Rotation& r = *scene.object_rotation;
+    const double angle = glm::radians(r.degrees * motion_fraction(scene, frame));
+    return glm::translate(glm::dmat4(1.0), r.center) * glm::rotate(glm::dmat4(1.0), angle, r.axis) *
+           glm::translate(glm::dmat4(1.0), -r.center);
+}
+
+Camera camera_at(const Scene& scene, int frame, const Bounds& world_bounds) {
+    const CameraSpec& spec = scene.camera;
+    CameraPose pose = spec.pose;
+    if (!spec.per_frame.empty()) {
+        const auto it = spec.per_frame.find(frame);
+        if (it == spec.per_frame.end()) {
+            throw InputError(scene.file.string() + ": key 'camera.frames': no camera for frame " +
+                             std::to_string(frame));
+        }
+        pose = it->second;
+    } else if (spec.orbit) {
+        const Rotation& orbit = *spec.orbit;
+        const double angle = glm::radians(orbit.degrees * motion_fraction(scene, frame));
+        pose.eye = pose.target + glm::rotate(pose.eye - pose.target, angle, orbit.axis);
+        pose.up = glm::rotate(pose.up, angle, orbit.axis);
+    }
+    Camera camera{pose.eye, pose.target, pose.up, pose.fov_y_deg, 0.0, 0.0};
+
+    // Fit near/far to the bounding sphere; a camera inside it gets a small positive near.
+    const double radius = std::max(world_bounds.radius(), 1e-6);
+    const double distance = glm::length(world_bounds.center() - camera.eye);
+    camera.near = spec.near.value_or(std::max(0.9 * (distance - radius), 1e-3 * radius));
+    camera.far = spec.far.value_or(std::max(1.1 * (distance + radius), camera.near * 2.0));
+    if (!(camera.far > camera.near)) {
+        throw InputError(scene.file.string() + ": key 'camera.far': must be greater than near (" +
+                         std::to_string(camera.near) + ")");
+    }
+    return camera;
+}
+
+}  // namespace inkline::core

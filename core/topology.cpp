@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: MIT
+#include "core/topology.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <numeric>
+
+namespace inkline::core {
+namespace {
+
+// A face whose doubled area is below this fraction of its longest edge squared is treated as
+// zero-area: its normal would be numerically meaningless for the facing test.
+constexpr double kDegenerateAreaRatio = 1e-12;
+
+bool is_degenerate(const Mesh& mesh, const glm::uvec3& t) {
+    if (t.x == t.y || t.y == t.z || t.z == t.x) return true;
+    const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
+    const double area2 = glm::length(glm::cross(b - a, c - a));
+    const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+    return !(area2 > kDegenerateAreaRatio * longest * longest);
+}
+
+uint32_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
+    while (parent[x] != x) {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    return x;
+}
+
+}  // namespace
+
+EdgeTable build_edge_table(const Mesh& mesh) {
+    EdgeTable t;
+    const size_t n_faces = mesh.triangles.size();
+    const size_t n_vertices = mesh.positions.size();
+    t.face_valid.resize(n_faces);
+    t.face_edges.assign(n_faces, glm::uvec3(kNoIndex));
+
+    // Sort the directed corners by undirected vertex pair; equal keys are one edge.
+    struct Corner {
+        uint64_t key;
+        uint32_t face;
+        uint32_t slot;
+    };
+    std::vector<Corner> corners;
+    corners.reserve(3 * n_faces);
+    for (size_t f = 0; f < n_faces; ++f) {
+        const glm::uvec3 tri = mesh.triangles[f];
+        t.face_valid[f] = is_degenerate(mesh, tri) ? 0 : 1;
+        if (!t.face_valid[f]) continue;
+        for (uint32_t s = 0; s < 3; ++s) {
+            const uint32_t a = tri[int(s)], b = tri[int((s + 1) % 3)];
+            const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+            corners.push_back({key, uint32_t(f), s});
+        }
+    }
+    std::sort(corners.begin(), corners.end(), [](const Corner& l, const Corner& r) {
+        return l.key != r.key ? l.key < r.key : l.face < r.face;
+    });
+
+    t.edge_face_offsets.push_back(0);
+    for (size_t i = 0; i < corners.size();) {
+        const uint64_t key = corners[i].key;
+        const uint32_t edge = uint32_t(t.edge_vertices.size());
+        t.edge_vertices.emplace_back(uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
+        for (; i < corners.size() && corners[i].key == key; ++i) {
+            t.edge_faces.push_back(corners[i].face);
+            t.face_edges[corners[i].face][int(corners[i].slot)] = edge;
+        }
+        t.edge_face_offsets.push_back(uint32_t(t.edge_faces.size()));
+    }
+
+    // Vertex -> edges, ascending because edges are visited in ascending order.
+    t.vertex_edge_offsets.assign(n_vertices + 1, 0);
+    for (const glm::uvec2& e : t.edge_vertices) {
+        ++t.vertex_edge_offsets[e.x + 1];
+        ++t.vertex_edge_offsets[e.y + 1];
+    }
+    std::partial_sum(t.vertex_edge_offsets.begin(), t.vertex_edge_offsets.end(),
+                     t.vertex_edge_offsets.begin());
+    t.vertex_edges.resize(t.vertex_edge_offsets.back());
+    std::vector<uint32_t> fill(t.vertex_edge_offsets.begin(), t.vertex_edge_offsets.end() - 1);
+    for (uint32_t e = 0; e < t.edge_vertices.size(); ++e) {
+        t.vertex_edges[fill[t.edge_vertices[e].x]++] = e;
+        t.vertex_edges[fill[t.edge_vertices[e].y]++] = e;
+    }
+    return t;
+}
+
+MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table) {
+    MeshReport r;
+    r.vertices = mesh.positions.size();
+    r.faces = mesh.triangles.size();
+    r.edges = table.edge_count();
+    r.degenerate_faces = size_t(std::count(table.face_valid.begin(), table.face_valid.end(), 0));
+
+    std::vector<uint32_t> parent(r.faces);
+    std::iota(parent.begin(), parent.end(), 0u);
+    for (uint32_t e = 0; e < table.edge_count(); ++e) {
+        const auto faces = table.faces_of(e);
+        if (faces.size() == 1) ++r.boundary_edges;
+        if (faces.size() >= 3) ++r.non_manifold_edges;
+        for (size_t i = 1; i < faces.size(); ++i) {
+            parent[find_root(parent, faces[i])] = find_root(parent, faces[0]);
+        }
+        if (faces.size() == 2) {
+            // Consistent neighbours traverse their shared edge in opposite directions.
+            const uint32_t v0 = table.edge_vertices[e].x;
+            auto runs_forward = [&](uint32_t f) {
+                const glm::uvec3 tri = mesh.triangles[f];
+                for (int s = 0; s < 3; ++s) {
+                    if (tri[s] == v0) return tri[(s + 1) % 3] == table.edge_vertices[e].y;
+                }
+                return false;
+            };
+            if (runs_forward(faces[0]) == runs_forward(faces[1])) ++r.inconsistent_edges;
+        }
+    }
+    for (uint32_t f = 0; f < r.faces; ++f) {
+        if (table.face_valid[f] && find_root(parent, f) == f) ++r.connected_components;
+    }
+    return r;
+}
+
+std::vector<std::string> mesh_warnings(const MeshReport& r) {
+    std::vector<std::string> out;
+    if (r.degenerate_faces > 0)
+        out.push_back(std::to_string(r.degenerate_faces) + " degenerate face(s) ignored");
+    if (r.non_manifold_edges > 0)
+        out.push_back(std::to_string(r.non_manifold_edges) +
+                      " non-manifold edge(s), drawn as boundary lines");
+    if (r.inconsistent_edges > 0)
+        out.push_back(std::to_string(r.inconsistent_edges) +
+                      " edge(s) between faces of inconsistent orientation; silhouettes there "
+                      "may be wrong");
+    return out;
+}
+
+}  // namespace inkline::core

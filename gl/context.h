@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+// Headless OpenGL contexts: EGL (surfaceless or device platform) first, OSMesa as fallback.
+// No window system is needed; on a CPU-only machine Mesa's llvmpipe provides the renderer.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace inkline::gl {
+
+// No GL context could be created with the requested back-end(s).
+class ContextError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+enum class Backend { kAuto, kEgl, kOsmesa };
+
+// Parses "auto", "egl" or "osmesa"; throws InputError otherwise.
+Backend parse_backend(const std::string& name);
+
+// An OpenGL context made current on the calling thread for its lifetime.
+class Context {
+  public:
+    virtual ~Context() = default;
+    virtual const char* backend_name() const = 0;  // "egl" or "osmesa"
+    std::string renderer() const;                   // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string version() const;                    // GL_VERSION
+    // True for Mesa's software rasterisers (llvmpipe, softpipe, swrast) and OSMesa.
+    bool is_software() const;
+};
+
+// Creates a context; kAuto tries EGL, then OSMesa. Throws ContextError naming what was tried.
+std::unique_ptr<Context> create_context(Backend backend);
+
+}  // namespace inkline::gl

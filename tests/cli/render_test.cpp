@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: MIT
+// The inkline program end to end: files written, exit codes, one-line errors.
+#include "tests/support/obj.h"
+#include "tests/support/shapes.h"
+
+#include <nlohmann/json.hpp>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <sys/wait.h>
+
+namespace inkline {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int code = -1;
+    std::string output;  // stdout and stderr together
+};
+
+RunResult run(const std::string& args) {
+    const std::string command = std::string(INKLINE_EXE) + " " + args + " 2>&1";
+    RunResult r;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    std::array<char, 4096> buf{};
+    while (size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
+    const int status = ::pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+class Cli : public ::testing::Test {
+  protected:
+    fs::path dir = test::fresh_temp_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    void TearDown() override { fs::remove_all(dir); }
+
+    // Writes a scene next to a cube mesh and returns its path.
+    fs::path scene(const std::string& body) {
+        test::write_obj(dir / "cube.obj", test::cube(1.0));
+        test::write_text(dir / "scene.json", body);
+        return dir / "scene.json";
+    }
+};
+
+TEST_F(Cli, SampleRoundTripWritesEveryFrame) {
+    const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1:3 --size 512x512 -q -o " +
+                      dir.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (int frame = 1; frame <= 3; ++frame) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%04d", frame);
+        const fs::path json_file = dir / "json" / (std::string(name) + ".json");
+        const fs::path svg_file = dir / "svg" / (std::string(name) + ".svg");
+        ASSERT_TRUE(fs::exists(json_file)) << json_file;
+        ASSERT_TRUE(fs::exists(svg_file)) << svg_file;
+        const auto doc = nlohmann::json::parse(test::read_text(json_file));
+        EXPECT_EQ(doc["frame"], frame);
+        EXPECT_EQ(doc["image"]["width"], 512);
+        EXPECT_FALSE(doc["strokes"].empty());
+        EXPECT_GT(doc["stats"]["visible_length_px"]["silhouette"].get<double>(), 500.0);
+        EXPECT_NE(test::read_text(svg_file).find("viewBox=\"0 0 512 512\""), std::string::npos);
+    }
+    EXPECT_FALSE(fs::exists(dir / "json" / "frame_0004.json"));
+}
+
+TEST_F(Cli, ExplicitPatternsOnly) {
+    const fs::path s = scene(R"({"mesh": "cube.obj", "frames": [1, 2], "camera": {"eye": [3, 2.5, 4], "target": [0, 0, 0]}})");
+    const RunResult r = run("render " + s.string() + " -q --svg " + (dir / "f%02d.svg").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "f01.svg"));
+    EXPECT_TRUE(fs::exists(dir / "f02.svg"));
+    EXPECT_FALSE(fs::exists(dir / "json"));
+}
+
+TEST_F(Cli, BareMeshRendersADefaultTurntable) {
+    test::write_obj(dir / "cube.obj", test::cube(1.0));
+    const RunResult r = run("render " + (dir / "cube.obj").string() + " --frames 1:2 -q -o " + dir.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto doc = nlohmann::json::parse(test::read_text(dir / "json" / "frame_0002.json"));
+    EXPECT_GT(doc["stats"]["feature_edges"]["crease"].get<int>() + doc["stats"]["feature_edges"]["silhouette"].get<int>(), 0);
+}
+
+TEST_F(Cli, SceneErrorsAreOneLineNamingTheKeyWithExitCode2) {
+    struct Case {
+        std::string body;
+        std::string expected;
+    };
+    const std::vector<Case> cases = {
+        {R"({"camera": {"eye": [0, 0, 4], "target": [0, 0, 0]}})", "key 'mesh': is required"},
+        {R"({"mesh": "cube.obj", "camera": {"eye": "far away", "target": [0, 0, 0]}})", "key 'camera.eye'"},
+        {R"({"mesh": "missing.obj", "camera": {"eye": [0, 0, 4], "target": [0, 0, 0]}})", "missing.obj: file not found"},
+        {R"({"mesh": "cube.obj", "camera": {"eye": [0, 0, 4], "target": [0, 0, 0]}, "extra": 1})", "key 'extra': unknown key"},
+    };
+    for (const Case& c : cases) {
+        const RunResult r = run("render " + scene(c.body).string() + " -o " + (dir / "out").string());
+        EXPECT_EQ(r.code, 2) << c.body << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.expected), std::string::npos) << r.output;
+        EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+        EXPECT_FALSE(fs::exists(dir / "out")) << "no output for bad input";
+    }
+}
+
+TEST_F(Cli, MissingSceneFileAndBadFlagsExit2) {
+    EXPECT_EQ(run("render " + (dir / "nope.json").string()).code, 2);
+    EXPECT_EQ(run("render").code, 2);
+    EXPECT_EQ(run("render " + scene(R"({"mesh": "cube.obj", "camera": {"eye": [3, 2, 4], "target": [0, 0, 0]}})").string() +
+                  " --size 0x10").code,
+              2);
+    const fs::path s = scene(R"({"mesh": "cube.obj", "frames": [1, 3], "camera": {"eye": [3, 2, 4], "target": [0, 0, 0]}})");
+    const RunResult r = run("render " + s.string() + " --svg " + (dir / "one.svg").string());
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.output.find("no frame field"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, UnwritableOutputExits3) {
+    test::write_text(dir / "blocker", "a file where a folder should be");
+    const fs::path s = scene(R"({"mesh": "cube.obj", "camera": {"eye": [3, 2, 4], "target": [0, 0, 0]}})");
+    const RunResult r = run("render " + s.string() + " -o " + (dir / "blocker").string());
+    EXPECT_EQ(r.code, 3) << r.output;
+    EXPECT_NE(r.output.find("blocker"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, InfoReportsTopology) {
+    test::write_obj(dir / "cube.obj", test::cube(1.0));
+    const RunResult r = run("info " + (dir / "cube.obj").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* line : {"vertices: 8", "faces: 12", "edges: 18", "boundary edges: 0", "non-manifold edges: 0",
+                             "degenerate faces: 0", "connected components: 1"}) {
+        EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+    }
+}
+
+}  // namespace
+}  // namespace inkline

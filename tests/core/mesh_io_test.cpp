@@ -1,0 +1,98 @@
+// SPDX-License-Identifier: MIT
+#include "core/mesh_io.h"
+
+#include "core/error.h"
+#include "tests/support/obj.h"
+#include "tests/support/shapes.h"
+
+#include <gtest/gtest.h>
+
+namespace inkline {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MeshIo : public ::testing::Test {
+  protected:
+    fs::path dir = test::fresh_temp_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    void TearDown() override { fs::remove_all(dir); }
+
+    std::string error_of(const fs::path& path) {
+        try {
+            core::load_mesh(path);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    }
+};
+
+TEST_F(MeshIo, ReadsEveryFormatToTheSameTriangles) {
+    // A unit square split into two triangles, written as OBJ, OFF, PLY (ascii) and STL (ascii).
+    test::write_text(dir / "q.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    test::write_text(dir / "q.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+    test::write_text(dir / "q.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                     "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                     "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+    test::write_text(dir / "q.stl",
+                     "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+                     "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\n"
+                     "vertex 0 1 0\nendloop\nendfacet\nendsolid q\n");
+    for (const char* name : {"q.obj", "q.off", "q.ply", "q.stl"}) {
+        const core::LoadedMesh loaded = core::load_mesh(dir / name);
+        EXPECT_EQ(loaded.mesh.triangles.size(), 2u) << name;
+        EXPECT_EQ(loaded.mesh.positions.size(), 4u) << name;
+        for (const auto& t : loaded.mesh.triangles) {
+            EXPECT_GT(core::face_normal(loaded.mesh.positions, t).z, 0.0) << name << ": winding kept";
+        }
+    }
+}
+
+TEST_F(MeshIo, RoundTripsAGeneratedMesh) {
+    const core::Mesh torus = test::torus(1.0, 0.3, 16, 8);
+    test::write_obj(dir / "torus.obj", torus);
+    const core::LoadedMesh loaded = core::load_mesh(dir / "torus.obj");
+    EXPECT_EQ(loaded.mesh.triangles, torus.triangles);
+    ASSERT_EQ(loaded.mesh.positions.size(), torus.positions.size());
+    EXPECT_NEAR(loaded.mesh.positions[5].x, torus.positions[5].x, 1e-6);
+}
+
+TEST_F(MeshIo, MissingFileNamesTheFile) {
+    const std::string error = error_of(dir / "nope.obj");
+    EXPECT_NE(error.find("nope.obj"), std::string::npos);
+    EXPECT_NE(error.find("not found"), std::string::npos);
+}
+
+TEST_F(MeshIo, EmptyFileIsAnError) {
+    test::write_text(dir / "empty.obj", "");
+    EXPECT_NE(error_of(dir / "empty.obj").find("empty"), std::string::npos);
+}
+
+TEST_F(MeshIo, MeshWithoutFacesIsAnError) {
+    test::write_text(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    EXPECT_NE(error_of(dir / "points.obj").find("no faces"), std::string::npos);
+}
+
+TEST_F(MeshIo, OutOfRangeIndexIsAnError) {
+    test::write_text(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+    const std::string error = error_of(dir / "bad.obj");
+    EXPECT_NE(error.find("bad.obj"), std::string::npos);
+    EXPECT_NE(error.find("references vertex"), std::string::npos) << error;
+}
+
+TEST_F(MeshIo, NonFiniteCoordinateNamesTheLine) {
+    for (const char* value : {"nan", "inf", "-INF"}) {
+        test::write_text(dir / "bad.obj", std::string("v 0 0 0\nv ") + value + " 0 0\nv 0 1 0\nv 1 1 0\nf 1 3 4\n");
+        const std::string error = error_of(dir / "bad.obj");
+        EXPECT_NE(error.find("bad.obj:2: vertex has a non-finite coordinate"), std::string::npos) << error;
+    }
+}
+
+TEST_F(MeshIo, UnknownExtensionIsAnError) {
+    test::write_text(dir / "mesh.xyz", "garbage");
+    EXPECT_NE(error_of(dir / "mesh.xyz").find("cannot read"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace inkline

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+#include "core/scene.h"
+
+#include "core/error.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+namespace inkline {
+namespace {
+
+const char* kMinimal = R"({"version": 1, "mesh": "m.obj",
+  "camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 35}})";
+
+std::string error_of(const std::string& text) {
+    try {
+        core::parse_scene(text, "dir/scene.json");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Scene, MinimalSceneGetsDefaults) {
+    const core::Scene s = core::parse_scene(kMinimal, "dir/scene.json");
+    EXPECT_EQ(s.mesh.path, std::filesystem::path("dir/m.obj"));
+    EXPECT_FALSE(s.mesh.is_sequence);
+    EXPECT_EQ(s.first_frame, 1);
+    EXPECT_EQ(s.last_frame, 1);
+    EXPECT_EQ(s.image.width, 1024);
+    EXPECT_TRUE(s.lines.silhouette && s.lines.boundary && s.lines.crease && !s.lines.hidden);
+}
+
+TEST(Scene, AbsolutePathsStayAbsolute) {
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": {"sequence": "/data/anim/f_%04d.obj"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})",
+        "dir/scene.json");
+    EXPECT_EQ(s.mesh.path, std::filesystem::path("/data/anim/f_%04d.obj"));
+    EXPECT_TRUE(s.mesh.is_sequence);
+}
+
+TEST(Scene, ErrorsNameTheFileAndKey) {
+    struct Case {
+        std::string json;
+        std::string expected;
+    };
+    const std::vector<Case> cases = {
+        {R"({"camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'mesh': is required"},
+        {R"({"mesh": "m.obj"})", "key 'camera': is required"},
+        {R"({"mesh": 3, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'mesh'"},
+        {R"({"mesh": "m.obj", "colour": 1, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'colour': unknown key"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [0,0], "target": [0,0,0]}})", "key 'camera.eye'"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0], "fov_y_deg": "wide"}})", "key 'camera.fov_y_deg': expected a number"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0], "fov_y_deg": 180}})", "key 'camera.fov_y_deg'"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [1,1,1], "target": [1,1,1]}})", "key 'camera.eye': equals the target"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [0,4,0], "target": [0,0,0], "up": [0,1,0]}})", "key 'camera.up': is parallel"},
+        {R"({"mesh": "m.obj", "image": {"width": 0, "height": 10}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'image.width'"},
+        {R"({"mesh": "m.obj", "image": {"width": 100000, "height": 100000}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "exceeds the limit"},
+        {R"({"mesh": "m.obj", "frames": [10, 1], "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'frames'"},
+        {R"({"mesh": "m.obj", "lines": {"silhouette": "yes"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'lines.silhouette'"},
+        {R"({"mesh": "m.obj", "camera": {"frames": [{"frame": 1, "eye": [0,0,4], "target": [0,0,0], "zoom": 2}]}})", "key 'camera.frames[0].zoom'"},
+        {R"({"mesh": {"sequence": "f.obj"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'mesh.sequence'"},
+        {R"({"version": 2, "mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'version'"},
+        {R"({"mesh": "m.obj", "camera": )", "not valid JSON"},
+    };
+    for (const Case& c : cases) {
+        const std::string error = error_of(c.json);
+        EXPECT_NE(error.find("dir/scene.json: "), std::string::npos) << c.json;
+        EXPECT_NE(error.find(c.expected), std::string::npos) << c.json << "\n  gave: " << error;
+        EXPECT_EQ(error.find('\n'), std::string::npos) << "one line: " << error;
+    }
+}
+
+TEST(Scene, OrbitTurnsTheEyeAboutTheTarget) {
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "frames": [1, 4],
+            "camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "orbit": {"axis": [0, 1, 0], "degrees": 360}}})",
+        "scene.json");
+    core::Bounds b;
+    b.add({-1, -1, -1});
+    b.add({1, 1, 1});
+    const core::Camera c1 = core::camera_at(s, 1, b);
+    const core::Camera c2 = core::camera_at(s, 2, b);
+    EXPECT_NEAR(glm::length(c1.eye - glm::dvec3(0, 0, 4)), 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(c2.eye - glm::dvec3(4, 0, 0)), 0.0, 1e-9) << "a quarter turn per frame over 4 frames";
+    EXPECT_GT(c1.near, 0.0);
+    EXPECT_LT(c1.near, 4.0 - std::sqrt(3.0));
+    EXPECT_GT(c1.far, 4.0 + std::sqrt(3.0));
+}
+
+TEST(Scene, ExplicitCamerasPerFrame) {
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "frames": [1, 2], "camera": {"near": 0.5, "far": 20, "frames": [
+            {"frame": 1, "eye": [0, 0, 4], "target": [0, 0, 0]},
+            {"frame": 2, "eye": [0, 0, 6], "target": [0, 0, 0], "fov_y_deg": 20}]}})",
+        "scene.json");
+    core::Bounds b;
+    b.add({-1, -1, -1});
+    b.add({1, 1, 1});
+    EXPECT_EQ(core::camera_at(s, 2, b).eye.z, 6.0);
+    EXPECT_EQ(core::camera_at(s, 2, b).fov_y_deg, 20.0);
+    EXPECT_EQ(core::camera_at(s, 1, b).near, 0.5);
+    EXPECT_THROW(core::camera_at(s, 3, b), InputError);
+}
+
+TEST(Scene, ObjectRotationAboutItsCenter) {
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "frames": [0, 1], "camera": {"eye": [0,0,4], "target": [0,0,0]},
+            "object": {"rotate": {"axis": [0, 0, 1], "degrees": 180, "center": [1, 0, 0]}}})",
+        "scene.json");
+    const glm::dmat4 m = core::world_from_object_at(s, 1);
+    const glm::dvec4 p = m * glm::dvec4(2, 0, 0, 1);
+    EXPECT_NEAR(p.x, 1.0, 1e-12);  // 90 degrees about (1,0,0): (2,0,0) -> (1,1,0)
+    EXPECT_NEAR(p.y, 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace inkline

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: MIT
+#include "core/topology.h"
+
+#include "tests/support/shapes.h"
+
+#include <gtest/gtest.h>
+
+namespace inkline {
+namespace {
+
+TEST(Topology, ClosedShapesHaveNoBoundary) {
+    for (const core::Mesh& mesh : {test::cube(1.0), test::uv_sphere(16, 8, 1.0), test::torus(1.0, 0.3, 12, 8)}) {
+        const core::EdgeTable table = core::build_edge_table(mesh);
+        const core::MeshReport r = core::describe_mesh(mesh, table);
+        EXPECT_EQ(r.edges * 2, r.faces * 3) << "closed triangle mesh: E = 3F/2";
+        EXPECT_EQ(r.boundary_edges, 0u);
+        EXPECT_EQ(r.non_manifold_edges, 0u);
+        EXPECT_EQ(r.inconsistent_edges, 0u);
+        EXPECT_EQ(r.connected_components, 1u);
+        EXPECT_EQ(r.degenerate_faces, 0u);
+    }
+}
+
+TEST(Topology, EdgesAreSortedAndAdjacencyIsConsistent) {
+    const core::Mesh mesh = test::torus(1.0, 0.3, 10, 6);
+    const core::EdgeTable t = core::build_edge_table(mesh);
+    for (uint32_t e = 0; e < t.edge_count(); ++e) {
+        EXPECT_LT(t.edge_vertices[e].x, t.edge_vertices[e].y);
+        if (e > 0) {
+            const auto prev = t.edge_vertices[e - 1], cur = t.edge_vertices[e];
+            EXPECT_TRUE(prev.x < cur.x || (prev.x == cur.x && prev.y < cur.y));
+        }
+        for (uint32_t f : t.faces_of(e)) {
+            const glm::uvec3 fe = t.face_edges[f];
+            EXPECT_TRUE(fe.x == e || fe.y == e || fe.z == e);
+        }
+        for (uint32_t v : {t.edge_vertices[e].x, t.edge_vertices[e].y}) {
+            const auto around = t.edges_around(v);
+            EXPECT_NE(std::find(around.begin(), around.end(), e), around.end());
+        }
+    }
+}
+
+TEST(Topology, ReportsOddities) {
+    core::Mesh m = test::grid(2, 1.0);  // 8 triangles, 16 edges, 8 on the boundary
+    const size_t base_vertices = m.positions.size();
+    m.triangles.push_back({0, 1, 1});  // repeated vertex: degenerate
+    // A second component: a triangle fan of three faces around one edge (non-manifold).
+    m.positions.insert(m.positions.end(), {{5, 0, 0}, {5, 1, 0}, {6, 0.5f, 0}, {4, 0.5f, 0}, {5, 0.5f, 1}});
+    const auto v = [&](unsigned i) { return unsigned(base_vertices) + i; };
+    m.triangles.push_back({v(0), v(1), v(2)});
+    m.triangles.push_back({v(1), v(0), v(3)});
+    m.triangles.push_back({v(0), v(1), v(4)});
+    const core::EdgeTable table = core::build_edge_table(m);
+    const core::MeshReport r = core::describe_mesh(m, table);
+    EXPECT_EQ(r.degenerate_faces, 1u);
+    EXPECT_EQ(r.non_manifold_edges, 1u);
+    EXPECT_EQ(r.connected_components, 2u);
+    EXPECT_EQ(r.boundary_edges, 8u + 6u);
+    EXPECT_EQ(core::mesh_warnings(r).size(), 2u);
+}
+
+TEST(Topology, DetectsInconsistentOrientation) {
+    core::Mesh m = test::cube(1.0);
+    std::swap(m.triangles[0].y, m.triangles[0].z);  // flip one face
+    const core::MeshReport r = core::describe_mesh(m, core::build_edge_table(m));
+    EXPECT_EQ(r.inconsistent_edges, 3u);
+}
+
+}  // namespace
+}  // namespace inkline

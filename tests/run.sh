@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The whole test suite: installs missing packages, builds, runs every test with CTest.
+# With CI=true (or INKLINE_SANITIZE=1) it also builds and runs the suite under
+# AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash .ci/setup
+jobs=$(nproc)
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DINKLINE_WERROR=ON >/dev/null
+cmake --build build -j "$jobs"
+ctest --test-dir build -j "$jobs" --output-on-failure
+
+if [ "${CI:-}" = "true" ] || [ "${INKLINE_SANITIZE:-0}" = "1" ]; then
+  echo "== sanitizer build (ASan + UBSan) =="
+  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DINKLINE_SANITIZE=ON -DINKLINE_WERROR=ON >/dev/null
+  cmake --build build-sanitize -j "$jobs"
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir build-sanitize -j "$jobs" --output-on-failure
+fi

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: MIT
+#include "tests/support/shapes.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace inkline::test {
+namespace {
+
+using core::Mesh;
+
+// A UV sphere of `rings` latitude bands from the north pole; `full` closes it at the south
+// pole, otherwise it stops open at the equator.
+Mesh uv_cap(int segments, int rings, double radius, bool full) {
+    Mesh m;
+    const double pi = std::numbers::pi;
+    m.positions.emplace_back(0.0f, float(radius), 0.0f);  // north pole
+    const int inner_rings = full ? rings - 1 : rings / 2;  // vertex rings besides the poles
+    for (int i = 1; i <= inner_rings; ++i) {
+        const double theta = pi * i / rings;
+        for (int j = 0; j < segments; ++j) {
+            const double phi = 2.0 * pi * j / segments;
+            m.positions.emplace_back(float(radius * std::sin(theta) * std::cos(phi)),
+                                     float(radius * std::cos(theta)),
+                                     float(-radius * std::sin(theta) * std::sin(phi)));
+        }
+    }
+    auto ring = [&](int i, int j) { return unsigned(1 + (i - 1) * segments + (j % segments)); };
+    for (int j = 0; j < segments; ++j) m.triangles.emplace_back(0u, ring(1, j), ring(1, j + 1));
+    for (int i = 1; i < inner_rings; ++i) {
+        for (int j = 0; j < segments; ++j) {
+            m.triangles.emplace_back(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
+            m.triangles.emplace_back(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
+        }
+    }
+    if (full) {
+        const unsigned south = unsigned(m.positions.size());
+        m.positions.emplace_back(0.0f, float(-radius), 0.0f);
+        for (int j = 0; j < segments; ++j) m.triangles.emplace_back(ring(inner_rings, j), south, ring(inner_rings, j + 1));
+    }
+    return m;
+}
+
+}  // namespace
+
+Mesh uv_sphere(int segments, int rings, double radius) { return uv_cap(segments, rings, radius, true); }
+
+Mesh hemisphere(int segments, int rings, double radius) { return uv_cap(segments, rings, radius, false); }
+
+Mesh torus(double major_radius, double minor_radius, int major_segments, int minor_segments) {
+    Mesh m;
+    const double pi = std::numbers::pi;
+    for (int i = 0; i < major_segments; ++i) {
+        const double u = 2.0 * pi * i / major_segments;
+        for (int j = 0; j < minor_segments; ++j) {
+            const double v = 2.0 * pi * j / minor_segments;
+            const double rho = major_radius + minor_radius * std::cos(v);
+            m.positions.emplace_back(float(rho * std::cos(u)), float(minor_radius * std::sin(v)),
+                                     float(-rho * std::sin(u)));
+        }
+    }
+    auto at = [&](int i, int j) {
+        return unsigned((i % major_segments) * minor_segments + (j % minor_segments));
+    };
+    for (int i = 0; i < major_segments; ++i) {
+        for (int j = 0; j < minor_segments; ++j) {
+            m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    }
+    return m;
+}
+
+Mesh cube(double h) {
+    Mesh m;
+    const float s = float(h);
+    for (int i = 0; i < 8; ++i) m.positions.emplace_back((i & 1) ? s : -s, (i & 2) ? s : -s, (i & 4) ? s : -s);
+    // Each quad listed counter-clockwise seen from outside.
+    const unsigned quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                  {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    for (const auto& q : quads) {
+        m.triangles.emplace_back(q[0], q[1], q[2]);
+        m.triangles.emplace_back(q[0], q[2], q[3]);
+    }
+    return m;
+}
+
+Mesh grid(int n, double h) {
+    Mesh m;
+    for (int i = 0; i <= n; ++i) {
+        for (int j = 0; j <= n; ++j) {
+            m.positions.emplace_back(float(-h + 2.0 * h * j / n), float(-h + 2.0 * h * i / n), 0.0f);
+        }
+    }
+    auto at = [&](int i, int j) { return unsigned(i * (n + 1) + j); };
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            m.triangles.emplace_back(at(i, j), at(i, j + 1), at(i + 1, j + 1));
+            m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i + 1, j));
+        }
+    }
+    return m;
+}
+
+}  // namespace inkline::test

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: MIT
+// Analytic test meshes with known silhouettes and boundaries. All are outward-facing, CCW.
+#pragma once
+
+#include "core/mesh.h"
+
+namespace inkline::test {
+
+// UV sphere centred at the origin, poles on +-y, closed with triangle fans at the poles.
+core::Mesh uv_sphere(int segments, int rings, double radius);
+// Upper half (y >= 0) of a UV sphere: open, its boundary is the equator loop.
+core::Mesh hemisphere(int segments, int rings, double radius);
+// Torus around the y axis: major radius R, minor radius r.
+core::Mesh torus(double major_radius, double minor_radius, int major_segments, int minor_segments);
+// Axis-aligned cube [-h, h]^3, two triangles per face.
+core::Mesh cube(double half_size);
+// Flat n x n quad grid in the z = 0 plane spanning [-h, h]^2, normals towards +z.
+core::Mesh grid(int n, double half_size);
+
+}  // namespace inkline::test
