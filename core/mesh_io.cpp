@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <optional>
 
 namespace inkline::core {
@@ -20,6 +21,10 @@ namespace {
 using OpenMesh::FaceHandle;
 using OpenMesh::HalfedgeHandle;
 using OpenMesh::VertexHandle;
+
+// Coordinates beyond this magnitude are refused: their squares still fit a double comfortably,
+// and no real scene needs them (float meshes lose all precision long before).
+constexpr double kMaxCoordinate = 1e18;
 
 // Collects OpenMesh's reader output as a triangle soup. OpenMesh's own mesh kernel refuses
 // non-manifold faces; inkline draws those too, so it keeps the soup and builds its own edge table.
@@ -33,9 +38,11 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
         return add_vertex(OpenMesh::Vec3d(p[0], p[1], p[2]));
     }
     VertexHandle add_vertex(const OpenMesh::Vec3d& p) override {
-        if (!error && !(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) {
+        const double largest = std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])});
+        if (!error && !(largest <= kMaxCoordinate)) {  // also catches NaN
             error = "vertex " + std::to_string(out_.mesh.positions.size() + 1) +
-                    " has a non-finite coordinate";
+                    (std::isfinite(largest) ? " has a coordinate beyond the limit of 1e18"
+                                            : " has a non-finite coordinate");
         }
         out_.mesh.positions.emplace_back(float(p[0]), float(p[1]), float(p[2]));
         return VertexHandle(int(out_.mesh.positions.size()) - 1);
@@ -52,9 +59,9 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
         for (const VertexHandle& v : corners) {
             if (v.idx() < 0 || size_t(v.idx()) >= n_vertices) {
                 if (!error) {
-                    error = "face " + std::to_string(polygons_) + " references vertex " +
-                            std::to_string(v.idx() + 1) + "; the file has " +
-                            std::to_string(n_vertices) + " vertices so far";
+                    error = "face " + std::to_string(polygons_) +
+                            " references a vertex that does not exist (index " + std::to_string(v.idx() + 1) +
+                            " after resolving relative indices; valid: 1.." + std::to_string(n_vertices) + ")";
                 }
                 return FaceHandle();
             }
@@ -120,28 +127,74 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
     size_t short_faces_ = 0;
 };
 
-// OpenMesh's OBJ reader silently skips a vertex line it cannot parse ("v nan 0 0"), which shifts
-// every later index. This pass finds such lines first and names them.
-void check_obj_vertices(const std::filesystem::path& path) {
+// Reads one coordinate with strtod, which also accepts "nan" and "inf", so they can be named.
+double scan_coordinate(const std::string& where, const char*& r_cursor) {
+    char* end = nullptr;
+    const double value = std::strtod(r_cursor, &end);
+    if (end == r_cursor) throw InputError(where + ": vertex needs three numbers");
+    if (!std::isfinite(value)) throw InputError(where + ": vertex has a non-finite coordinate");
+    if (std::abs(value) > kMaxCoordinate) {
+        throw InputError(where + ": coordinate " + std::to_string(value) + " exceeds the limit of 1e18");
+    }
+    r_cursor = end;
+    return value;
+}
+
+// OpenMesh's text readers silently skip a vertex line they cannot parse ("v nan 0 0", or a value
+// beyond float range), which shifts every later index. This pass finds such lines first and
+// names them. OBJ: every "v" line. OFF: the vertex block after the counts.
+// Returns the number of OBJ faces with fewer than 3 corners, which OpenMesh drops unreported.
+size_t check_text_vertices(const std::filesystem::path& path, const std::string& extension) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
-    for (size_t number = 1; std::getline(in, line); ++number) {
-        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
-        const char* cursor = line.c_str() + 2;
-        for (int axis = 0; axis < 3; ++axis) {
-            char* end = nullptr;
-            const double value = std::strtod(cursor, &end);
-            if (end == cursor) {
-                throw InputError(path.string() + ":" + std::to_string(number) +
-                                 ": vertex needs three numbers");
+    size_t number = 0;
+    auto where = [&] { return path.string() + ":" + std::to_string(number); };
+    if (extension == ".obj") {
+        size_t short_faces = 0;
+        while (std::getline(in, line)) {
+            ++number;
+            if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t')) continue;
+            if (line[0] == 'f') {
+                std::istringstream corners(line.substr(2));
+                std::string corner;
+                int count = 0;
+                while (corners >> corner) ++count;
+                short_faces += count < 3;
             }
-            if (!std::isfinite(value)) {
-                throw InputError(path.string() + ":" + std::to_string(number) +
-                                 ": vertex has a non-finite coordinate");
-            }
-            cursor = end;
+            if (line[0] != 'v') continue;
+            const char* cursor = line.c_str() + 2;
+            for (int axis = 0; axis < 3; ++axis) scan_coordinate(where(), cursor);
         }
+        return short_faces;
     }
+    // OFF: header keyword, then "nv nf ne", then nv vertex lines; '#' starts a comment.
+    long vertices = -1;
+    bool header = false;
+    while (std::getline(in, line)) {
+        ++number;
+        const size_t hash = line.find('#');
+        if (hash != std::string::npos) line.resize(hash);
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        if (!header) {
+            header = true;
+            if (line.find("OFF") != std::string::npos) {
+                if (line.find("BINARY") != std::string::npos) return 0;  // binary: checked on import
+                const size_t after = line.find("OFF") + 3;
+                if (line.find_first_not_of(" \t\r", after) == std::string::npos) continue;
+                line = line.substr(after);
+            }
+        }
+        const char* cursor = line.c_str();
+        if (vertices < 0) {
+            char* end = nullptr;
+            vertices = std::strtol(cursor, &end, 10);
+            if (end == cursor || vertices < 0) return 0;  // not an OFF layout this pass knows
+            continue;
+        }
+        if (vertices-- == 0) return 0;
+        for (int axis = 0; axis < 3; ++axis) scan_coordinate(where(), cursor);
+    }
+    return 0;
 }
 
 // OpenMesh reports through global streams; inkline reports through its own errors instead.
@@ -162,7 +215,8 @@ LoadedMesh load_mesh(const std::filesystem::path& path) {
 
     std::string extension = path.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
-    if (extension == ".obj") check_obj_vertices(path);
+    size_t short_faces = 0;
+    if (extension == ".obj" || extension == ".off") short_faces = check_text_vertices(path, extension);
 
     silence_openmesh_streams();
     LoadedMesh out;
@@ -175,8 +229,9 @@ LoadedMesh load_mesh(const std::filesystem::path& path) {
                                 "the file may be damaged)");
     }
     if (out.mesh.triangles.empty()) throw InputError(name + ": mesh has no faces");
-    if (importer.short_faces() > 0) {
-        out.warnings.push_back(name + ": skipped " + std::to_string(importer.short_faces()) +
+    short_faces = std::max(short_faces, importer.short_faces());
+    if (short_faces > 0) {
+        out.warnings.push_back(name + ": skipped " + std::to_string(short_faces) +
                                " face(s) with fewer than 3 vertices");
     }
     return out;

@@ -78,7 +78,7 @@ TEST_F(MeshIo, OutOfRangeIndexIsAnError) {
     test::write_text(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
     const std::string error = error_of(dir / "bad.obj");
     EXPECT_NE(error.find("bad.obj"), std::string::npos);
-    EXPECT_NE(error.find("references vertex"), std::string::npos) << error;
+    EXPECT_NE(error.find("references a vertex that does not exist"), std::string::npos) << error;
 }
 
 TEST_F(MeshIo, NonFiniteCoordinateNamesTheLine) {
@@ -86,6 +86,51 @@ TEST_F(MeshIo, NonFiniteCoordinateNamesTheLine) {
         test::write_text(dir / "bad.obj", std::string("v 0 0 0\nv ") + value + " 0 0\nv 0 1 0\nv 1 1 0\nf 1 3 4\n");
         const std::string error = error_of(dir / "bad.obj");
         EXPECT_NE(error.find("bad.obj:2: vertex has a non-finite coordinate"), std::string::npos) << error;
+    }
+}
+
+TEST_F(MeshIo, NonFiniteOffCoordinateNamesTheLine) {
+    test::write_text(dir / "nan.off", "OFF\n# comment\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n");
+    const std::string error = error_of(dir / "nan.off");
+    EXPECT_NE(error.find("nan.off:5: vertex has a non-finite coordinate"), std::string::npos) << error;
+}
+
+TEST_F(MeshIo, AstronomicalCoordinateIsAnError) {
+    test::write_text(dir / "big.obj", "v 0 0 0\nv 1e300 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string error = error_of(dir / "big.obj");
+    EXPECT_NE(error.find("big.obj:2: coordinate"), std::string::npos) << error;
+    EXPECT_NE(error.find("exceeds the limit"), std::string::npos) << error;
+}
+
+TEST_F(MeshIo, ZeroAndOutOfRangeRelativeIndicesAreErrors) {
+    for (const char* face : {"f 0 1 2", "f -5 -2 -1", "f 1 2 4"}) {
+        test::write_text(dir / "idx.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\n") + face + "\n");
+        const std::string error = error_of(dir / "idx.obj");
+        EXPECT_NE(error.find("references a vertex that does not exist"), std::string::npos) << face << ": " << error;
+    }
+    // Valid relative indices still work.
+    test::write_text(dir / "rel.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n");
+    EXPECT_EQ(core::load_mesh(dir / "rel.obj").mesh.triangles.size(), 1u);
+}
+
+TEST_F(MeshIo, ShortFacesAreSkippedWithAWarning) {
+    test::write_text(dir / "short.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 1 2 3\n");
+    const core::LoadedMesh loaded = core::load_mesh(dir / "short.obj");
+    EXPECT_EQ(loaded.mesh.triangles.size(), 1u);
+    ASSERT_EQ(loaded.warnings.size(), 1u);
+    EXPECT_NE(loaded.warnings[0].find("fewer than 3 vertices"), std::string::npos);
+}
+
+TEST_F(MeshIo, BinaryGarbageIsAnError) {
+    std::string garbage;
+    uint32_t x = 12345;
+    for (int i = 0; i < 4096; ++i) {
+        x = x * 1664525u + 1013904223u;
+        garbage.push_back(char(x >> 24));
+    }
+    for (const char* name : {"garbage.obj", "garbage.off", "garbage.ply", "garbage.stl"}) {
+        test::write_text(dir / name, garbage);
+        EXPECT_NE(error_of(dir / name).find(name), std::string::npos) << name;
     }
 }
 
