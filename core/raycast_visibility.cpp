@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: MIT
+// Ray-cast occlusion with Embree 3: one occlusion ray per query, the edge's own faces rejected
+// by an occlusion filter that reads them from the ray's intersect context.
+#include "core/raycast_visibility.h"
+
+#include "core/error.h"
+#include "core/internal/parallel.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+namespace inkline::core {
+namespace {
+
+// The ray stops this fraction of the eye distance short of the point, exactly as ExactOcclusion's
+// segment does, so faces that merely touch the point (around an end vertex of its edge) do not
+// count. The ray starts at the point and runs to the eye: Embree intersects relative to the ray
+// origin, so float precision is best where the gap is decided.
+constexpr float kEndGap = 1e-6f;
+
+// Below this many queries a call runs on the calling thread; starting threads costs more.
+constexpr size_t kMinParallelQueries = 256;
+
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "Mesh positions are copied as packed float3");
+
+struct DeviceRelease {
+    void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
+};
+struct SceneRelease {
+    void operator()(RTCScene s) const { rtcReleaseScene(s); }
+};
+struct GeometryRelease {
+    void operator()(RTCGeometry g) const { rtcReleaseGeometry(g); }
+};
+using DevicePtr = std::unique_ptr<RTCDeviceTy, DeviceRelease>;
+using ScenePtr = std::unique_ptr<RTCSceneTy, SceneRelease>;
+using GeometryPtr = std::unique_ptr<RTCGeometryTy, GeometryRelease>;
+
+const char* error_name(RTCError error) {
+    switch (error) {
+        case RTC_ERROR_NONE: return "no error";
+        case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+        case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+        case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+        case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+        case RTC_ERROR_CANCELLED: return "cancelled";
+        default: return "unknown error";
+    }
+}
+
+// Embree reports errors per device; a failure is a resource problem or a bug, never bad input.
+void check_device(RTCDevice device, const char* what) {
+    const RTCError error = rtcGetDeviceError(device);
+    if (error != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree: ") + what + ": " + error_name(error));
+}
+
+// Extends Embree's intersect context with the faces the current ray must ignore. Embree hands
+// the filter the address of `base`, which is also the address of the whole struct.
+struct OwnFacesContext {
+    RTCIntersectContext base;
+    std::span<const uint32_t> own_faces;  // mesh faces of the query's edge
+    const uint32_t* face_of;              // Embree primitive -> mesh face
+};
+static_assert(std::is_standard_layout_v<OwnFacesContext> && offsetof(OwnFacesContext, base) == 0);
+
+void reject_own_faces(const RTCFilterFunctionNArguments* args) {
+    const auto* context = reinterpret_cast<const OwnFacesContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const uint32_t face = context->face_of[RTCHitN_primID(args->hit, args->N, i)];
+        const auto& own = context->own_faces;
+        if (std::find(own.begin(), own.end(), face) != own.end()) args->valid[i] = 0;
+    }
+}
+
+}  // namespace
+
+bool raycast_available() { return true; }
+
+struct RaycastOcclusion::Impl {
+    const EdgeTable& table;
+    std::vector<uint32_t> face_of;  // Embree primitive -> mesh face (valid faces only)
+    size_t vertex_count = 0;
+    DevicePtr device;
+    ScenePtr scene;
+    GeometryPtr geometry;  // null when the mesh has no valid face
+
+    explicit Impl(const EdgeTable& t) : table(t) {}
+
+    void commit() {
+        if (geometry) rtcCommitGeometry(geometry.get());
+        rtcCommitScene(scene.get());
+        check_device(device.get(), "building the BVH");
+    }
+};
+
+RaycastOcclusion::RaycastOcclusion(const Mesh& mesh, const EdgeTable& table)
+    : impl_(std::make_unique<Impl>(table)) {
+    INKLINE_CHECK_EQ(table.face_valid.size(), mesh.triangles.size());
+    Impl& impl = *impl_;
+
+    // One build thread per core; queries run on our own threads, after the build.
+    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    const std::string config = "threads=" + std::to_string(threads);
+    impl.device.reset(rtcNewDevice(config.c_str()));
+    if (!impl.device) check_device(nullptr, "creating the device");
+    impl.scene.reset(rtcNewScene(impl.device.get()));
+    // Robust traversal: no ray may slip between the bounds of neighbouring triangles. Dynamic:
+    // the BVH of the mesh is a separate object that a vertex update refits instead of rebuilding.
+    rtcSetSceneFlags(impl.scene.get(), RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(impl.scene.get(), RTC_BUILD_QUALITY_MEDIUM);
+
+    std::vector<glm::uvec3> triangles;
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+        if (!table.face_valid[f]) continue;
+        triangles.push_back(mesh.triangles[f]);
+        impl.face_of.push_back(f);
+    }
+    impl.vertex_count = mesh.positions.size();
+    if (!triangles.empty()) {
+        impl.geometry.reset(rtcNewGeometry(impl.device.get(), RTC_GEOMETRY_TYPE_TRIANGLE));
+        check_device(impl.device.get(), "creating the triangle geometry");
+        RTCGeometry geometry = impl.geometry.get();
+        rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_REFIT);
+        void* vertices = rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                 sizeof(glm::vec3), impl.vertex_count);
+        void* indices = rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                sizeof(glm::uvec3), triangles.size());
+        check_device(impl.device.get(), "allocating the mesh buffers");
+        std::memcpy(vertices, mesh.positions.data(), impl.vertex_count * sizeof(glm::vec3));
+        std::memcpy(indices, triangles.data(), triangles.size() * sizeof(glm::uvec3));
+        rtcSetGeometryOccludedFilterFunction(geometry, reject_own_faces);
+        rtcAttachGeometry(impl.scene.get(), geometry);
+    }
+    impl.commit();
+}
+
+RaycastOcclusion::~RaycastOcclusion() = default;
+
+void RaycastOcclusion::update_positions(const Mesh& mesh) {
+    Impl& impl = *impl_;
+    INKLINE_CHECK_EQ(mesh.positions.size(), impl.vertex_count);
+    if (!impl.geometry) return;
+    RTCGeometry geometry = impl.geometry.get();
+    void* vertices = rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+    std::memcpy(vertices, mesh.positions.data(), impl.vertex_count * sizeof(glm::vec3));
+    rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+    impl.commit();
+}
+
+void RaycastOcclusion::occluded(const glm::dvec3& eye_object, std::span<const OcclusionQuery> queries,
+                                std::span<uint8_t> r_occluded) const {
+    INKLINE_CHECK_EQ(queries.size(), r_occluded.size());
+    const Impl& impl = *impl_;
+    if (!impl.geometry) {
+        std::fill(r_occluded.begin(), r_occluded.end(), uint8_t(0));
+        return;
+    }
+    internal::parallel_for(queries.size(), kMinParallelQueries, [&](size_t begin, size_t end) {
+        OwnFacesContext context;
+        rtcInitIntersectContext(&context.base);
+        context.face_of = impl.face_of.data();
+        for (size_t i = begin; i < end; ++i) {
+            const OcclusionQuery& q = queries[i];
+            context.own_faces = impl.table.faces_of(q.edge);
+            // From the point (t = 0) to the eye (t = 1); the direction is not normalised.
+            const glm::vec3 origin(q.p_object);
+            const glm::vec3 to_eye(eye_object - q.p_object);
+            RTCRay ray;
+            ray.org_x = origin.x;
+            ray.org_y = origin.y;
+            ray.org_z = origin.z;
+            ray.tnear = kEndGap;
+            ray.dir_x = to_eye.x;
+            ray.dir_y = to_eye.y;
+            ray.dir_z = to_eye.z;
+            ray.time = 0.0f;
+            ray.tfar = 1.0f;
+            ray.mask = ~0u;
+            ray.id = 0;
+            ray.flags = 0;
+            rtcOccluded1(impl.scene.get(), &context.base, &ray);
+            // Embree marks an occluded ray by setting tfar to -infinity.
+            r_occluded[i] = ray.tfar < 0.0f ? 1 : 0;
+        }
+    });
+}
+
+}  // namespace inkline::core
