@@ -4,6 +4,7 @@
 #include "core/error.h"
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -14,11 +15,42 @@
 namespace inkline::output {
 namespace {
 
+// The temporary being written, for the signal handler. A signal handler can reach nothing but
+// globals; writes happen one at a time, so one slot suffices.
+char g_temporary[4096];
+volatile std::sig_atomic_t g_writing = 0;
+
+extern "C" void remove_temporary_and_exit(int signal_number) {
+    if (g_writing) ::unlink(g_temporary);
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+}
+
+// Marks `temp` as in progress for the handler; cleared when the write ends either way.
+class TemporaryGuard {
+  public:
+    explicit TemporaryGuard(const std::filesystem::path& temp) {
+        const std::string& s = temp.native();
+        if (s.size() < sizeof g_temporary) {
+            std::memcpy(g_temporary, s.c_str(), s.size() + 1);
+            g_writing = 1;
+        }
+    }
+    ~TemporaryGuard() { g_writing = 0; }
+    TemporaryGuard(const TemporaryGuard&) = delete;
+    TemporaryGuard& operator=(const TemporaryGuard&) = delete;
+};
+
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& what, int error) {
     throw OutputError(path.string() + ": " + what + ": " + std::strerror(error));
 }
 
 }  // namespace
+
+void install_interrupt_cleanup() {
+    for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) std::signal(signal_number, remove_temporary_and_exit);
+    std::signal(SIGXFSZ, SIG_IGN);
+}
 
 std::filesystem::path temporary_path_for(const std::filesystem::path& path) {
     return path.parent_path() / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
@@ -31,6 +63,7 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
         if (ec) fail(path.parent_path(), "cannot create folder", ec.value());
     }
     const std::filesystem::path temp = temporary_path_for(path);
+    const TemporaryGuard guard(temp);
     const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) fail(path, "cannot write", errno);
 

@@ -1,35 +1,22 @@
 // SPDX-License-Identifier: MIT
 // The inkline program end to end: files written, exit codes, one-line errors.
 #include "tests/support/obj.h"
+#include "tests/support/run.h"
 #include "tests/support/shapes.h"
 
 #include <nlohmann/json.hpp>
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cstdio>
-#include <sys/wait.h>
 
 namespace inkline {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-    int code = -1;
-    std::string output;  // stdout and stderr together
-};
+using test::RunResult;
 
-RunResult run(const std::string& args) {
-    const std::string command = std::string(INKLINE_EXE) + " " + args + " 2>&1";
-    RunResult r;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    std::array<char, 4096> buf{};
-    while (size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
-    const int status = ::pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+RunResult run(const std::string& args) { return test::run_inkline(args); }
 
 class Cli : public ::testing::Test {
   protected:

@@ -1,0 +1,267 @@
+// SPDX-License-Identifier: MIT
+// The pipeline per frame:
+//   MeshFrames::at -> camera_at -> extract_feature_edges -> chain_feature_edges
+//   -> split_by_visibility -> polylines_json / centerline_svg -> write_file_atomically
+#include "cli/render.h"
+
+#include "core/chaining.h"
+#include "core/error.h"
+#include "core/exact_visibility.h"
+#include "core/features.h"
+#include "core/frame_lines.h"
+#include "core/frame_pattern.h"
+#include "core/mesh_frames.h"
+#include "core/mesh_io.h"
+#include "core/scene.h"
+#include "core/topology.h"
+#include "core/visibility.h"
+#include "export/atomic_file.h"
+#include "export/json.h"
+#include "export/svg.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <regex>
+
+namespace inkline::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Clock {
+  public:
+    double lap_ms() {
+        const auto now = std::chrono::steady_clock::now();
+        const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+        last_ = now;
+        return ms;
+    }
+
+  private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+struct FrameRange {
+    int first = 1;
+    int last = 1;
+    int count() const { return last - first + 1; }
+};
+
+// "A:B" or "A" -> inclusive frame range.
+FrameRange parse_frames(const std::string& text) {
+    static const std::regex range(R"(^\s*(-?\d{1,9})\s*(?::\s*(-?\d{1,9}))?\s*$)");
+    std::smatch m;
+    if (!std::regex_match(text, m, range)) throw InputError("--frames '" + text + "': expected A:B");
+    const FrameRange r{std::stoi(m[1]), m[2].matched ? std::stoi(m[2]) : std::stoi(m[1])};
+    if (r.first > r.last) throw InputError("--frames '" + text + "': first frame is after the last");
+    return r;
+}
+
+core::ImageSize parse_size(const std::string& text) {
+    static const std::regex size(R"(^\s*(\d{1,9})\s*[xX]\s*(\d{1,9})\s*$)");
+    std::smatch m;
+    if (!std::regex_match(text, m, size)) throw InputError("--size '" + text + "': expected WxH");
+    const core::ImageSize image{std::stoi(m[1]), std::stoi(m[2])};
+    if (image.width <= 0 || image.height <= 0 || image.width > core::kMaxImageSide ||
+        image.height > core::kMaxImageSide) {
+        throw InputError("--size '" + text + "': each side must be 1.." + std::to_string(core::kMaxImageSide) + " px");
+    }
+    return image;
+}
+
+bool is_scene_file(const std::string& path) {
+    const std::string ext = fs::path(path).extension().string();
+    return ext == ".json" || ext == ".JSON";
+}
+
+// World-space bounds of object-space bounds under a transform (its eight corners).
+core::Bounds transform_bounds(const core::Bounds& b, const glm::dmat4& world_from_object) {
+    core::Bounds out;
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
+        out.add(glm::dvec3(world_from_object * glm::dvec4(corner, 1.0)));
+    }
+    return out;
+}
+
+bool inside(const core::Bounds& b, const glm::dvec3& p) {
+    return glm::all(glm::greaterThanEqual(p, b.min)) && glm::all(glm::lessThanEqual(p, b.max));
+}
+
+struct Outputs {
+    std::string json;
+    std::string svg;
+};
+
+// Explicit patterns as given; -o DIR fills in the rest; neither means -o out.
+Outputs resolve_outputs(const RenderArgs& args, const FrameRange& frames) {
+    Outputs out{args.json_pattern, args.svg_pattern};
+    const bool any_explicit = !out.json.empty() || !out.svg.empty();
+    if (!args.out_dir.empty() || !any_explicit) {
+        const fs::path dir = args.out_dir.empty() ? fs::path("out") : fs::path(args.out_dir);
+        if (out.json.empty()) out.json = (dir / "json" / "frame_%04d.json").string();
+        if (out.svg.empty()) out.svg = (dir / "svg" / "frame_%04d.svg").string();
+    }
+    for (const std::string* pattern : {&out.json, &out.svg}) {
+        if (!pattern->empty() && frames.count() > 1 && !core::has_frame_field(*pattern)) {
+            throw InputError("output pattern '" + *pattern + "' has no frame field such as %04d but " +
+                             std::to_string(frames.count()) + " frames are rendered");
+        }
+    }
+    return out;
+}
+
+// Everything that lives across frames.
+class Sequence {
+  public:
+    Sequence(const core::Scene& scene, const RenderArgs& args, core::MeshFrames& meshes)
+        : scene_(scene), args_(args), meshes_(meshes) {}
+
+    core::FrameLines draw(int frame) {
+        Clock clock;
+        core::FrameLines result;
+        result.frame = frame;
+        result.image = scene_.image;
+        result.light = scene_.light;
+        const core::Mesh& mesh = meshes_.at(frame);
+        const double load_ms = clock.lap_ms();
+        const core::EdgeTable& table = meshes_.edges();
+
+        const glm::dmat4 world_from_object = core::world_from_object_at(scene_, frame);
+        const core::Bounds object_bounds = core::bounds_of(mesh.positions);
+        result.camera = core::camera_at(scene_, frame, transform_bounds(object_bounds, world_from_object));
+        const core::Projection projection(result.camera, scene_.image, world_from_object);
+        if (!warned_inside_ && inside(object_bounds, projection.eye_object())) {
+            warned_inside_ = true;
+            warn("frame " + std::to_string(frame) + ": the camera is inside the mesh's bounds; lines may be hidden");
+        }
+
+        const core::FeatureEdges features = core::extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
+        const double extract_ms = clock.lap_ms();
+        const std::vector<core::Chain> chains = core::chain_feature_edges(features, table);
+        const double chain_ms = clock.lap_ms();
+        if (!occlusion_ || meshes_.is_sequence()) occlusion_ = std::make_unique<core::ExactOcclusion>(mesh, table);
+        const core::VisibilityOptions visibility{.keep_hidden = scene_.lines.hidden};
+        result.strokes = core::split_by_visibility(chains, mesh, projection, *occlusion_, visibility);
+        const double visibility_ms = clock.lap_ms();
+
+        result.stats.faces = mesh.triangles.size();
+        result.stats.edges = table.edge_count();
+        result.stats.edges_tested = features.edges_tested;
+        result.stats.faces_tested = features.faces_tested;
+        result.stats.feature_edges = features.count_by_kind();
+        core::tally_visible_length(result);
+        result.stats.ms = {{"load", load_ms}, {"extract", extract_ms}, {"chain", chain_ms}, {"visibility", visibility_ms}};
+        return result;
+    }
+
+    void warn(const std::string& message) const {
+        if (!args_.quiet) std::fprintf(stderr, "inkline: warning: %s\n", message.c_str());
+    }
+
+  private:
+    const core::Scene& scene_;
+    const RenderArgs& args_;
+    core::MeshFrames& meshes_;
+    std::unique_ptr<core::ExactOcclusion> occlusion_;  // static meshes build the tree once
+    bool warned_inside_ = false;
+};
+
+}  // namespace
+
+int run_render(const RenderArgs& args) {
+    // Scene: a file, or a default turntable around a bare mesh.
+    const bool from_scene = is_scene_file(args.input);
+    core::Scene scene;
+    if (from_scene) {
+        scene = core::load_scene(args.input);
+    } else {
+        scene.mesh.path = args.input;
+        scene.first_frame = 1;
+        scene.last_frame = 48;
+    }
+    FrameRange frames{scene.first_frame, scene.last_frame};
+    if (!args.frames.empty()) frames = parse_frames(args.frames);
+    if (!args.size.empty()) scene.image = parse_size(args.size);
+    if (args.hidden) scene.lines.hidden = true;
+    if (args.tracker != "brute") throw InputError("--tracker '" + args.tracker + "': only 'brute' is available");
+    if (args.visibility != "exact") throw InputError("--visibility '" + args.visibility + "': only 'exact' is available");
+    const Outputs outputs = resolve_outputs(args, frames);
+
+    core::MeshFrames meshes(scene.mesh, frames.first);
+    const size_t faces = meshes.at(frames.first).triangles.size();
+    if (faces > args.max_faces) {
+        throw InputError(meshes.path_of(frames.first).string() + ": " + std::to_string(faces) +
+                         " faces exceed the limit of " + std::to_string(args.max_faces) + " (raise it with --max-faces)");
+    }
+    if (!from_scene) {
+        const int first = scene.first_frame, last = scene.last_frame;
+        scene = core::default_turntable_scene(args.input, core::bounds_of(meshes.at(frames.first).positions));
+        scene.first_frame = first;
+        scene.last_frame = last;
+    }
+
+    Sequence sequence(scene, args, meshes);
+    for (const std::string& w : meshes.warnings()) sequence.warn(w);
+
+    const auto start = std::chrono::steady_clock::now();
+    size_t strokes = 0, files = 0, failed = 0;
+    for (int frame = frames.first; frame <= frames.last; ++frame) {
+        core::FrameLines result;
+        try {
+            result = sequence.draw(frame);
+        } catch (const InputError& e) {
+            if (!args.keep_going) throw;
+            ++failed;
+            std::fprintf(stderr, "inkline: error: frame %d: %s\n", frame, e.what());
+            continue;
+        }
+        Clock clock;
+        if (!outputs.svg.empty()) {
+            output::write_file_atomically(core::format_frame(outputs.svg, frame), output::centerline_svg(result, {}));
+            ++files;
+        }
+        result.stats.ms.emplace_back("svg", clock.lap_ms());
+        if (!outputs.json.empty()) {
+            output::write_file_atomically(core::format_frame(outputs.json, frame), output::polylines_json(result));
+            ++files;
+        }
+        strokes += result.strokes.size();
+        if (args.verbose) {
+            std::fprintf(stderr, "frame %d: %zu strokes, %zu of %zu edges tested", frame, result.strokes.size(),
+                         result.stats.edges_tested, result.stats.edges);
+            for (const auto& [stage, ms] : result.stats.ms) std::fprintf(stderr, ", %s %.1f ms", stage.c_str(), ms);
+            std::fprintf(stderr, "\n");
+        }
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!args.quiet) {
+        std::fprintf(stderr, "inkline: %d frame(s)%s, %zu strokes, %zu files in %.2f s (%.1f ms/frame)\n",
+                     frames.count() - int(failed), failed ? (" (" + std::to_string(failed) + " failed)").c_str() : "",
+                     strokes, files, seconds, 1000.0 * seconds / frames.count());
+    }
+    return failed ? 2 : 0;
+}
+
+int run_info(const std::string& mesh_path) {
+    const core::LoadedMesh loaded = core::load_mesh(mesh_path);
+    const core::EdgeTable table = core::build_edge_table(loaded.mesh);
+    const core::MeshReport r = core::describe_mesh(loaded.mesh, table);
+    const core::Bounds b = core::bounds_of(loaded.mesh.positions);
+    std::printf("file: %s\n", mesh_path.c_str());
+    std::printf("vertices: %zu\nfaces: %zu\nedges: %zu\nboundary edges: %zu\nnon-manifold edges: %zu\n", r.vertices,
+                r.faces, r.edges, r.boundary_edges, r.non_manifold_edges);
+    std::printf("degenerate faces: %zu\ninconsistently oriented edges: %zu\nconnected components: %zu\n",
+                r.degenerate_faces, r.inconsistent_edges, r.connected_components);
+    std::printf("bounds: [%g, %g, %g] .. [%g, %g, %g]\n", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);
+    for (const std::string& w : loaded.warnings) std::printf("warning: %s\n", w.c_str());
+    for (const std::string& w : core::mesh_warnings(r)) std::printf("warning: %s\n", w.c_str());
+    return 0;
+}
+
+}  // namespace inkline::cli

@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+// The program under hostile conditions: failing frames, full disks, interruptions, limits.
+#include "tests/support/obj.h"
+#include "tests/support/run.h"
+#include "tests/support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace inkline {
+namespace {
+
+namespace fs = std::filesystem;
+
+class BadInput : public ::testing::Test {
+  protected:
+    fs::path dir = test::fresh_temp_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    void TearDown() override { fs::remove_all(dir); }
+
+    // A 4-frame cube sequence whose third frame is garbage.
+    fs::path corrupt_sequence() {
+        for (int f = 1; f <= 4; ++f) {
+            core::Mesh cube = test::cube(1.0 + 0.1 * f);
+            test::write_obj(dir / "anim" / ("f" + std::to_string(f) + ".obj"), cube);
+        }
+        test::write_text(dir / "anim" / "f3.obj", "v 0 0 0\nthis is not a mesh\nf 1 2 3\n");
+        test::write_text(dir / "scene.json", R"({"mesh": {"sequence": "anim/f%d.obj"}, "frames": [1, 4],
+            "camera": {"eye": [3, 2.5, 4], "target": [0, 0, 0]}})");
+        return dir / "scene.json";
+    }
+
+    // Files in a folder tree that are not complete outputs: temporaries or truncated files.
+    static std::vector<std::string> partial_files(const fs::path& root) {
+        std::vector<std::string> bad;
+        if (!fs::exists(root)) return bad;
+        for (const auto& e : fs::recursive_directory_iterator(root)) {
+            if (!e.is_regular_file()) continue;
+            const std::string name = e.path().filename().string();
+            const std::string text = test::read_text(e.path());
+            const bool whole = (name.ends_with(".svg") && text.ends_with("</svg>\n")) ||
+                               (name.ends_with(".json") && text.ends_with("}\n"));
+            if (!whole) bad.push_back(e.path().string());
+        }
+        return bad;
+    }
+};
+
+TEST_F(BadInput, FailingFrameStopsTheRunAndKeepsEarlierFrames) {
+    const test::RunResult r = test::run_inkline("render " + corrupt_sequence().string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("f3.obj"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "out" / "svg" / "frame_0001.svg"));
+    EXPECT_TRUE(fs::exists(dir / "out" / "svg" / "frame_0002.svg"));
+    EXPECT_FALSE(fs::exists(dir / "out" / "svg" / "frame_0003.svg"));
+    EXPECT_FALSE(fs::exists(dir / "out" / "svg" / "frame_0004.svg"));
+    EXPECT_TRUE(partial_files(dir / "out").empty());
+}
+
+TEST_F(BadInput, KeepGoingRendersTheRest) {
+    const test::RunResult r =
+        test::run_inkline("render " + corrupt_sequence().string() + " --keep-going -o " + (dir / "out").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("frame 3"), std::string::npos) << r.output;
+    for (int f : {1, 2, 4}) EXPECT_TRUE(fs::exists(dir / "out" / "json" / ("frame_000" + std::to_string(f) + ".json")));
+    EXPECT_FALSE(fs::exists(dir / "out" / "json" / "frame_0003.json"));
+}
+
+TEST_F(BadInput, DifferentTopologyNamesTheFrame) {
+    corrupt_sequence();
+    test::write_obj(dir / "anim" / "f3.obj", test::uv_sphere(8, 4, 1.0));
+    const test::RunResult r = test::run_inkline("render " + (dir / "scene.json").string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.output.find("f3.obj: frame 3 has a different topology"), std::string::npos) << r.output;
+}
+
+TEST_F(BadInput, MissingSequenceFrameNamesTheFile) {
+    corrupt_sequence();
+    fs::remove(dir / "anim" / "f3.obj");
+    const test::RunResult r = test::run_inkline("render " + (dir / "scene.json").string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.output.find("f3.obj: file not found"), std::string::npos) << r.output;
+}
+
+TEST_F(BadInput, FullDiskIsAnOutputErrorWithoutPartialFiles) {
+    test::write_obj(dir / "torus.obj", test::torus(1.0, 0.4, 48, 24));
+    // ulimit -f counts 1024-byte blocks: every SVG of this torus is larger than 2 KiB.
+    const test::RunResult r = test::run_shell("ulimit -f 2; " + test::inkline_command() + " render " +
+                                              (dir / "torus.obj").string() + " --frames 1:3 -o " + (dir / "out").string());
+    EXPECT_EQ(r.code, 3) << r.output;
+    EXPECT_NE(r.output.find("File too large"), std::string::npos) << r.output;
+    EXPECT_TRUE(partial_files(dir / "out").empty());
+}
+
+TEST_F(BadInput, InterruptedRunLeavesOnlyWholeFiles) {
+    test::write_obj(dir / "torus.obj", test::torus(1.0, 0.4, 160, 80));
+    for (int signal_number : {SIGTERM, SIGINT}) {
+        fs::remove_all(dir / "out");
+        const pid_t child = ::fork();
+        if (child == 0) {
+            const std::string input = (dir / "torus.obj").string(), out = (dir / "out").string();
+            ::execl(INKLINE_EXE, INKLINE_EXE, "render", input.c_str(), "--size", "2048x2048", "--hidden", "-q", "-o",
+                    out.c_str(), static_cast<char*>(nullptr));
+            ::_exit(127);
+        }
+        ::usleep(400 * 1000);
+        ::kill(child, signal_number);
+        int status = 0;
+        ::waitpid(child, &status, 0);
+        EXPECT_TRUE(WIFSIGNALED(status)) << "the 48-frame run should still be going when interrupted";
+        EXPECT_TRUE(partial_files(dir / "out").empty());
+    }
+}
+
+TEST_F(BadInput, FaceLimitIsEnforced) {
+    test::write_obj(dir / "cube.obj", test::cube(1.0));
+    const test::RunResult r = test::run_inkline("render " + (dir / "cube.obj").string() + " --max-faces 10 -o " +
+                                                (dir / "out").string());
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.output.find("12 faces exceed the limit of 10"), std::string::npos) << r.output;
+}
+
+TEST_F(BadInput, CameraInsideTheMeshWarnsAndDraws) {
+    test::write_obj(dir / "sphere.obj", test::uv_sphere(32, 16, 2.0));
+    test::write_text(dir / "scene.json", R"({"mesh": "sphere.obj", "camera": {"eye": [0, 0, 0.5], "target": [0, 0, -1]}})");
+    const test::RunResult r = test::run_inkline("render " + (dir / "scene.json").string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("inside the mesh"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "out" / "svg" / "frame_0001.svg"));
+}
+
+}  // namespace
+}  // namespace inkline

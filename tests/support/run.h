@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: MIT
+// Runs the inkline program (path compiled in as INKLINE_EXE) and captures its output.
+#pragma once
+
+#include <array>
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+namespace inkline::test {
+
+struct RunResult {
+    int code = -1;       // exit status, -1 when killed by a signal
+    std::string output;  // stdout and stderr together
+};
+
+inline std::string inkline_command() { return INKLINE_EXE; }
+
+// Runs a shell command line, capturing stdout and stderr.
+inline RunResult run_shell(const std::string& command_line) {
+    RunResult r;
+    FILE* pipe = ::popen(("(" + command_line + ") 2>&1").c_str(), "r");
+    std::array<char, 4096> buf{};
+    while (size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
+    const int status = ::pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+inline RunResult run_inkline(const std::string& args) { return run_shell(inkline_command() + " " + args); }
+
+}  // namespace inkline::test
