@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
@@ -23,6 +24,10 @@ using nlohmann::json;
 
 // Below this, a vector counts as zero (eye on target, zero axis) or two directions as parallel.
 constexpr double kDegenerateVector = 1e-9;
+
+// Largest accepted brush width or smoothing, px: wider strokes than this are a typo, and the
+// stroke stages scale their search windows with these values.
+constexpr double kMaxBrushWidthPx = 256.0;
 
 // Reads one JSON object strictly: every key is known, every value has the right type, and
 // every error names the file and the dotted key path.
@@ -193,6 +198,61 @@ MeshSource read_mesh(const Reader& r, const std::filesystem::path& base) {
     return source;
 }
 
+
+// "#rrggbb" or [r, g, b] with components in [0, 1].
+glm::dvec3 read_color(const Reader& r, const std::string& key) {
+    const json& v = r.at(key);
+    if (v.is_string()) {
+        const std::string text = v.get<std::string>();
+        const bool hex = text.size() == 7 && text[0] == '#' &&
+                         std::all_of(text.begin() + 1, text.end(), [](char c) { return std::isxdigit(uint8_t(c)); });
+        if (!hex) r.fail(key, "expected a color \"#rrggbb\" or [r, g, b] in 0..1");
+        glm::dvec3 color;
+        for (int i = 0; i < 3; ++i) {
+            color[i] = double(std::stoi(text.substr(size_t(1 + 2 * i), 2), nullptr, 16)) / 255.0;
+        }
+        return color;
+    }
+    if (!v.is_array()) r.fail(key, "expected a color \"#rrggbb\" or [r, g, b] in 0..1");
+    const glm::dvec3 color = r.vec3(key);
+    for (int i = 0; i < 3; ++i) {
+        if (!(color[i] >= 0.0 && color[i] <= 1.0)) r.fail(key, "components must be between 0 and 1");
+    }
+    return color;
+}
+
+BrushStyle read_brush(const Reader& r) {
+    r.allow_only({"width_min_px", "width_max_px", "gamma", "invert", "taper_px", "min_length_px", "smooth_px",
+                  "max_deviation_px", "turn_angle_deg", "color", "opacity"});
+    BrushStyle b;
+    auto non_negative = [&r](const char* key, double fallback) {
+        const double v = r.number_or(key, fallback);
+        if (v < 0.0) r.fail(key, "must not be negative");
+        return v;
+    };
+    b.width_min_px = non_negative("width_min_px", b.width_min_px);
+    b.width_max_px = non_negative("width_max_px", b.width_max_px);
+    if (b.width_max_px < b.width_min_px) r.fail("width_max_px", "must not be less than width_min_px");
+    const std::string limit = "exceeds the limit of " + std::to_string(int(kMaxBrushWidthPx)) + " px";
+    if (b.width_max_px > kMaxBrushWidthPx) r.fail("width_max_px", limit);
+    b.gamma = r.number_or("gamma", b.gamma);
+    if (!(b.gamma > 0.0 && b.gamma <= 100.0)) r.fail("gamma", "must be greater than 0 and at most 100");
+    b.invert = r.boolean_or("invert", b.invert);
+    b.taper_px = non_negative("taper_px", b.taper_px);
+    b.min_length_px = non_negative("min_length_px", b.min_length_px);
+    b.smooth_px = non_negative("smooth_px", b.smooth_px);
+    if (b.smooth_px > kMaxBrushWidthPx) r.fail("smooth_px", limit);
+    b.max_deviation_px = non_negative("max_deviation_px", b.max_deviation_px);
+    b.turn_angle_deg = r.number_or("turn_angle_deg", b.turn_angle_deg);
+    if (!(b.turn_angle_deg > 0.0 && b.turn_angle_deg <= 180.0)) {
+        r.fail("turn_angle_deg", "must be greater than 0 and at most 180");
+    }
+    if (r.has("color")) b.color = read_color(r, "color");
+    b.opacity = r.number_or("opacity", b.opacity);
+    if (!(b.opacity >= 0.0 && b.opacity <= 1.0)) r.fail("opacity", "must be between 0 and 1");
+    return b;
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file) {
@@ -207,7 +267,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
         throw InputError(name + ": not valid JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
     }
     const Reader r(name, root, "");
-    r.allow_only({"version", "mesh", "frames", "image", "camera", "object", "light", "lines"});
+    r.allow_only({"version", "mesh", "frames", "image", "camera", "object", "light", "lines", "brush"});
 
     Scene scene;
     scene.file = scene_file;
@@ -262,6 +322,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
             l.fail("crease_angle_deg", "must be between 0 and 180");
         scene.lines.hidden = l.boolean_or("hidden", false);
     }
+    if (r.has("brush")) scene.brush = read_brush(r.child("brush"));
     return scene;
 }
 

@@ -3,6 +3,7 @@
 // light and line kinds. docs/scene.md describes every key.
 #pragma once
 
+#include "core/brush_style.h"
 #include "core/camera.h"
 #include "core/mesh.h"
 
@@ -69,6 +70,7 @@ struct Scene {
     std::optional<Rotation> object_rotation;
     Light light;
     LineOptions lines;
+    BrushStyle brush;
 };
 
 // Reads and validates a scene file; relative paths resolve against its folder.

@@ -116,3 +116,54 @@ TEST(Scene, ObjectRotationAboutItsCenter) {
 
 }  // namespace
 }  // namespace inkline
+
+namespace inkline {
+namespace {
+
+TEST(Scene, BrushBlockSetsTheStyle) {
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]},
+            "brush": {"width_min_px": 0.5, "width_max_px": 6, "gamma": 2, "invert": true, "taper_px": 10,
+                      "min_length_px": 4, "smooth_px": 1.5, "color": "#ff8000", "opacity": 0.75}})",
+        "scene.json");
+    EXPECT_EQ(s.brush.width_min_px, 0.5);
+    EXPECT_EQ(s.brush.width_max_px, 6.0);
+    EXPECT_EQ(s.brush.gamma, 2.0);
+    EXPECT_TRUE(s.brush.invert);
+    EXPECT_EQ(s.brush.taper_px, 10.0);
+    EXPECT_EQ(s.brush.min_length_px, 4.0);
+    EXPECT_EQ(s.brush.smooth_px, 1.5);
+    EXPECT_NEAR(s.brush.color.r, 1.0, 1e-12);
+    EXPECT_NEAR(s.brush.color.g, 128.0 / 255.0, 1e-12);
+    EXPECT_NEAR(s.brush.color.b, 0.0, 1e-12);
+    EXPECT_EQ(s.brush.opacity, 0.75);
+    const core::Scene d = core::parse_scene(kMinimal, "scene.json");
+    EXPECT_EQ(d.brush.width_max_px, core::BrushStyle{}.width_max_px) << "no block keeps the defaults";
+}
+
+TEST(Scene, BrushErrorsNameTheKey) {
+    const std::string camera = R"("camera": {"eye": [0,0,4], "target": [0,0,0]})";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {R"("brush": {"width": 2})", "key 'brush.width': unknown key"},
+        {R"("brush": {"gamma": "soft"})", "key 'brush.gamma': expected a number"},
+        {R"("brush": {"gamma": 0})", "key 'brush.gamma'"},
+        {R"("brush": {"width_min_px": -1})", "key 'brush.width_min_px': must not be negative"},
+        {R"("brush": {"width_min_px": 3, "width_max_px": 2})", "key 'brush.width_max_px'"},
+        {R"("brush": {"width_max_px": 1e6})", "key 'brush.width_max_px': exceeds the limit"},
+        {R"("brush": {"invert": 1})", "key 'brush.invert': expected true or false"},
+        {R"("brush": {"color": "black"})", "key 'brush.color'"},
+        {R"("brush": {"color": [0, 2, 0]})", "key 'brush.color': components"},
+        {R"("brush": {"opacity": 1.5})", "key 'brush.opacity'"},
+        {R"("brush": {"turn_angle_deg": 0})", "key 'brush.turn_angle_deg'"},
+        {R"("brush": 3)", "key 'brush': expected an object"},
+    };
+    for (const auto& [brush, expected] : cases) {
+        const std::string json = R"({"mesh": "m.obj", )" + camera + ", " + brush + "}";
+        const std::string error = error_of(json);
+        EXPECT_NE(error.find("dir/scene.json: "), std::string::npos) << json;
+        EXPECT_NE(error.find(expected), std::string::npos) << json << "\n  gave: " << error;
+    }
+}
+
+}  // namespace
+}  // namespace inkline
