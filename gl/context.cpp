@@ -23,6 +23,7 @@ class EglContext final : public Context {
         eglTerminate(display_);
     }
     const char* backend_name() const override { return "egl"; }
+    GlProc proc_address(const char* name) const override { return eglGetProcAddress(name); }
 
   private:
     EGLDisplay display_;
@@ -37,6 +38,7 @@ class OsmesaContext final : public Context {
     }
     ~OsmesaContext() override { OSMesaDestroyContext(context_); }
     const char* backend_name() const override { return "osmesa"; }
+    GlProc proc_address(const char* name) const override { return OSMesaGetProcAddress(name); }
 
   private:
     OSMesaContext context_;

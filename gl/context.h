@@ -17,6 +17,9 @@ class ContextError : public std::runtime_error {
 
 enum class Backend { kAuto, kEgl, kOsmesa };
 
+// A GL entry point as the platform returns it; cast to its PFNGL...PROC type before calling.
+using GlProc = void (*)();
+
 // Parses "auto", "egl" or "osmesa"; throws InputError otherwise.
 Backend parse_backend(const std::string& name);
 
@@ -25,6 +28,9 @@ class Context {
   public:
     virtual ~Context() = default;
     virtual const char* backend_name() const = 0;  // "egl" or "osmesa"
+    // Address of a GL entry point in this context (eglGetProcAddress, OSMesaGetProcAddress);
+    // nullptr when the platform does not know it.
+    virtual GlProc proc_address(const char* name) const = 0;
     std::string renderer() const;                   // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
     std::string version() const;                    // GL_VERSION
     // True for Mesa's software rasterisers (llvmpipe, softpipe, swrast) and OSMesa.

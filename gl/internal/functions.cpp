@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+#include "gl/internal/functions.h"
+
+#include <string>
+
+namespace inkline::gl::internal {
+namespace {
+
+template <typename Fn>
+void load(const Context& context, const char* name, Fn& r_fn) {
+    r_fn = reinterpret_cast<Fn>(context.proc_address(name));
+    if (!r_fn) {
+        throw ContextError(std::string(context.backend_name()) + ": OpenGL entry point " + name +
+                           " is missing");
+    }
+}
+
+}  // namespace
+
+Functions load_functions(const Context& context) {
+    Functions fn;
+#define INKLINE_GL_LOAD(name) load(context, "gl" #name, fn.name)
+    INKLINE_GL_LOAD(GetError);
+    INKLINE_GL_LOAD(GetIntegerv);
+    INKLINE_GL_LOAD(Enable);
+    INKLINE_GL_LOAD(Disable);
+    INKLINE_GL_LOAD(Viewport);
+    INKLINE_GL_LOAD(DepthFunc);
+    INKLINE_GL_LOAD(DepthMask);
+    INKLINE_GL_LOAD(ClearBufferfv);
+    INKLINE_GL_LOAD(Finish);
+    INKLINE_GL_LOAD(PixelStorei);
+    INKLINE_GL_LOAD(ReadBuffer);
+    INKLINE_GL_LOAD(DrawBuffers);
+    INKLINE_GL_LOAD(ReadPixels);
+    INKLINE_GL_LOAD(DrawElements);
+
+    INKLINE_GL_LOAD(GenBuffers);
+    INKLINE_GL_LOAD(DeleteBuffers);
+    INKLINE_GL_LOAD(BindBuffer);
+    INKLINE_GL_LOAD(BufferData);
+    INKLINE_GL_LOAD(BufferSubData);
+    INKLINE_GL_LOAD(GenVertexArrays);
+    INKLINE_GL_LOAD(DeleteVertexArrays);
+    INKLINE_GL_LOAD(BindVertexArray);
+    INKLINE_GL_LOAD(EnableVertexAttribArray);
+    INKLINE_GL_LOAD(VertexAttribPointer);
+
+    INKLINE_GL_LOAD(CreateShader);
+    INKLINE_GL_LOAD(ShaderSource);
+    INKLINE_GL_LOAD(CompileShader);
+    INKLINE_GL_LOAD(GetShaderiv);
+    INKLINE_GL_LOAD(GetShaderInfoLog);
+    INKLINE_GL_LOAD(DeleteShader);
+    INKLINE_GL_LOAD(CreateProgram);
+    INKLINE_GL_LOAD(AttachShader);
+    INKLINE_GL_LOAD(LinkProgram);
+    INKLINE_GL_LOAD(GetProgramiv);
+    INKLINE_GL_LOAD(GetProgramInfoLog);
+    INKLINE_GL_LOAD(DeleteProgram);
+    INKLINE_GL_LOAD(UseProgram);
+    INKLINE_GL_LOAD(GetUniformLocation);
+    INKLINE_GL_LOAD(UniformMatrix4fv);
+
+    INKLINE_GL_LOAD(GenFramebuffers);
+    INKLINE_GL_LOAD(DeleteFramebuffers);
+    INKLINE_GL_LOAD(BindFramebuffer);
+    INKLINE_GL_LOAD(FramebufferRenderbuffer);
+    INKLINE_GL_LOAD(CheckFramebufferStatus);
+    INKLINE_GL_LOAD(GenRenderbuffers);
+    INKLINE_GL_LOAD(DeleteRenderbuffers);
+    INKLINE_GL_LOAD(BindRenderbuffer);
+    INKLINE_GL_LOAD(RenderbufferStorage);
+#undef INKLINE_GL_LOAD
+    return fn;
+}
+
+}  // namespace inkline::gl::internal
