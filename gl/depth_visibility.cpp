@@ -1,0 +1,335 @@
+// SPDX-License-Identifier: MIT
+#include "gl/depth_visibility.h"
+
+#include "core/error.h"
+#include "gl/internal/depth_map.h"
+#include "gl/internal/functions.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+#include <string>
+
+namespace inkline::gl {
+namespace {
+
+constexpr const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 p_object;
+uniform mat4 clip_from_object;
+void main() { gl_Position = clip_from_object * vec4(p_object, 1.0); }
+)";
+
+// gl_FragCoord.w is 1 / w_clip, which is affine in window space on a planar triangle: its
+// screen derivatives are the triangle's own depth slope, constant over it, so storing them
+// lets the CPU test extend the seen surface exactly to a point between texel centres. The
+// face id (exact as a float below 2^24) names the candidates for the exact test at edges.
+constexpr const char* kFragmentShader = R"(#version 330 core
+layout(location = 0) out vec4 plane;
+void main() {
+    float q = gl_FragCoord.w;
+    plane = vec4(q, dFdx(q), dFdy(q), float(gl_PrimitiveID + 1));
+}
+)";
+
+// The segment from the eye stops this fraction of its length short of the point, so faces that
+// merely touch the point (its own faces, those around a vertex) never count: the same end gap
+// as core::ExactOcclusion, so both answer the same where the depth map defers to geometry.
+constexpr double kEndGap = 1e-6;
+
+// True when the segment eye -> p, without its last kEndGap, crosses the triangle
+// (Moller-Trumbore in double precision).
+bool segment_hits(const glm::dvec3& eye, const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                  const glm::dvec3& c) {
+    const glm::dvec3 dir = p - eye;
+    const glm::dvec3 e1 = b - a, e2 = c - a;
+    const glm::dvec3 h = glm::cross(dir, e2);
+    const double det = glm::dot(e1, h);
+    if (det == 0.0) return false;  // parallel, or a degenerate face
+    const double inv = 1.0 / det;
+    const glm::dvec3 s = eye - a;
+    const double u = glm::dot(s, h) * inv;
+    if (u < 0.0 || u > 1.0) return false;
+    const glm::dvec3 q = glm::cross(s, e1);
+    const double v = glm::dot(dir, q) * inv;
+    if (v < 0.0 || u + v > 1.0) return false;
+    const double t = glm::dot(e2, q) * inv;
+    return t > 0.0 && t < 1.0 - kEndGap;
+}
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The projection's matrix, read back through its public clip(): clip(0) is the last column
+// and clip(e_k) - clip(0) column k. Exact up to one rounding of the double products.
+glm::dmat4 clip_from_object_of(const core::Projection& projection) {
+    const glm::dvec4 origin = projection.clip(glm::dvec3(0.0));
+    glm::dmat4 m(1.0);
+    for (int k = 0; k < 3; ++k) {
+        glm::dvec3 axis(0.0);
+        axis[k] = 1.0;
+        m[k] = projection.clip(axis) - origin;
+    }
+    m[3] = origin;
+    return m;
+}
+
+GLuint compile(const internal::Functions& fn, GLenum type, const char* source) {
+    const GLuint shader = fn.CreateShader(type);
+    fn.ShaderSource(shader, 1, &source, nullptr);
+    fn.CompileShader(shader);
+    GLint ok = GL_FALSE;
+    fn.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        char log[1024] = {};
+        fn.GetShaderInfoLog(shader, sizeof log, nullptr, log);
+        fn.DeleteShader(shader);
+        throw ContextError(std::string("depth pass shader does not compile: ") + log);
+    }
+    return shader;
+}
+
+GLuint link_program(const internal::Functions& fn) {
+    const GLuint vs = compile(fn, GL_VERTEX_SHADER, kVertexShader);
+    const GLuint fs = compile(fn, GL_FRAGMENT_SHADER, kFragmentShader);
+    const GLuint program = fn.CreateProgram();
+    fn.AttachShader(program, vs);
+    fn.AttachShader(program, fs);
+    fn.LinkProgram(program);
+    fn.DeleteShader(vs);
+    fn.DeleteShader(fs);
+    GLint ok = GL_FALSE;
+    fn.GetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        char log[1024] = {};
+        fn.GetProgramInfoLog(program, sizeof log, nullptr, log);
+        fn.DeleteProgram(program);
+        throw ContextError(std::string("depth pass shaders do not link: ") + log);
+    }
+    return program;
+}
+
+void check_gl(const internal::Functions& fn, const char* step) {
+    const GLenum error = fn.GetError();
+    if (error != GL_NO_ERROR) {
+        throw ContextError(std::string("GL error ") + std::to_string(error) + " while " + step +
+                           " (out of memory for the depth map? try a smaller supersampling)");
+    }
+}
+
+}  // namespace
+
+struct DepthOcclusion::Impl {
+    internal::Functions fn;
+    DepthVisibilityOptions options;
+    GLuint program = 0, vao = 0, positions = 0, indices = 0;
+    GLuint framebuffer = 0, color = 0, depth = 0;
+    GLint clip_from_object_location = -1;
+    GLint max_size = 0;          // largest framebuffer side GL allows
+    size_t vertex_count = 0;     // uploaded
+    GLsizei index_count = 0;     // uploaded
+    bool uploaded = false;
+
+    internal::DepthMap map;
+    std::optional<core::Projection> projection;  // of the last prepare()
+    const core::Mesh* frame_mesh = nullptr;      // of the last prepare()
+    DepthPassStats stats;
+
+    ~Impl() {
+        if (!fn.DeleteProgram) return;  // loading failed: nothing was created
+        fn.DeleteFramebuffers(1, &framebuffer);
+        fn.DeleteRenderbuffers(1, &color);
+        fn.DeleteRenderbuffers(1, &depth);
+        fn.DeleteBuffers(1, &positions);
+        fn.DeleteBuffers(1, &indices);
+        fn.DeleteVertexArrays(1, &vao);
+        fn.DeleteProgram(program);
+    }
+
+    void upload(const core::Mesh& mesh, MeshChange change) {
+        const bool everything = !uploaded || change == MeshChange::kTopology;
+        if (!everything && change == MeshChange::kNone) return;
+        const auto position_bytes = GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3));
+        fn.BindVertexArray(vao);
+        fn.BindBuffer(GL_ARRAY_BUFFER, positions);
+        if (everything) {
+            fn.BufferData(GL_ARRAY_BUFFER, position_bytes, mesh.positions.data(), GL_DYNAMIC_DRAW);
+            fn.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices);
+            fn.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)),
+                          mesh.triangles.data(), GL_STATIC_DRAW);
+            vertex_count = mesh.positions.size();
+            index_count = GLsizei(3 * mesh.triangles.size());
+            uploaded = true;
+        } else {
+            INKLINE_CHECK_EQ(mesh.positions.size(), vertex_count);
+            INKLINE_CHECK_EQ(GLsizei(3 * mesh.triangles.size()), index_count);
+            fn.BufferSubData(GL_ARRAY_BUFFER, 0, position_bytes, mesh.positions.data());
+        }
+        check_gl(fn, "uploading the mesh");
+    }
+
+    // (Re)allocates the framebuffer when the depth-map size changes.
+    void resize(int width, int height) {
+        if (width == map.width && height == map.height) return;
+        fn.BindRenderbuffer(GL_RENDERBUFFER, color);
+        fn.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA32F, width, height);
+        fn.BindRenderbuffer(GL_RENDERBUFFER, depth);
+        fn.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
+        fn.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        fn.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+        fn.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+        check_gl(fn, "allocating the depth map");
+        if (fn.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            throw ContextError("the GL context cannot render to an RGBA32F framebuffer of " +
+                               std::to_string(width) + "x" + std::to_string(height));
+        }
+        map.width = width;
+        map.height = height;
+        map.texels.assign(size_t(width) * size_t(height), {});
+    }
+
+    void render(const core::Projection& proj) {
+        // Clip-space matrix in float: the same one the CPU test applies in double.
+        const glm::mat4 clip_from_object(clip_from_object_of(proj));
+        fn.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        const GLenum draw_buffer = GL_COLOR_ATTACHMENT0;
+        fn.DrawBuffers(1, &draw_buffer);
+        fn.Viewport(0, 0, map.width, map.height);
+        const GLfloat no_surface[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        const GLfloat far_depth = 1.0f;
+        fn.ClearBufferfv(GL_COLOR, 0, no_surface);
+        fn.DepthMask(GL_TRUE);
+        fn.ClearBufferfv(GL_DEPTH, 0, &far_depth);
+        fn.Enable(GL_DEPTH_TEST);
+        fn.DepthFunc(GL_LESS);
+        // Occluders between the eye and the near plane count in the exact definition, and the
+        // far plane must not cut the mesh: depth clamping turns off near and far clipping.
+        fn.Enable(GL_DEPTH_CLAMP);
+        fn.Disable(GL_CULL_FACE);  // back faces occlude too
+        fn.UseProgram(program);
+        fn.UniformMatrix4fv(clip_from_object_location, 1, GL_FALSE, &clip_from_object[0][0]);
+        fn.BindVertexArray(vao);
+        fn.DrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
+        fn.Finish();
+        check_gl(fn, "rendering the depth map");
+    }
+
+    void read_back() {
+        fn.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+        fn.ReadBuffer(GL_COLOR_ATTACHMENT0);
+        fn.PixelStorei(GL_PACK_ALIGNMENT, 4);
+        fn.ReadPixels(0, 0, map.width, map.height, GL_RGBA, GL_FLOAT, map.texels.data());
+        check_gl(fn, "reading back the depth map");
+    }
+};
+
+DepthOcclusion::DepthOcclusion(const Context& context, const DepthVisibilityOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+    if (options.supersampling < 1) {
+        throw InputError("depth-map supersampling " + std::to_string(options.supersampling) +
+                         ": expected 1 or more");
+    }
+    Impl& m = *impl_;
+    m.options = options;
+    m.fn = internal::load_functions(context);
+    const internal::Functions& fn = m.fn;
+    m.program = link_program(fn);
+    m.clip_from_object_location = fn.GetUniformLocation(m.program, "clip_from_object");
+    fn.GenVertexArrays(1, &m.vao);
+    fn.GenBuffers(1, &m.positions);
+    fn.GenBuffers(1, &m.indices);
+    fn.BindVertexArray(m.vao);
+    fn.BindBuffer(GL_ARRAY_BUFFER, m.positions);
+    fn.EnableVertexAttribArray(0);
+    fn.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    fn.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.indices);
+    fn.GenFramebuffers(1, &m.framebuffer);
+    fn.GenRenderbuffers(1, &m.color);
+    fn.GenRenderbuffers(1, &m.depth);
+    GLint renderbuffer_size = 0, viewport_size[2] = {0, 0};
+    fn.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer_size);
+    fn.GetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport_size);
+    m.max_size = std::min({renderbuffer_size, viewport_size[0], viewport_size[1]});
+    check_gl(fn, "setting up the depth pass");
+}
+
+DepthOcclusion::~DepthOcclusion() = default;
+
+void DepthOcclusion::prepare(const core::Mesh& mesh, const core::Projection& projection, MeshChange change) {
+    Impl& m = *impl_;
+    const core::ImageSize image = projection.image();
+    const int side = std::max(image.width, image.height);
+    if (side > m.max_size) {
+        throw InputError("image " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                         " is larger than this GL's framebuffer limit of " + std::to_string(m.max_size) +
+                         " px; use a smaller --size or --visibility exact");
+    }
+    const int supersampling = std::min(m.options.supersampling, m.max_size / side);
+
+    auto start = std::chrono::steady_clock::now();
+    m.upload(mesh, change);
+    m.stats.upload_ms = ms_since(start);
+
+    start = std::chrono::steady_clock::now();
+    m.resize(image.width * supersampling, image.height * supersampling);
+    m.render(projection);
+    m.stats.render_ms = ms_since(start);
+
+    start = std::chrono::steady_clock::now();
+    m.read_back();
+    m.stats.readback_ms = ms_since(start);
+
+    m.stats.width = m.map.width;
+    m.stats.height = m.map.height;
+    m.stats.supersampling = supersampling;
+    m.projection = projection;
+    m.frame_mesh = &mesh;
+}
+
+void DepthOcclusion::occluded(const glm::dvec3& eye_object, std::span<const core::OcclusionQuery> queries,
+                              std::span<uint8_t> r_occluded) const {
+    INKLINE_CHECK_EQ(queries.size(), r_occluded.size());
+    const Impl& m = *impl_;
+    INKLINE_CHECK(m.projection.has_value());  // prepare() comes first
+    const core::Projection& projection = *m.projection;
+    // The caller's eye must be the prepared one; a stale depth map would answer silently.
+    INKLINE_CHECK(glm::length(eye_object - projection.eye_object()) <=
+                  1e-9 * (1.0 + glm::length(eye_object)));
+    const core::Mesh& mesh_of_frame = *m.frame_mesh;
+    const bool exact_at_edges = m.options.exact_at_edges && mesh_of_frame.triangles.size() < internal::kMaxFaceId;
+    const glm::dvec2 size(m.map.width, m.map.height);
+    std::vector<uint32_t> faces;
+    for (size_t i = 0; i < queries.size(); ++i) {
+        const glm::dvec3& p = queries[i].p_object;
+        const glm::dvec4 clip = projection.clip(p);
+        if (clip.w <= 0.0) {
+            r_occluded[i] = 0;  // behind the eye: outside the view, not occluded
+            continue;
+        }
+        const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+        const internal::DepthSample sample{(ndc * 0.5 + 0.5) * size, 1.0 / clip.w};
+        const internal::DepthVerdict verdict = internal::classify_in_depth_map(m.map, sample);
+        if (verdict != internal::DepthVerdict::kEdge || !exact_at_edges) {
+            r_occluded[i] = verdict == internal::DepthVerdict::kHidden ? 1 : 0;
+            continue;
+        }
+        // On a depth discontinuity the texels cannot say on which side the point is; the faces
+        // seen around it can, exactly.
+        faces.clear();
+        internal::faces_around(m.map, sample.p_window, faces);
+        bool hit = false;
+        for (size_t k = 0; k < faces.size() && !hit; ++k) {
+            const glm::uvec3 t = mesh_of_frame.triangles[faces[k]];
+            hit = segment_hits(eye_object, p, glm::dvec3(mesh_of_frame.positions[t.x]), glm::dvec3(mesh_of_frame.positions[t.y]),
+                               glm::dvec3(mesh_of_frame.positions[t.z]));
+        }
+        r_occluded[i] = hit ? 1 : 0;
+    }
+}
+
+const DepthPassStats& DepthOcclusion::last_pass() const { return impl_->stats; }
+
+}  // namespace inkline::gl

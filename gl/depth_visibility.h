@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: MIT
+// Depth-map visibility (`--visibility gl`): once per frame the mesh's depth is rendered into a
+// float framebuffer at the image size times a supersampling factor and read back; every chain
+// sample is then tested against it on the CPU. Sampling, bisection and splitting stay in
+// core::split_by_visibility, which asks this class through core::Occlusion.
+// Based on: the depth-map test of the seed notes ("Reducing data by using depth map") and the
+// visibility mask of their section 7. Robustness at silhouettes: docs/visibility.md.
+#pragma once
+
+#include "core/camera.h"
+#include "core/mesh.h"
+#include "core/visibility.h"
+#include "gl/context.h"
+
+#include <memory>
+
+namespace inkline::gl {
+
+struct DepthVisibilityOptions {
+    // Depth-map texels per image pixel along each axis. 2 keeps every measured disagreement
+    // with the exact reference under a pixel at a quarter of the cost of 4 (docs/visibility.md).
+    int supersampling = 2;
+    // Where the texels around a point disagree (the point is on a depth discontinuity: a
+    // silhouette, an occluder's edge), intersect the segment from the eye to the point with the
+    // faces seen there instead of calling it visible. Off: the depth map alone decides.
+    bool exact_at_edges = true;
+};
+
+// What changed in the mesh since the previous prepare().
+enum class MeshChange {
+    kNone,       // same mesh; only the projection may differ (camera, rigid object motion)
+    kPositions,  // same triangles, new vertex positions (a deforming sequence)
+    kTopology,   // a different mesh
+};
+
+// Size and timings of the last depth pass.
+struct DepthPassStats {
+    int width = 0;          // depth map, texels
+    int height = 0;         // depth map, texels
+    int supersampling = 0;  // the factor used: the option, lowered if GL's size limit requires
+    double upload_ms = 0.0;    // mesh buffers sent to GL
+    double render_ms = 0.0;    // clear, draw and finish
+    double readback_ms = 0.0;  // depth map copied to the CPU
+};
+
+// core::Occlusion answered from a GL depth map. A point is hidden when the surface seen at each
+// of the four depth-map texels around it, extended along its own plane, lies in front of it.
+class DepthOcclusion final : public core::Occlusion {
+  public:
+    // `context` must be current on this thread and outlive this object. Throws ContextError
+    // when the context cannot run the pass (missing entry points, shader or framebuffer errors).
+    explicit DepthOcclusion(const Context& context, const DepthVisibilityOptions& options = {});
+    ~DepthOcclusion() override;
+    DepthOcclusion(const DepthOcclusion&) = delete;
+    DepthOcclusion& operator=(const DepthOcclusion&) = delete;
+
+    // Renders and reads back the depth map of `mesh` (object space) seen through `projection`;
+    // call once per frame before core::split_by_visibility with the same projection. `mesh` must
+    // stay alive and unchanged until the queries of this frame are done. Uploads
+    // triangles and positions on the first call and for kTopology, only positions for
+    // kPositions, nothing for kNone: rigid motion travels in the projection's matrix.
+    // Throws InputError when even one texel per pixel exceeds GL's framebuffer size limit.
+    void prepare(const core::Mesh& mesh, const core::Projection& projection, MeshChange change);
+
+    // Tests each query against the depth map of the last prepare(); eye_object must be that
+    // projection's eye. Query edges are not needed: the point's own faces pass the depth test
+    // because their planes contain it.
+    void occluded(const glm::dvec3& eye_object, std::span<const core::OcclusionQuery> queries,
+                  std::span<uint8_t> r_occluded) const override;
+
+    const DepthPassStats& last_pass() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace inkline::gl
