@@ -1,25 +1,16 @@
 // SPDX-License-Identifier: MIT
 #include "gl/context.h"
 
+#include "tests/gl/context_or_skip.h"
+
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <iostream>
 
 namespace inkline {
 namespace {
 
-// Exit code CTest reads as "skipped": only when no context can be created at all.
-constexpr int kSkipReturnCode = 77;
-
-std::unique_ptr<gl::Context> context_or_skip(gl::Backend backend) {
-    try {
-        return gl::create_context(backend);
-    } catch (const gl::ContextError& e) {
-        std::cerr << "no GL context: " << e.what() << "\n";
-        std::exit(kSkipReturnCode);
-    }
-}
+using test::context_or_skip;
 
 TEST(GlContext, EglGivesARenderer) {
     const auto context = context_or_skip(gl::Backend::kEgl);
