@@ -27,6 +27,13 @@ int main(int argc, char** argv) {
     render_cmd->add_option("--size", render.size, "image size WxH in pixels, overrides the scene");
     render_cmd->add_option("--json", render.json_pattern, "polylines JSON per frame, e.g. out/json/frame_%04d.json");
     render_cmd->add_option("--svg", render.svg_pattern, "SVG per frame, e.g. out/svg/frame_%04d.svg");
+    render_cmd->add_option("--png", render.png_pattern, "PNG per frame (Cairo), e.g. out/png/frame_%04d.png");
+    render_cmd->add_option("--pdf", render.pdf_path,
+                           "PDF: a file gets one page per frame; a pattern with %04d one file per frame");
+    render_cmd->add_option("--page", render.page, "PDF page size: A4, A3, Letter or WxHmm (default: the image at --dpi)");
+    render_cmd->add_option("--margin", render.margin_mm, "PDF margin in mm with --page")->capture_default_str();
+    render_cmd->add_option("--dpi", render.dpi, "PDF pixels per inch without --page")->capture_default_str();
+    render_cmd->add_option("--background", render.background, "colour behind the lines, #rrggbb (default: transparent)");
     render_cmd->add_option("-o,--out", render.out_dir, "folder for every output not given explicitly (default: out)");
     render_cmd->add_option("--tracker", render.tracker, "silhouette extraction: brute")->capture_default_str();
     render_cmd->add_option("--visibility", render.visibility, "visibility test: exact")->capture_default_str();

@@ -16,7 +16,10 @@
 #include "core/topology.h"
 #include "core/visibility.h"
 #include "export/atomic_file.h"
+#include "export/drawing.h"
 #include "export/json.h"
+#include "export/pdf.h"
+#include "export/png.h"
 #include "export/svg.h"
 
 #include <glm/mat4x4.hpp>
@@ -27,6 +30,8 @@
 #include <memory>
 #include <optional>
 #include <regex>
+
+#include <unistd.h>
 
 namespace inkline::cli {
 namespace {
@@ -96,18 +101,22 @@ bool inside(const core::Bounds& b, const glm::dvec3& p) {
 struct Outputs {
     std::string json;
     std::string svg;
+    std::string png;
+    std::string pdf;
+    bool pdf_per_frame = false;
 };
 
-// Explicit patterns as given; -o DIR fills in the rest; neither means -o out.
+// Explicit patterns as given; -o DIR fills in JSON and SVG; no output at all means -o out.
 Outputs resolve_outputs(const RenderArgs& args, const FrameRange& frames) {
-    Outputs out{args.json_pattern, args.svg_pattern};
-    const bool any_explicit = !out.json.empty() || !out.svg.empty();
+    Outputs out{args.json_pattern, args.svg_pattern, args.png_pattern, args.pdf_path, false};
+    out.pdf_per_frame = !out.pdf.empty() && core::has_frame_field(out.pdf);
+    const bool any_explicit = !out.json.empty() || !out.svg.empty() || !out.png.empty() || !out.pdf.empty();
     if (!args.out_dir.empty() || !any_explicit) {
         const fs::path dir = args.out_dir.empty() ? fs::path("out") : fs::path(args.out_dir);
         if (out.json.empty()) out.json = (dir / "json" / "frame_%04d.json").string();
         if (out.svg.empty()) out.svg = (dir / "svg" / "frame_%04d.svg").string();
     }
-    for (const std::string* pattern : {&out.json, &out.svg}) {
+    for (const std::string* pattern : {&out.json, &out.svg, &out.png}) {
         if (!pattern->empty() && frames.count() > 1 && !core::has_frame_field(*pattern)) {
             throw InputError("output pattern '" + *pattern + "' has no frame field such as %04d but " +
                              std::to_string(frames.count()) + " frames are rendered");
@@ -172,6 +181,89 @@ class Sequence {
     bool warned_inside_ = false;
 };
 
+// A progress line rewritten in place on a terminal: frames done, frames per second, time left.
+class Progress {
+  public:
+    Progress(int total, bool enabled) : total_(total), enabled_(enabled && ::isatty(STDERR_FILENO)) {}
+    void frame_done() {
+        if (!enabled_) return;
+        ++done_;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        const double fps = seconds > 0.0 ? done_ / seconds : 0.0;
+        const int left = fps > 0.0 ? int((total_ - done_) / fps + 0.5) : 0;
+        std::fprintf(stderr, "\rinkline: frame %d/%d  %.1f frames/s  %d:%02d left ", done_, total_, fps, left / 60,
+                     left % 60);
+        if (done_ == total_) std::fprintf(stderr, "\n");
+    }
+
+  private:
+    int total_;
+    int done_ = 0;
+    bool enabled_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+// Writes every per-frame file of a drawn frame; collects pages of a multi-page PDF.
+class Writers {
+  public:
+    Writers(const Outputs& outputs, const RenderArgs& args, const fs::path& mesh_name) : outputs_(outputs) {
+        style_.background = args.background.empty() ? std::nullopt : std::optional(args.background);
+        if (style_.background) output::parse_color(*style_.background, "--background");
+        pdf_options_.page = args.page.empty() ? std::nullopt : std::optional(output::parse_page_size(args.page));
+        pdf_options_.margin_mm = args.margin_mm;
+        pdf_options_.dpi = args.dpi;
+        if (!(args.dpi > 0.0 && args.dpi <= 10000.0)) throw InputError("--dpi: must be between 0 and 10000");
+        if (!(args.margin_mm >= 0.0 && args.margin_mm < 1000.0)) throw InputError("--margin: must be 0..1000 mm");
+        pdf_options_.title = fs::path(mesh_name).stem().string();
+        if (!outputs_.pdf.empty() && !outputs_.pdf_per_frame) pdf_ = std::make_unique<output::PdfDocument>(pdf_options_);
+    }
+
+    // Returns the number of files written for this frame.
+    size_t write(core::FrameLines& frame) {
+        size_t files = 0;
+        Clock clock;
+        const output::Drawing drawing = output::centerline_drawing(frame, style_);
+        if (!outputs_.svg.empty()) {
+            output::write_file_atomically(core::format_frame(outputs_.svg, frame.frame), output::svg_document(drawing, {}));
+            ++files;
+        }
+        frame.stats.ms.emplace_back("svg", clock.lap_ms());
+        if (!outputs_.png.empty()) {
+            output::write_file_atomically(core::format_frame(outputs_.png, frame.frame), output::png_image(drawing));
+            ++files;
+        }
+        if (outputs_.pdf_per_frame) {
+            output::PdfDocument page(pdf_options_);
+            page.add_page(drawing);
+            output::write_file_atomically(core::format_frame(outputs_.pdf, frame.frame), page.finish());
+            ++files;
+        } else if (pdf_) {
+            pdf_->add_page(drawing);
+        }
+        frame.stats.ms.emplace_back("png_pdf", clock.lap_ms());
+        if (!outputs_.json.empty()) {
+            output::write_file_atomically(core::format_frame(outputs_.json, frame.frame), output::polylines_json(frame));
+            ++files;
+        }
+        return files;
+    }
+
+    // Writes the multi-page PDF with the pages so far (also after a failure, so no drawn frame
+    // is lost). Returns the number of files written.
+    size_t finish() {
+        if (!pdf_ || pdf_->pages() == 0) return 0;
+        std::unique_ptr<output::PdfDocument> doc = std::move(pdf_);
+        output::write_file_atomically(outputs_.pdf, doc->finish());
+        return 1;
+    }
+
+  private:
+    const Outputs& outputs_;
+    output::DrawStyle style_;
+    output::PdfOptions pdf_options_;
+    std::unique_ptr<output::PdfDocument> pdf_;
+};
+
 }  // namespace
 
 int run_render(const RenderArgs& args) {
@@ -208,6 +300,8 @@ int run_render(const RenderArgs& args) {
 
     Sequence sequence(scene, args, meshes);
     for (const std::string& w : meshes.warnings()) sequence.warn(w);
+    Writers writers(outputs, args, scene.mesh.path);
+    Progress progress(frames.count(), !args.quiet && !args.verbose);
 
     const auto start = std::chrono::steady_clock::now();
     size_t strokes = 0, files = 0, failed = 0;
@@ -216,22 +310,17 @@ int run_render(const RenderArgs& args) {
         try {
             result = sequence.draw(frame);
         } catch (const InputError& e) {
-            if (!args.keep_going) throw;
+            if (!args.keep_going) {
+                writers.finish();
+                throw;
+            }
             ++failed;
             std::fprintf(stderr, "inkline: error: frame %d: %s\n", frame, e.what());
             continue;
         }
-        Clock clock;
-        if (!outputs.svg.empty()) {
-            output::write_file_atomically(core::format_frame(outputs.svg, frame), output::centerline_svg(result, {}));
-            ++files;
-        }
-        result.stats.ms.emplace_back("svg", clock.lap_ms());
-        if (!outputs.json.empty()) {
-            output::write_file_atomically(core::format_frame(outputs.json, frame), output::polylines_json(result));
-            ++files;
-        }
+        files += writers.write(result);
         strokes += result.strokes.size();
+        progress.frame_done();
         if (args.verbose) {
             std::fprintf(stderr, "frame %d: %zu strokes, %zu of %zu edges tested", frame, result.strokes.size(),
                          result.stats.edges_tested, result.stats.edges);
@@ -239,6 +328,7 @@ int run_render(const RenderArgs& args) {
             std::fprintf(stderr, "\n");
         }
     }
+    files += writers.finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!args.quiet) {
         std::fprintf(stderr, "inkline: %d frame(s)%s, %zu strokes, %zu files in %.2f s (%.1f ms/frame)\n",

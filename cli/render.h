@@ -13,6 +13,12 @@ struct RenderArgs {
     std::string size;
     std::string json_pattern;
     std::string svg_pattern;
+    std::string png_pattern;
+    std::string pdf_path;     // a pattern with a frame field: one file per frame; else one page per frame
+    std::string page;         // A4, A3, Letter, WxHmm; empty: the image size at dpi
+    double margin_mm = 10.0;
+    double dpi = 96.0;
+    std::string background;   // colour behind the lines; empty: transparent (SVG, PNG) / white paper (PDF)
     std::string out_dir;
     std::string tracker = "brute";
     std::string visibility = "exact";

@@ -15,11 +15,11 @@ class Writer {
         out_ += s;
         return *this;
     }
-    Writer& operator<<(int v) {
+    Writer& operator<<(long v) {
         out_ += std::to_string(v);
         return *this;
     }
-    // A coordinate with bounded decimals and no trailing zeros.
+    // A number with bounded decimals and no trailing zeros.
     Writer& number(double v) {
         char buf[64];
         int n = std::snprintf(buf, sizeof buf, "%.*f", decimals_, v);
@@ -41,69 +41,80 @@ class Writer {
     int decimals_;
 };
 
-void path_data(Writer& w, const core::Polyline& line) {
-    for (size_t i = 0; i < line.points_px.size(); ++i) {
-        if (line.closed && i + 1 == line.points_px.size()) break;  // Z closes it
+void path_data(Writer& w, const Shape& shape) {
+    for (size_t i = 0; i < shape.points.size(); ++i) {
         w << (i == 0 ? "M" : " L");
-        w.number(line.points_px[i].x) << " ";
-        w.number(line.points_px[i].y);
+        w.number(shape.points[i].x) << " ";
+        w.number(shape.points[i].y);
     }
-    if (line.closed) w << " Z";
+    if (shape.filled || shape.closed) w << " Z";
 }
 
-void camera_metadata(Writer& w, const core::FrameLines& frame) {
+void metadata(Writer& w, const Drawing& d) {
     auto vec = [&](const glm::dvec3& v) {
         w << "[";
         w.number(v.x) << ",";
         w.number(v.y) << ",";
         w.number(v.z) << "]";
     };
-    w << "  <metadata>\n    <inkline:frame number=\"" << frame.frame << "\"/>\n";
-    w << "    <inkline:camera eye=\"";
-    vec(frame.camera.eye);
+    w << "  <metadata>\n    <inkline:frame number=\"" << long(d.frame) << "\"/>\n    <inkline:camera eye=\"";
+    vec(d.camera.eye);
     w << "\" target=\"";
-    vec(frame.camera.target);
+    vec(d.camera.target);
     w << "\" up=\"";
-    vec(frame.camera.up);
+    vec(d.camera.up);
     w << "\" fov_y_deg=\"";
-    w.number(frame.camera.fov_y_deg) << "\"/>\n  </metadata>\n";
+    w.number(d.camera.fov_y_deg) << "\" near=\"";
+    w.number(d.camera.near) << "\" far=\"";
+    w.number(d.camera.far) << "\"/>\n  </metadata>\n";
 }
 
 }  // namespace
 
-std::string centerline_svg(const core::FrameLines& frame, const SvgOptions& options) {
+std::string svg_document(const Drawing& d, const SvgOptions& options) {
     Writer w(options.decimals);
-    const int width = frame.image.width, height = frame.image.height;
+    const long width = d.image.width, height = d.image.height;
     w << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<svg xmlns=\"http://www.w3.org/2000/svg\""
       << " xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\""
       << " xmlns:inkline=\"https://inkline.invalid/ns/1\""
-      << " width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " "
-      << height << "\">\n";
-    camera_metadata(w, frame);
-
-    auto layer = [&](std::string_view name, bool visible, core::LineKind kind, bool any_kind) {
-        w << "  <g id=\"" << name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name
-          << "\" fill=\"none\" stroke=\"" << options.color << "\" stroke-width=\"";
-        w.number(options.stroke_width_px) << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"";
-        if (!visible) {
-            w << " stroke-dasharray=\"";
-            w.number(3.0 * options.stroke_width_px) << " ";
-            w.number(2.0 * options.stroke_width_px) << "\" opacity=\"0.5\"";
+      << " width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " " << height << "\">\n";
+    metadata(w, d);
+    if (d.style.background) {
+        w << "  <rect id=\"background\" width=\"" << width << "\" height=\"" << height << "\" fill=\""
+          << *d.style.background << "\"/>\n";
+    }
+    const double line_width = d.style.centerline_width_px;
+    for (const std::string& layer : layer_names()) {
+        const bool hidden = layer == "hidden";
+        bool any = false;
+        for (const Shape& s : d.shapes) any |= layer_of(s) == layer;
+        if (!any && hidden) continue;  // the hidden layer only when there are hidden lines
+        w << "  <g id=\"" << layer << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << layer << "\"";
+        if (const double opacity = layer_opacity(d.style, layer); opacity < 1.0) {
+            w << " opacity=\"";
+            w.number(opacity) << "\"";
         }
         w << ">\n";
-        for (const core::Polyline& line : frame.strokes) {
-            if (line.visible != visible || (!any_kind && line.kind != kind)) continue;
-            w << "    <path id=\"stroke-" << int(line.id) << "\" d=\"";
-            path_data(w, line);
-            w << "\"/>\n";
+        for (const Shape& s : d.shapes) {
+            if (layer_of(s) != layer) continue;
+            w << "    <path id=\"stroke-" << long(s.stroke_id) << "\" d=\"";
+            path_data(w, s);
+            if (s.filled) {
+                w << "\" fill=\"" << d.style.color << "\" stroke=\"none\"/>\n";
+                continue;
+            }
+            w << "\" fill=\"none\" stroke=\"" << d.style.color << "\" stroke-width=\"";
+            w.number(line_width) << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"";
+            if (hidden) {
+                w << " stroke-dasharray=\"";
+                w.number(3.0 * line_width) << " ";
+                w.number(2.0 * line_width) << "\"";
+            }
+            w << "/>\n";
         }
         w << "  </g>\n";
-    };
-    for (core::LineKind kind : core::kAllLineKinds) layer(core::line_kind_name(kind), true, kind, false);
-    bool any_hidden = false;
-    for (const core::Polyline& line : frame.strokes) any_hidden |= !line.visible;
-    if (any_hidden) layer("hidden", false, core::LineKind::kSilhouette, true);
+    }
     w << "</svg>\n";
     return w.take();
 }

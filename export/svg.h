@@ -1,22 +1,19 @@
 // SPDX-License-Identifier: MIT
-// SVG of one frame: size and viewBox in pixels, one Inkscape layer per line kind, one path per
-// stroke with a stable element id (stroke-<id>).
+// SVG of one frame for compositing: size and viewBox in pixels, one Inkscape layer per line kind
+// (and "hidden"), one path per stroke with a stable element id (stroke-<id>), frame and camera
+// in <metadata>.
 #pragma once
 
-#include "core/frame_lines.h"
+#include "export/drawing.h"
 
 #include <string>
 
 namespace inkline::output {
 
 struct SvgOptions {
-    double stroke_width_px = 1.5;  // centerline width
-    int decimals = 2;              // coordinate precision
-    std::string color = "#000000";
+    int decimals = 2;  // coordinate precision
 };
 
-// Constant-width centerline paths (also what pen plotters want). Hidden strokes, when present,
-// go dashed into their own "hidden" layer.
-std::string centerline_svg(const core::FrameLines& frame, const SvgOptions& options);
+std::string svg_document(const Drawing& drawing, const SvgOptions& options);
 
 }  // namespace inkline::output

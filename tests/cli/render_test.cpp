@@ -52,6 +52,35 @@ TEST_F(Cli, SampleRoundTripWritesEveryFrame) {
     EXPECT_FALSE(fs::exists(dir / "json" / "frame_0004.json"));
 }
 
+TEST_F(Cli, PngPdfAndMatchingIds) {
+    const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1:3 --size 256x256 -q -o " +
+                            dir.string() + " --png " + (dir / "png" / "f%04d.png").string() + " --pdf " +
+                            (dir / "all.pdf").string() + " --page A4");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (int f = 1; f <= 3; ++f) EXPECT_TRUE(fs::exists(dir / "png" / ("f000" + std::to_string(f) + ".png")));
+    const RunResult info = test::run_shell("pdfinfo " + (dir / "all.pdf").string());
+    EXPECT_NE(info.output.find("Pages:           3"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("Title:           torus"), std::string::npos) << info.output;
+    // Every JSON stroke id has its SVG element, and the SVG has no other strokes.
+    const auto doc = nlohmann::json::parse(test::read_text(dir / "json" / "frame_0002.json"));
+    const std::string svg = test::read_text(dir / "svg" / "frame_0002.svg");
+    for (const auto& stroke : doc["strokes"]) {
+        EXPECT_NE(svg.find("id=\"stroke-" + std::to_string(stroke["id"].get<int>()) + "\""), std::string::npos);
+    }
+    size_t paths = 0;
+    for (size_t at = svg.find("<path id=\"stroke-"); at != std::string::npos; at = svg.find("<path id=\"stroke-", at + 1)) ++paths;
+    EXPECT_EQ(paths, doc["strokes"].size());
+}
+
+TEST_F(Cli, PdfPerFramePattern) {
+    const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1:2 --size 128x96 -q --pdf " +
+                            (dir / "p_%02d.pdf").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const RunResult info = test::run_shell("pdfinfo " + (dir / "p_02.pdf").string());
+    EXPECT_NE(info.output.find("Pages:           1"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("96 x 72 pts"), std::string::npos) << "128x96 px at 96 dpi\n" << info.output;
+}
+
 TEST_F(Cli, ExplicitPatternsOnly) {
     const fs::path s = scene(R"({"mesh": "cube.obj", "frames": [1, 2], "camera": {"eye": [3, 2.5, 4], "target": [0, 0, 0]}})");
     const RunResult r = run("render " + s.string() + " -q --svg " + (dir / "f%02d.svg").string());

@@ -11,27 +11,45 @@
 namespace inkline {
 namespace {
 
-TEST(Svg, SizeLayersAndStrokeIds) {
+output::Drawing cube_drawing(bool hidden) {
     core::LineOptions lines;
-    lines.hidden = true;
+    lines.hidden = hidden;
     core::FrameLines frame = test::trace(test::cube(1.0), {.eye = {3.0, 2.5, 4.0}, .size = 640}, lines);
     frame.image = {640, 480};
-    const std::string svg = output::centerline_svg(frame, {});
+    return output::centerline_drawing(frame, {});
+}
+
+TEST(Svg, SizeLayersAndStrokeIds) {
+    const output::Drawing d = cube_drawing(true);
+    const std::string svg = output::svg_document(d, {});
     EXPECT_NE(svg.find("width=\"640\" height=\"480\" viewBox=\"0 0 640 480\""), std::string::npos);
     for (const char* layer : {"silhouette", "boundary", "crease", "hidden"}) {
-        EXPECT_NE(svg.find(std::string("<g id=\"") + layer + "\" inkscape:groupmode=\"layer\""), std::string::npos) << layer;
+        EXPECT_NE(svg.find(std::string("<g id=\"") + layer + "\" inkscape:groupmode=\"layer\" inkscape:label=\"" + layer),
+                  std::string::npos)
+            << layer;
     }
-    for (const core::Polyline& line : frame.strokes) {
-        EXPECT_NE(svg.find("id=\"stroke-" + std::to_string(line.id) + "\""), std::string::npos);
+    for (const output::Shape& s : d.shapes) {
+        EXPECT_NE(svg.find("id=\"stroke-" + std::to_string(s.stroke_id) + "\""), std::string::npos);
     }
-    // Coordinates carry at most two decimals.
-    EXPECT_FALSE(std::regex_search(svg, std::regex(R"(\d\.\d{3})")));
+    EXPECT_FALSE(std::regex_search(svg, std::regex(R"(\d\.\d{3})"))) << "at most two decimals";
     EXPECT_NE(svg.find("<inkline:frame number="), std::string::npos);
+    EXPECT_NE(svg.find("stroke-dasharray"), std::string::npos) << "hidden lines are dashed";
 }
 
 TEST(Svg, NoHiddenLayerWithoutHiddenLines) {
-    const core::FrameLines frame = test::trace(test::cube(1.0), {.eye = {3.0, 2.5, 4.0}});
-    EXPECT_EQ(output::centerline_svg(frame, {}).find("id=\"hidden\""), std::string::npos);
+    EXPECT_EQ(output::svg_document(cube_drawing(false), {}).find("id=\"hidden\""), std::string::npos);
+}
+
+TEST(Svg, FilledShapesAndBackground) {
+    output::Drawing d;
+    d.image = {10, 10};
+    d.style.background = "#ffffff";
+    d.shapes.push_back({.stroke_id = 3, .filled = true, .points = {{1, 1}, {9, 1}, {5, 9}}});
+    const std::string svg = output::svg_document(d, {});
+    EXPECT_NE(svg.find("<rect id=\"background\" width=\"10\" height=\"10\" fill=\"#ffffff\"/>"), std::string::npos);
+    EXPECT_NE(svg.find("<path id=\"stroke-3\" d=\"M1 1 L9 1 L5 9 Z\" fill=\"#000000\" stroke=\"none\"/>"),
+              std::string::npos)
+        << svg;
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Runs the inkline program (path compiled in as INKLINE_EXE) and captures its output.
+// Runs shell commands, and the inkline program when its path is compiled in as INKLINE_EXE,
+// capturing their output.
 #pragma once
 
 #include <array>
@@ -14,7 +15,6 @@ struct RunResult {
     std::string output;  // stdout and stderr together
 };
 
-inline std::string inkline_command() { return INKLINE_EXE; }
 
 // Runs a shell command line, capturing stdout and stderr.
 inline RunResult run_shell(const std::string& command_line) {
@@ -27,6 +27,9 @@ inline RunResult run_shell(const std::string& command_line) {
     return r;
 }
 
+#ifdef INKLINE_EXE
+inline std::string inkline_command() { return INKLINE_EXE; }
 inline RunResult run_inkline(const std::string& args) { return run_shell(inkline_command() + " " + args); }
+#endif
 
 }  // namespace inkline::test

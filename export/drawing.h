@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+// What a frame looks like on paper, independent of the file format: shapes grouped by line kind,
+// each a filled outline or a stroked centerline. SVG, PDF and PNG all draw from this.
+#pragma once
+
+#include "core/frame_lines.h"
+
+#include <glm/vec2.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace inkline::output {
+
+struct Rgb {
+    double r = 0.0, g = 0.0, b = 0.0;  // 0..1
+};
+
+// Parses "#rrggbb" or "#rgb"; throws InputError naming `what` otherwise.
+Rgb parse_color(const std::string& text, const std::string& what);
+
+struct DrawStyle {
+    std::string color = "#000000";          // ink
+    double opacity = 1.0;
+    double centerline_width_px = 1.5;       // stroked centerlines (and hidden dashes)
+    std::optional<std::string> background;  // a colour fills the page first; none: transparent
+};
+
+struct Shape {
+    uint32_t stroke_id = 0;  // written as the element id stroke-<id>
+    core::LineKind kind = core::LineKind::kSilhouette;
+    bool hidden = false;  // occluded line: dashed centerline in the "hidden" layer
+    bool filled = false;  // points form a closed outline to fill; otherwise a centerline to stroke
+    bool closed = false;  // a stroked centerline that closes on itself
+    std::vector<glm::dvec2> points;  // px, origin top-left, y down
+};
+
+struct Drawing {
+    int frame = 0;
+    core::ImageSize image;
+    core::Camera camera;
+    DrawStyle style;
+    std::vector<Shape> shapes;
+};
+
+// Every polyline as a constant-width centerline (pen plotters, cutters, and the fallback look).
+Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style);
+
+// Layer names in drawing order: the line kinds, then "hidden".
+std::vector<std::string> layer_names();
+// Opacity of a whole layer: the style's, halved for hidden lines.
+double layer_opacity(const DrawStyle& style, const std::string& layer);
+// The layer a shape belongs to.
+std::string layer_of(const Shape& shape);
+
+}  // namespace inkline::output

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+#include "export/internal/cairo_paint.h"
+
+namespace inkline::output::internal {
+namespace {
+
+void trace_path(cairo_t* cr, const Shape& shape) {
+    cairo_new_path(cr);
+    for (size_t i = 0; i < shape.points.size(); ++i) {
+        (i == 0 ? cairo_move_to : cairo_line_to)(cr, shape.points[i].x, shape.points[i].y);
+    }
+    if (shape.filled || shape.closed) cairo_close_path(cr);
+}
+
+}  // namespace
+
+cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
+    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    return CAIRO_STATUS_SUCCESS;
+}
+
+void paint_drawing(cairo_t* cr, const Drawing& d) {
+    cairo_save(cr);
+    cairo_rectangle(cr, 0, 0, d.image.width, d.image.height);
+    cairo_clip(cr);
+    if (d.style.background) {
+        const Rgb bg = parse_color(*d.style.background, "background");
+        cairo_set_source_rgb(cr, bg.r, bg.g, bg.b);
+        cairo_paint(cr);
+    }
+    const Rgb ink = parse_color(d.style.color, "color");
+    const double w = d.style.centerline_width_px;
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+    for (const std::string& layer : layer_names()) {
+        const bool hidden = layer == "hidden";
+        // Each layer is composited as a group so its opacity applies to the layer, not per path.
+        cairo_push_group(cr);
+        cairo_set_source_rgb(cr, ink.r, ink.g, ink.b);
+        if (hidden) {
+            const double dashes[] = {3.0 * w, 2.0 * w};
+            cairo_set_dash(cr, dashes, 2, 0.0);
+        } else {
+            cairo_set_dash(cr, nullptr, 0, 0.0);
+        }
+        for (const Shape& s : d.shapes) {
+            if (layer_of(s) != layer) continue;
+            trace_path(cr, s);
+            if (s.filled) {
+                cairo_fill(cr);
+            } else {
+                cairo_set_line_width(cr, w);
+                cairo_stroke(cr);
+            }
+        }
+        cairo_pop_group_to_source(cr);
+        cairo_paint_with_alpha(cr, layer_opacity(d.style, layer));
+    }
+    cairo_restore(cr);
+}
+
+}  // namespace inkline::output::internal

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// SVG, PNG and PDF of the same frame agree: rasterised by rsvg-convert and pdftoppm, compared
+// with Cairo's PNG by ink coverage.
+#include "export/pdf.h"
+#include "export/png.h"
+#include "export/svg.h"
+
+#include "core/error.h"
+#include "tests/support/obj.h"
+#include "tests/support/pipeline.h"
+#include "tests/support/run.h"
+#include "tests/support/shapes.h"
+
+#include <cairo.h>
+#include <gtest/gtest.h>
+
+namespace inkline {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Ink coverage of a PNG: alpha above one half for transparent images, or darker than mid-grey
+// over an opaque background.
+std::vector<uint8_t> coverage(const fs::path& png) {
+    cairo_surface_t* s = cairo_image_surface_create_from_png(png.c_str());
+    EXPECT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS) << png;
+    const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    const bool has_alpha = cairo_image_surface_get_format(s) == CAIRO_FORMAT_ARGB32;
+    std::vector<uint8_t> ink(size_t(w) * size_t(h));
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const uint32_t p = *reinterpret_cast<const uint32_t*>(data + y * stride + 4 * x);
+            const int a = int(p >> 24), g = int((p >> 8) & 0xff);
+            ink[size_t(y) * size_t(w) + size_t(x)] = has_alpha && a < 255 ? a > 127 : g < 128;
+        }
+    }
+    cairo_surface_destroy(s);
+    return ink;
+}
+
+double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+    EXPECT_EQ(a.size(), b.size());
+    size_t both = 0, either = 0;
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+        both += a[i] && b[i];
+        either += a[i] || b[i];
+    }
+    return either ? double(both) / double(either) : 1.0;
+}
+
+class Raster : public ::testing::Test {
+  protected:
+    fs::path dir = test::fresh_temp_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    void TearDown() override { fs::remove_all(dir); }
+
+    output::Drawing torus_drawing() {
+        core::LineOptions lines;
+        lines.hidden = true;
+        core::FrameLines frame =
+            test::trace(test::torus(1.0, 0.4, 48, 24), {.eye = {0.0, 2.6, 4.6}, .fov_y_deg = 40.0, .size = 512}, lines);
+        output::DrawStyle style;
+        style.centerline_width_px = 3.0;
+        return output::centerline_drawing(frame, style);
+    }
+};
+
+TEST_F(Raster, SvgIsWellFormedAndRendersLikeCairo) {
+    const output::Drawing d = torus_drawing();
+    test::write_text(dir / "f.svg", output::svg_document(d, {}));
+    test::write_text(dir / "f.png", output::png_image(d));
+    const test::RunResult lint = test::run_shell("xmllint --noout " + (dir / "f.svg").string());
+    ASSERT_EQ(lint.code, 0) << lint.output;
+    const test::RunResult rsvg =
+        test::run_shell("rsvg-convert " + (dir / "f.svg").string() + " -o " + (dir / "rsvg.png").string());
+    ASSERT_EQ(rsvg.code, 0) << rsvg.output;
+    EXPECT_GE(iou(coverage(dir / "rsvg.png"), coverage(dir / "f.png")), 0.98);
+}
+
+TEST_F(Raster, PdfHasOnePagePerFrameAndRendersLikeCairo) {
+    output::Drawing d = torus_drawing();
+    d.style.background = "#ffffff";
+    output::PdfDocument doc({});  // the image size at 96 dpi
+    for (int frame = 1; frame <= 3; ++frame) {
+        d.frame = frame;
+        doc.add_page(d);
+    }
+    test::write_text(dir / "seq.pdf", doc.finish());
+    test::write_text(dir / "f.png", output::png_image(d));
+    const test::RunResult info = test::run_shell("pdfinfo " + (dir / "seq.pdf").string());
+    ASSERT_EQ(info.code, 0) << info.output;
+    EXPECT_NE(info.output.find("Pages:           3"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("384 x 384 pts"), std::string::npos) << "512 px at 96 dpi\n" << info.output;
+    // 96 dpi in pdftoppm gives back the image size in pixels.
+    const test::RunResult ppm = test::run_shell("pdftoppm -png -r 96 -f 1 -l 1 -singlefile " + (dir / "seq.pdf").string() +
+                                                " " + (dir / "page").string());
+    ASSERT_EQ(ppm.code, 0) << ppm.output;
+    EXPECT_GE(iou(coverage(dir / "page.png"), coverage(dir / "f.png")), 0.98);
+}
+
+TEST_F(Raster, PageSizesFitTheImage) {
+    EXPECT_NEAR(output::parse_page_size("A4").width_mm, 210.0, 1e-9);
+    EXPECT_NEAR(output::parse_page_size("letter").height_mm, 279.4, 1e-9);
+    EXPECT_NEAR(output::parse_page_size("200x150mm").height_mm, 150.0, 1e-9);
+    EXPECT_THROW(output::parse_page_size("A9"), InputError);
+    EXPECT_THROW(output::parse_page_size("0x10mm"), InputError);
+    output::PdfOptions options;
+    options.page = output::parse_page_size("A4");
+    output::PdfDocument doc(options);
+    doc.add_page(torus_drawing());
+    test::write_text(dir / "a4.pdf", doc.finish());
+    const test::RunResult info = test::run_shell("pdfinfo " + (dir / "a4.pdf").string());
+    EXPECT_NE(info.output.find("(A4)"), std::string::npos) << info.output;
+}
+
+}  // namespace
+}  // namespace inkline
