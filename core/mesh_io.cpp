@@ -12,8 +12,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 #include <optional>
+#include <sstream>
 
 namespace inkline::core {
 namespace {
@@ -197,6 +197,63 @@ size_t check_text_vertices(const std::filesystem::path& path, const std::string&
     return 0;
 }
 
+// OpenMesh's OFF and PLY readers reserve memory for the element counts a header declares before
+// reading any element. A header claiming more elements than the file could hold is refused
+// here, before it can exhaust memory. Each element needs at least this many bytes.
+constexpr uintmax_t kMinTextVertexBytes = 6;  // "0 0 0\n"
+constexpr uintmax_t kMinTextFaceBytes = 8;    // "3 0 1 2\n"
+constexpr uintmax_t kMinBinaryVertexBytes = 12;
+constexpr uintmax_t kMinBinaryFaceBytes = 13;
+
+void check_declared_counts(const std::filesystem::path& path, const std::string& extension, uintmax_t file_size) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    uintmax_t vertices = 0, faces = 0;
+    bool binary = false;
+    if (extension == ".ply") {
+        for (int lines = 0; lines < 1000 && std::getline(in, line) && line.rfind("end_header", 0) != 0; ++lines) {
+            std::istringstream words(line);
+            std::string keyword, element;
+            uintmax_t count = 0;
+            words >> keyword;
+            if (keyword == "format") binary = line.find("binary") != std::string::npos;
+            if (keyword != "element" || !(words >> element >> count)) continue;
+            if (element == "vertex") vertices = count;
+            if (element == "face") faces = count;
+        }
+    } else if (extension == ".off") {
+        std::string header;
+        while (std::getline(in, line)) {
+            const size_t hash = line.find('#');
+            if (hash != std::string::npos) line.resize(hash);
+            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+            if (header.empty() && line.find("OFF") != std::string::npos) {
+                header = line;
+                binary = line.find("BINARY") != std::string::npos;
+                if (binary) break;
+                const std::string rest = line.substr(line.find("OFF") + 3);
+                if (rest.find_first_not_of(" \t\r") == std::string::npos) continue;
+                line = rest;
+            }
+            std::istringstream(line) >> vertices >> faces;
+            break;
+        }
+        if (binary) {
+            uint32_t counts[3] = {0, 0, 0};
+            in.read(reinterpret_cast<char*>(counts), sizeof counts);
+            vertices = counts[0];
+            faces = counts[1];
+        }
+    }
+    const uintmax_t needed = binary ? vertices * kMinBinaryVertexBytes + faces * kMinBinaryFaceBytes
+                                    : vertices * kMinTextVertexBytes + faces * kMinTextFaceBytes;
+    if (vertices > file_size || faces > file_size || needed > file_size) {
+        throw InputError(path.string() + ": header declares " + std::to_string(vertices) + " vertices and " +
+                         std::to_string(faces) + " faces, more than the file's " + std::to_string(file_size) +
+                         " bytes can hold");
+    }
+}
+
 // OpenMesh reports through global streams; inkline reports through its own errors instead.
 void silence_openmesh_streams() {
     omlog().disable();
@@ -211,18 +268,30 @@ LoadedMesh load_mesh(const std::filesystem::path& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw InputError(name + ": file not found");
     if (std::filesystem::is_directory(path, ec)) throw InputError(name + ": is a folder, not a mesh file");
-    if (std::filesystem::file_size(path, ec) == 0) throw InputError(name + ": file is empty");
+    const uintmax_t file_size = std::filesystem::file_size(path, ec);
+    if (ec) throw InputError(name + ": cannot read: " + ec.message());
+    if (file_size == 0) throw InputError(name + ": file is empty");
 
     std::string extension = path.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
     size_t short_faces = 0;
+    if (extension == ".off" || extension == ".ply") check_declared_counts(path, extension, file_size);
     if (extension == ".obj" || extension == ".off") short_faces = check_text_vertices(path, extension);
 
     silence_openmesh_streams();
     LoadedMesh out;
     SoupImporter importer(out);
     OpenMesh::IO::Options options;
-    const bool ok = OpenMesh::IO::IOManager().read(name, importer, options);
+    bool ok = false;
+    try {
+        ok = OpenMesh::IO::IOManager().read(name, importer, options);
+    } catch (const std::bad_alloc&) {
+        throw InputError(name + ": too large to load into memory");
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw InputError(name + ": cannot read: " + e.what());
+    }
     if (importer.error) throw InputError(name + ": " + *importer.error);
     if (!ok) {
         throw InputError(name + ": cannot read as a mesh (supported: .obj .off .ply .stl; "

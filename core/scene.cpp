@@ -260,11 +260,12 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
     json root;
     try {
         root = json::parse(json_text);
-    } catch (const json::parse_error& e) {
-        // nlohmann reports the byte offset; the message after the prefix is already one line.
+    } catch (const json::exception& e) {
+        // Syntax errors and numbers beyond double range; nlohmann's message after its
+        // "[json.exception...]" prefix is one line and names the byte offset.
         std::string what = e.what();
-        const auto colon = what.find("parse error");
-        throw InputError(name + ": not valid JSON: " + (colon == std::string::npos ? what : what.substr(colon)));
+        const auto prefix_end = what.find("] ");
+        throw InputError(name + ": not valid JSON: " + (prefix_end == std::string::npos ? what : what.substr(prefix_end + 2)));
     }
     const Reader r(name, root, "");
     r.allow_only({"version", "mesh", "frames", "image", "camera", "object", "light", "lines", "brush"});

@@ -134,6 +134,16 @@ TEST_F(MeshIo, BinaryGarbageIsAnError) {
     }
 }
 
+// Found by the fuzz seed corpus: OpenMesh reserved memory for the declared counts first.
+TEST_F(MeshIo, HeaderCountsBeyondTheFileSizeAreRefused_fuzz_huge_counts) {
+    test::write_text(dir / "huge.off", "OFF\n99999999 99999999 0\n0 0 0\n");
+    EXPECT_NE(error_of(dir / "huge.off").find("more than the file's"), std::string::npos);
+    test::write_text(dir / "huge.ply",
+                     "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\n"
+                     "property float y\nproperty float z\nend_header\n");
+    EXPECT_NE(error_of(dir / "huge.ply").find("more than the file's"), std::string::npos);
+}
+
 TEST_F(MeshIo, UnknownExtensionIsAnError) {
     test::write_text(dir / "mesh.xyz", "garbage");
     EXPECT_NE(error_of(dir / "mesh.xyz").find("cannot read"), std::string::npos);

@@ -62,6 +62,7 @@ TEST(Scene, ErrorsNameTheFileAndKey) {
         {R"({"mesh": {"sequence": "f.obj"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'mesh.sequence'"},
         {R"({"version": 2, "mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'version'"},
         {R"({"mesh": "m.obj", "camera": )", "not valid JSON"},
+        {R"({"mesh": "m.obj", "frames": [1, 1e400], "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "not valid JSON"},
     };
     for (const Case& c : cases) {
         const std::string error = error_of(c.json);

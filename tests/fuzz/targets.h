@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: MIT
+// Fuzz targets for the input paths: the scene parser and mesh loading. Both must either succeed
+// or throw InputError: any other exception, crash or sanitizer report is a bug.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace inkline::fuzz {
+
+// Parses the bytes as a scene file.
+void scene_target(const uint8_t* data, size_t size);
+
+// Writes bytes [1, size) to a temporary mesh file whose extension (.obj .off .ply .stl) is chosen
+// by data[0], then loads it and builds its topology report.
+void mesh_target(const uint8_t* data, size_t size);
+
+}  // namespace inkline::fuzz
