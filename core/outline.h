@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+// Stroke outlines: the closed boundary of a variable-width centerline, offset left and right
+// along its normal, with round joins, local folds cut away and round caps where an end has width.
+// Based on: skeletal-stroke quad strips (perpendiculars of half the line weight at each vertex)
+// of the light-weighted brush, made watertight as a filled outline.
+#pragma once
+
+#include <glm/vec2.hpp>
+
+#include <span>
+#include <vector>
+
+namespace inkline::core {
+
+using Ring = std::vector<glm::dvec2>;  // closed polygon, px; the last point does not repeat the first
+
+struct OutlineOptions {
+    double simplify_px = 0.05;   // points closer than this to the simplified ring are dropped
+    double join_step_deg = 15.0;  // the normal turns at most this much between outline points
+};
+
+// Outline of a centerline with a width (px) at each point. An open stroke gives one ring, a
+// loop two (outer and inner, of opposite orientation): fill them together with the nonzero rule.
+std::vector<Ring> build_outline(std::span<const glm::dvec2> centerline, std::span<const double> width, bool closed,
+                                const OutlineOptions& options);
+
+// Signed area (shoelace), px^2; positive for counter-clockwise in a y-up frame.
+double signed_area(const Ring& ring);
+
+// Area covered by rings that nest as build_outline makes them: |sum of signed areas|.
+double outline_area(const std::vector<Ring>& rings);
+
+// True when the ring does not touch or cross itself (CGAL::is_simple_2).
+bool is_simple(const Ring& ring);
+
+// Douglas-Peucker simplification of a closed ring within tolerance_px.
+Ring simplify_ring(const Ring& ring, double tolerance_px);
+
+}  // namespace inkline::core

@@ -1,0 +1,273 @@
+// SPDX-License-Identifier: MIT
+#include "core/stroke_coherence.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace inkline::core {
+namespace {
+
+// Matching rounds; each doubles the radius of the one before.
+constexpr int kMatchRounds = 3;
+// Loop starts are placed to 1/8 of the sample spacing.
+constexpr int kStartSubdivisions = 8;
+// A loop start moves to a steadier place when the move pays off within this many frames.
+constexpr double kStartLookahead = 30.0;
+// The outline's motion is judged over this length (px) either side of a start, so that a
+// single crossing of last frame's outline does not count as standing still.
+constexpr double kStartMotionWindowPx = 24.0;
+
+// Last frame's samples on a grid of radius-sized cells, sorted for deterministic lookups.
+class SampleGrid {
+  public:
+    SampleGrid(const std::vector<StrokeTrace>& traces, double radius) : traces_(traces), radius_(radius) {
+        for (size_t t = 0; t < traces.size(); ++t) {
+            for (size_t s = 0; s < traces[t].samples_px.size(); ++s) {
+                entries_.push_back({key(cell(traces[t].samples_px[s])), t, s});
+            }
+        }
+        std::sort(entries_.begin(), entries_.end(),
+                  [](const Entry& a, const Entry& b) { return std::tie(a.key, a.trace, a.sample) < std::tie(b.key, b.trace, b.sample); });
+    }
+
+    struct Hit {
+        size_t trace = size_t(-1), sample = 0;
+        double distance = HUGE_VAL;
+    };
+
+    double radius() const { return radius_; }
+
+    // Nearest sample within the radius among traces accepted by `use`; ties go to the lower
+    // (trace, sample).
+    template <typename Filter>
+    Hit nearest(const glm::dvec2& p, Filter use) const {
+        Hit best;
+        const glm::ivec2 c = cell(p);
+        for (int y = c.y - 1; y <= c.y + 1; ++y) {
+            for (int x = c.x - 1; x <= c.x + 1; ++x) {
+                const int64_t k = key({x, y});
+                auto it = std::lower_bound(entries_.begin(), entries_.end(), k,
+                                           [](const Entry& e, int64_t v) { return e.key < v; });
+                for (; it != entries_.end() && it->key == k; ++it) {
+                    if (!use(it->trace)) continue;
+                    const double d = glm::length(traces_[it->trace].samples_px[it->sample] - p);
+                    const bool better = d < best.distance ||
+                                        (d == best.distance && std::tie(it->trace, it->sample) < std::tie(best.trace, best.sample));
+                    if (d <= radius_ && better) best = {it->trace, it->sample, d};
+                }
+            }
+        }
+        return best;
+    }
+
+  private:
+    struct Entry {
+        int64_t key;
+        size_t trace, sample;
+    };
+    glm::ivec2 cell(const glm::dvec2& p) const {
+        return {int(std::floor(std::clamp(p.x, -1e8, 1e8) / radius_)),
+                int(std::floor(std::clamp(p.y, -1e8, 1e8) / radius_))};
+    }
+    static int64_t key(const glm::ivec2& c) { return (int64_t(c.x) << 32) ^ int64_t(uint32_t(c.y)); }
+
+    const std::vector<StrokeTrace>& traces_;
+    double radius_;
+    std::vector<Entry> entries_;
+};
+
+bool compatible(const StrokeCandidate& c, const StrokeTrace& t) { return c.kind == t.kind && c.visible == t.visible; }
+
+struct Pair {
+    size_t candidate, trace;
+    double score;
+};
+
+// Overlap (px) of every candidate with every compatible trace it touches.
+std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const std::vector<StrokeTrace>& traces,
+                           const SampleGrid& grid, const std::vector<uint8_t>& candidate_done,
+                           const std::vector<uint8_t>& trace_taken) {
+    // (edge, trace) pairs, sorted, to look up the traces that used an edge.
+    std::vector<std::pair<uint32_t, size_t>> edge_owner;
+    for (size_t t = 0; t < traces.size(); ++t) {
+        if (trace_taken[t]) continue;
+        for (uint32_t e : traces[t].edges) edge_owner.emplace_back(e, t);
+    }
+    std::sort(edge_owner.begin(), edge_owner.end());
+
+    std::vector<Pair> pairs;
+    std::vector<double> score(traces.size(), 0.0);
+    std::vector<size_t> touched;
+    for (size_t c = 0; c < candidates.size(); ++c) {
+        if (candidate_done[c]) continue;
+        const StrokeCandidate& cand = candidates[c];
+        const auto use = [&](size_t t) { return !trace_taken[t] && compatible(cand, traces[t]); };
+        auto add = [&](size_t t, double amount) {
+            if (score[t] == 0.0) touched.push_back(t);
+            score[t] += amount;
+        };
+        // Shared mesh edges count with their image length.
+        for (size_t s = 0; s < cand.edges.size(); ++s) {
+            auto it = std::lower_bound(edge_owner.begin(), edge_owner.end(), std::make_pair(cand.edges[s], size_t(0)));
+            for (; it != edge_owner.end() && it->first == cand.edges[s]; ++it) {
+                if (compatible(cand, traces[it->second]) && cand.edge_length_px[s] > 0.0) add(it->second, cand.edge_length_px[s]);
+            }
+        }
+        // Samples count with their share of the length where last frame's nearest stroke lies close.
+        const double share = cand.samples_px.empty() ? 0.0 : cand.length_px / double(cand.samples_px.size());
+        for (const glm::dvec2& p : cand.samples_px) {
+            const SampleGrid::Hit hit = grid.nearest(p, use);
+            if (hit.trace != size_t(-1) && share > 0.0) add(hit.trace, share);
+        }
+        std::sort(touched.begin(), touched.end());
+        for (size_t t : touched) {
+            const double shorter = std::min(cand.length_px, traces[t].length_px);
+            if (score[t] >= kMinOverlapFraction * shorter) pairs.push_back({c, t, score[t]});
+            score[t] = 0.0;
+        }
+        touched.clear();
+    }
+    return pairs;
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    const size_t mid = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(mid), v.end());
+    return v[mid];
+}
+
+double distance_to_segment_px(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b) {
+    const glm::dvec2 ab = b - a;
+    const double len2 = glm::dot(ab, ab);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (a + ab * t));
+}
+
+// Distance from p to a closed polyline.
+double distance_to_loop(const glm::dvec2& p, const std::vector<glm::dvec2>& loop) {
+    double best = HUGE_VAL;
+    for (size_t i = 0; i < loop.size(); ++i) best = std::min(best, distance_to_segment_px(p, loop[i], loop[(i + 1) % loop.size()]));
+    return best;
+}
+
+// The loop's new start, within kMatchRadiusPx of last frame's: the point that costs least now
+// (its distance from last frame's start) plus later (kStartLookahead frames of the motion the
+// loop made around it since last frame, averaged over kStartMotionWindowPx either side). The
+// start so stays put where the outline stands still and slides off the parts that sweep.
+std::optional<glm::dvec2> loop_start(const StrokeCandidate& cand, const StrokeTrace& trace) {
+    const size_t n = cand.samples_px.size();
+    if (n == 0 || trace.samples_px.empty()) return std::nullopt;
+    const auto reach = std::ptrdiff_t(kStartMotionWindowPx / kTraceSpacingPx);
+    const auto sn = std::ptrdiff_t(n);
+    auto wrap = [sn](std::ptrdiff_t i) { return size_t(((i % sn) + sn) % sn); };
+    // Motion at samples near last frame's start, computed once each.
+    std::vector<double> motion(n, -1.0);
+    auto motion_at = [&](size_t i) {
+        if (motion[i] < 0.0) motion[i] = distance_to_loop(cand.samples_px[i], trace.samples_px);
+        return motion[i];
+    };
+    auto mean_motion = [&](size_t i) {
+        double sum = 0.0;
+        for (std::ptrdiff_t k = -reach; k <= reach; ++k) sum += motion_at(wrap(std::ptrdiff_t(i) + k));
+        return sum / double(2 * reach + 1);
+    };
+
+    std::optional<glm::dvec2> best, nearest;
+    double best_cost = HUGE_VAL, nearest_d = HUGE_VAL;
+    for (size_t i = 0; i < n; ++i) {
+        const glm::dvec2 a = cand.samples_px[i], b = cand.samples_px[(i + 1) % n];
+        if (std::min(glm::length(a - trace.start_px), glm::length(b - trace.start_px)) > kMatchRadiusPx + kTraceSpacingPx) {
+            // Far from last frame's start: only the fallback (nearest point) can lie here.
+            const double d = distance_to_segment_px(trace.start_px, a, b);
+            if (d < nearest_d) nearest_d = d, nearest = a;
+            continue;
+        }
+        const double m0 = mean_motion(i), m1 = mean_motion((i + 1) % n);
+        for (int k = 0; k < kStartSubdivisions; ++k) {
+            const double f = double(k) / kStartSubdivisions;
+            const glm::dvec2 p = a + (b - a) * f;
+            const double d = glm::length(p - trace.start_px);
+            if (d < nearest_d) nearest_d = d, nearest = p;
+            if (d > kMatchRadiusPx) continue;
+            const double cost = d + kStartLookahead * (m0 + (m1 - m0) * f);
+            if (cost < best_cost) best_cost = cost, best = p;
+        }
+    }
+    return best ? best : nearest;
+}
+
+// Direction and u offset of a candidate from last frame's u at its nearest samples.
+void propagate(const StrokeCandidate& cand, const StrokeTrace& trace, size_t trace_index, const SampleGrid& grid,
+               StrokeMatch& r_match) {
+    std::vector<double> s, u;
+    std::vector<uint8_t> matched(cand.samples_px.size(), 0);
+    for (size_t i = 0; i < cand.samples_px.size(); ++i) {
+        const SampleGrid::Hit hit = grid.nearest(cand.samples_px[i], [&](size_t t) { return t == trace_index; });
+        if (hit.trace == size_t(-1)) continue;
+        matched[i] = 1;
+        s.push_back(cand.samples_arc[i]);
+        u.push_back(trace.samples_u[hit.sample]);
+    }
+    if (u.empty()) return;
+    // Unwrap last frame's u around a loop so neighbours differ by about the sample spacing.
+    const double period = trace.closed ? trace.length_px : 0.0;
+    double flow = 0.0;
+    for (size_t i = 1; i < u.size(); ++i) {
+        double du = u[i] - u[i - 1];
+        if (period > 0.0) du -= period * std::round(du / period);
+        u[i] = u[i - 1] + du;
+        flow += du;
+    }
+    r_match.reverse = flow < 0.0;
+    if (r_match.reverse) {
+        for (double& a : s) a = cand.length_px - a;
+    }
+    std::vector<double> offsets(u.size());
+    for (size_t i = 0; i < u.size(); ++i) offsets[i] = u[i] - s[i];
+    r_match.u_offset = median(std::move(offsets));
+    if (cand.closed && trace.closed) r_match.start_px = loop_start(cand, trace);
+}
+
+}  // namespace
+
+StrokeCoherence::StrokeCoherence(std::vector<StrokeTrace> traces, uint32_t next_id)
+    : traces_(std::move(traces)), next_id_(next_id) {}
+
+void StrokeCoherence::remember(std::vector<StrokeTrace> traces, uint32_t next_id) {
+    traces_ = std::move(traces);
+    next_id_ = next_id;
+}
+
+std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidate>& candidates) const {
+    std::vector<StrokeMatch> matches(candidates.size());
+    std::vector<uint8_t> candidate_done(candidates.size(), 0), trace_taken(traces_.size(), 0);
+    // Close matches first; what is left is matched again over a wider radius, for lines that
+    // sweep fast (a silhouette turning edge-on).
+    for (int round = 0; round < kMatchRounds; ++round) {
+        const SampleGrid grid(traces_, kMatchRadiusPx * double(1 << round));
+        // Largest overlaps first; ties by candidate, then trace, so the result is deterministic.
+        std::vector<Pair> pairs = overlaps(candidates, traces_, grid, candidate_done, trace_taken);
+        std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+            return std::tie(b.score, a.candidate, a.trace) < std::tie(a.score, b.candidate, b.trace);
+        });
+        for (const Pair& p : pairs) {
+            if (candidate_done[p.candidate] || trace_taken[p.trace]) continue;
+            candidate_done[p.candidate] = trace_taken[p.trace] = 1;
+            StrokeMatch& m = matches[p.candidate];
+            m.id = traces_[p.trace].id;
+            m.inherited = true;
+            propagate(candidates[p.candidate], traces_[p.trace], p.trace, grid, m);
+        }
+    }
+    uint32_t next = next_id_;
+    for (size_t c = 0; c < candidates.size(); ++c) {
+        if (!candidate_done[c]) matches[c].id = next++;
+    }
+    return matches;
+}
+
+}  // namespace inkline::core

@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+// Stroke coherence across frames: stable ids, a direction and arc-length parameter u carried over
+// from the previous frame, and loop start points that stay put. The only frame-to-frame state
+// of the stroke stage; a value that depends on the previous frame's strokes alone.
+// Based on: propagated arc-length parameterization (section 6) of geometry-image stroke rendering,
+// after Bourdev: each sample takes the parameter of the nearest sample of the previous frame.
+#pragma once
+
+#include "core/features.h"
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace inkline::core {
+
+// Strokes move less than this (px) between frames; samples farther apart never match.
+// A 3-degree turn of an object filling a 1024 px frame moves its outline by up to ~25 px, but
+// most of a stroke moves far less, and the best-overlapping stroke wins.
+inline constexpr double kMatchRadiusPx = 12.0;
+// Samples along strokes for matching and u propagation, px apart.
+inline constexpr double kTraceSpacingPx = 2.0;
+// A stroke takes an old id only when they overlap over at least this fraction of the shorter.
+inline constexpr double kMinOverlapFraction = 0.25;
+
+// What the next frame needs of one stroke.
+struct StrokeTrace {
+    uint32_t id = 0;
+    LineKind kind = LineKind::kSilhouette;
+    bool visible = true;
+    bool closed = false;
+    double length_px = 0.0;               // drawn length
+    std::vector<uint32_t> edges;          // mesh edges, sorted and unique
+    std::vector<glm::dvec2> samples_px;   // along the drawn centerline
+    std::vector<double> samples_u;        // u at each sample, px
+    glm::dvec2 start_px{0.0};             // a loop's start, where u = 0
+};
+
+// A stroke of the current frame before it has an id.
+struct StrokeCandidate {
+    LineKind kind = LineKind::kSilhouette;
+    bool visible = true;
+    bool closed = false;
+    double length_px = 0.0;               // drawn length
+    std::vector<uint32_t> edges;          // mesh edge of each exact segment
+    std::vector<double> edge_length_px;   // image length of each exact segment
+    std::vector<glm::dvec2> samples_px;   // along the drawn centerline, from its start
+    std::vector<double> samples_arc;      // arc length of each sample from the start, px
+};
+
+// How a candidate continues last frame's stroke (or starts a new one).
+struct StrokeMatch {
+    uint32_t id = 0;
+    bool inherited = false;               // the id was present last frame
+    bool reverse = false;                 // run the stroke backwards to keep last frame's direction
+    double u_offset = 0.0;                // open stroke: u at its start once reversed as asked
+    std::optional<glm::dvec2> start_px;   // loop: where on the candidate's samples to start
+};
+
+class StrokeCoherence {
+  public:
+    StrokeCoherence() = default;
+    // The state after a frame, rebuilt from what that frame remembered and its next free id.
+    StrokeCoherence(std::vector<StrokeTrace> traces, uint32_t next_id);
+
+    // Matches this frame's strokes to the last frame's: each candidate takes the id of the
+    // stroke it overlaps most (image length along shared mesh edges plus length lying within
+    // kMatchRadiusPx), one candidate per id, largest overlaps first, then again over twice and
+    // four times the radius for what is left; the rest get fresh ids in candidate order.
+    // Deterministic for given inputs and state. Does not change the state.
+    std::vector<StrokeMatch> match(const std::vector<StrokeCandidate>& candidates) const;
+
+    // Makes a frame's strokes the reference for the next; next_id is the next unused id.
+    void remember(std::vector<StrokeTrace> traces, uint32_t next_id);
+
+    const std::vector<StrokeTrace>& traces() const { return traces_; }
+    uint32_t next_id() const { return next_id_; }
+
+  private:
+    std::vector<StrokeTrace> traces_;
+    uint32_t next_id_ = 0;
+};
+
+}  // namespace inkline::core
