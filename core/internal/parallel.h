@@ -14,8 +14,14 @@ namespace inkline::core::internal {
 // distinct output elements keep the result independent of scheduling.
 template <typename Body>
 void parallel_for(size_t n, size_t min_parallel, const Body& body) {
+    // Small calls return before asking for the thread count: glibc reads it from sysfs (an
+    // open, read and close per call), which costs more than a single occlusion query.
+    if (n < min_parallel) {
+        body(size_t(0), n);
+        return;
+    }
     const size_t threads = std::max<size_t>(1, std::thread::hardware_concurrency());
-    if (n < min_parallel || threads == 1) {
+    if (threads == 1) {
         body(size_t(0), n);
         return;
     }
