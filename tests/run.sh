@@ -14,7 +14,9 @@ ctest --test-dir build -j "$jobs" --output-on-failure
 
 if [ "${CI:-}" = "true" ] || [ "${INKLINE_SANITIZE:-0}" = "1" ]; then
   echo "== sanitizer build (ASan + UBSan) =="
-  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DINKLINE_SANITIZE=ON -DINKLINE_WERROR=ON >/dev/null
+  # Warnings are gated by the build above; GCC 12 adds false -Wmaybe-uninitialized reports inside
+  # libstdc++'s <regex> under sanitizer instrumentation, so this build does not turn them into errors.
+  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DINKLINE_SANITIZE=ON -DINKLINE_WERROR=OFF >/dev/null
   cmake --build build-sanitize -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --test-dir build-sanitize -j "$jobs" --output-on-failure
