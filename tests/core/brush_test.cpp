@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+#include "core/brush.h"
+
+#include "core/strokes.h"
+#include "core/topology.h"
+#include "tests/support/pipeline.h"
+#include "tests/support/shapes.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace inkline {
+namespace {
+
+using core::StrokeEnd;
+
+TEST(Brush, WidthFollowsTheResponseCurve) {
+    core::BrushStyle style;
+    style.width_min_px = 1.0;
+    style.width_max_px = 5.0;
+    style.gamma = 2.0;
+    EXPECT_DOUBLE_EQ(core::light_width_px(1.0, style), 1.0) << "fully lit: thinnest";
+    EXPECT_DOUBLE_EQ(core::light_width_px(0.0, style), 5.0) << "facing away: heaviest";
+    EXPECT_DOUBLE_EQ(core::light_width_px(0.5, style), 1.0 + 4.0 * 0.25);
+    EXPECT_DOUBLE_EQ(core::light_width_px(-3.0, style), 5.0) << "intensity is clamped";
+    style.invert = true;
+    EXPECT_DOUBLE_EQ(core::light_width_px(1.0, style), 5.0);
+    EXPECT_DOUBLE_EQ(core::light_width_px(0.0, style), 1.0);
+}
+
+TEST(Brush, EndProfiles) {
+    EXPECT_DOUBLE_EQ(core::end_profile(StrokeEnd::kFree, 0.0, 20.0), 0.0) << "S ends come to a point";
+    EXPECT_DOUBLE_EQ(core::end_profile(StrokeEnd::kFree, 20.0, 20.0), 1.0);
+    EXPECT_DOUBLE_EQ(core::end_profile(StrokeEnd::kFree, 10.0, 20.0), 0.75);
+    EXPECT_DOUBLE_EQ(core::end_profile(StrokeEnd::kFree, 5.0, 0.0), 1.0) << "no taper";
+    for (StrokeEnd e : {StrokeEnd::kCorner, StrokeEnd::kJunction, StrokeEnd::kLoop}) {
+        EXPECT_DOUBLE_EQ(core::end_profile(e, 0.0, 20.0), 1.0) << core::stroke_end_name(e);
+    }
+}
+
+TEST(Brush, TaperFreeMiddleIsMonotoneInShadow) {
+    // A straight S-S stroke whose light falls off linearly along it.
+    std::vector<glm::dvec2> line;
+    std::vector<double> facing;
+    for (int i = 0; i <= 200; ++i) line.push_back({double(i), 0.0}), facing.push_back(1.0 - i / 200.0);
+    core::BrushStyle style;
+    const core::StrokePath path = core::build_stroke_path(line, false, {});
+    const core::BrushSamples b = core::brush_samples(path, facing, {StrokeEnd::kFree, StrokeEnd::kFree}, style);
+    EXPECT_EQ(b.width.front(), 0.0);
+    EXPECT_EQ(b.width.back(), 0.0);
+    for (size_t i = 1; i < path.points_px.size(); ++i) {
+        const double a = path.arc_px[i];
+        if (a < style.taper_px || a > path.length_px - style.taper_px) continue;
+        EXPECT_GE(b.width[i], b.width[i - 1]) << "darker along the stroke, heavier: " << a;
+        EXPECT_DOUBLE_EQ(b.width[i], core::light_width_px(b.intensity[i], style));
+    }
+}
+
+TEST(Brush, WidthIsMonotoneInShadowOnASideLitSphere) {
+    // Sphere seen from +z, lit from +x: along the silhouette loop the intensity runs from 1 to 0
+    // and back, and the width must be a monotone function of 1 - I everywhere (a loop has no taper).
+    const core::Mesh sphere = test::uv_sphere(96, 48, 1.0);
+    const test::View view;
+    core::FrameLines frame = test::trace(sphere, view);
+    frame.light.direction = {-1.0, 0.0, 0.0};
+    const core::EdgeTable table = core::build_edge_table(sphere);
+    const core::Projection projection(frame.camera, frame.image, glm::dmat4(1.0));
+    core::StrokeCoherence coherence;
+    const core::BrushStyle style;
+    const core::FrameStrokes strokes = core::build_strokes(frame, sphere, table, projection, style, coherence);
+    ASSERT_EQ(strokes.strokes.size(), 1u);
+    const core::Stroke& loop = strokes.strokes[0];
+    EXPECT_TRUE(loop.closed);
+    EXPECT_EQ(loop.ends[0], StrokeEnd::kLoop);
+
+    std::vector<std::pair<double, double>> shadow_width;  // (1 - I, width)
+    for (size_t i = 0; i < loop.width.size(); ++i) shadow_width.emplace_back(1.0 - loop.intensity[i], loop.width[i]);
+    std::sort(shadow_width.begin(), shadow_width.end());
+    for (size_t i = 1; i < shadow_width.size(); ++i) {
+        EXPECT_GE(shadow_width[i].second, shadow_width[i - 1].second - 1e-12) << "at 1 - I = " << shadow_width[i].first;
+    }
+    // The silhouette normal is perpendicular to the view ray, so it faces +x to about cos(14 deg).
+    EXPECT_LT(shadow_width.front().first, 0.05) << "the lit side is reached";
+    EXPECT_GT(shadow_width.back().first, 0.98) << "the dark side is reached";
+    EXPECT_NEAR(shadow_width.front().second, style.width_min_px, 0.05);
+    EXPECT_NEAR(shadow_width.back().second, style.width_max_px, 0.05);
+}
+
+TEST(Brush, PointLightShinesFromItsPosition) {
+    // One edge along x at y = 1 on a sphere's top: normals point up (+y).
+    const core::Mesh sphere = test::uv_sphere(16, 8, 1.0);
+    const core::EdgeTable table = core::build_edge_table(sphere);
+    core::Light above;
+    above.is_point = true;
+    above.position = {0.0, 10.0, 0.0};
+    const core::StrokeLighting lit(sphere, table, glm::dmat4(1.0), above);
+    // The north pole (vertex 0) and its first edge.
+    const uint32_t edge = table.edges_around(0)[0];
+    const std::vector<double> facing = lit.facing(std::vector<glm::dvec3>{{0.0, 1.0, 0.0}}, std::vector<uint32_t>{edge});
+    EXPECT_NEAR(facing[0], 1.0, 1e-9);
+    above.position = {0.0, -10.0, 0.0};
+    const core::StrokeLighting below(sphere, table, glm::dmat4(1.0), above);
+    EXPECT_NEAR(below.facing(std::vector<glm::dvec3>{{0.0, 1.0, 0.0}}, std::vector<uint32_t>{edge})[0], -1.0, 1e-9);
+}
+
+TEST(Brush, VertexNormalsAreUnitAndOutward) {
+    const core::Mesh sphere = test::uv_sphere(24, 12, 2.0);
+    const std::vector<glm::dvec3> normals = core::vertex_normals(sphere);
+    for (size_t v = 0; v < normals.size(); ++v) {
+        EXPECT_NEAR(glm::length(normals[v]), 1.0, 1e-9);
+        EXPECT_GT(glm::dot(normals[v], glm::normalize(glm::dvec3(sphere.positions[v]))), 0.98);
+    }
+}
+
+TEST(Brush, ColorHex) {
+    EXPECT_EQ(core::color_hex({0.0, 0.5, 1.0}), "#0080ff");
+    EXPECT_EQ(core::color_hex(core::BrushStyle{}.color), "#171412");
+}
+
+}  // namespace
+}  // namespace inkline

@@ -1,0 +1,190 @@
+// SPDX-License-Identifier: MIT
+#include "core/outline.h"
+
+#include "core/brush.h"
+#include "core/pure_strokes.h"
+#include "core/stroke_path.h"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace inkline {
+namespace {
+
+using glm::dvec2;
+
+// Area covered by the centerline swept with its width: the trapezoid integral of width over
+// length, plus the half-disc caps the outline puts on ends that keep their width.
+double swept_area(const std::vector<dvec2>& c, const std::vector<double>& w, bool closed) {
+    double area = 0.0;
+    const size_t n = c.size();
+    for (size_t i = 0; i + 1 < n + (closed ? 1 : 0); ++i) {
+        const size_t j = (i + 1) % n;
+        area += 0.5 * (w[i] + w[j]) * glm::length(c[j] - c[i]);
+    }
+    if (!closed) {
+        for (const double end : {w.front(), w.back()}) area += std::numbers::pi * end * end / 8.0;
+    }
+    return area;
+}
+
+// How far (px) an outline point lies outside the centerline's disc of radius width / 2.
+double excess(const dvec2& p, const std::vector<dvec2>& c, const std::vector<double>& w, bool closed) {
+    double best = HUGE_VAL;
+    const size_t n = c.size();
+    for (size_t i = 0; i + (closed ? 0 : 1) < n; ++i) {
+        const size_t j = (i + 1) % n;
+        const dvec2 ab = c[j] - c[i];
+        const double len2 = glm::dot(ab, ab);
+        const double t = len2 > 0.0 ? std::clamp(glm::dot(p - c[i], ab) / len2, 0.0, 1.0) : 0.0;
+        best = std::min(best, glm::length(p - (c[i] + ab * t)) - 0.5 * (w[i] + (w[j] - w[i]) * t));
+    }
+    return best;
+}
+
+struct Shape {
+    std::string name;
+    std::vector<dvec2> points;
+    bool closed = false;
+};
+
+std::vector<Shape> shapes() {
+    std::vector<Shape> out;
+    const double pi = std::numbers::pi;
+    Shape zigzag{"sharp zig-zag", {}, false};
+    for (int i = 0; i <= 10; ++i) zigzag.points.push_back({4.0 * i, 20.0 * (i % 2)});
+    out.push_back(zigzag);
+    Shape hairpin{"hairpin", {}, false};
+    for (int i = 0; i <= 30; ++i) hairpin.points.push_back({2.0 * i, 0.0});
+    for (int i = 29; i >= 0; --i) hairpin.points.push_back({2.0 * i, 3.0});
+    out.push_back(hairpin);
+    Shape round_hairpin{"round hairpin", {}, false};
+    for (int i = 0; i <= 20; ++i) round_hairpin.points.push_back({60.0 - 3.0 * i, -4.0});
+    for (int i = 1; i < 12; ++i) round_hairpin.points.push_back({-4.0 * std::sin(pi * i / 12), -4.0 * std::cos(pi * i / 12)});
+    for (int i = 0; i <= 20; ++i) round_hairpin.points.push_back({3.0 * i, 4.0});
+    out.push_back(round_hairpin);
+    Shape wave{"wave", {}, false};
+    for (int i = 0; i <= 100; ++i) wave.points.push_back({2.0 * i, 12.0 * std::sin(0.15 * i)});
+    out.push_back(wave);
+    Shape spiral{"spiral", {}, false};
+    for (int i = 0; i <= 300; ++i) {
+        const double a = 0.05 * i, r = 6.0 + 3.0 * a;
+        spiral.points.push_back({r * std::cos(a), r * std::sin(a)});
+    }
+    out.push_back(spiral);
+    Shape noisy{"noisy line", {}, false};
+    for (int i = 0; i <= 150; ++i) noisy.points.push_back({1.3 * i, 0.6 * std::sin(12.9898 * i) * std::cos(78.233 * i)});
+    out.push_back(noisy);
+    for (const double r : {40.0, 4.0}) {
+        Shape loop{"loop r=" + std::to_string(int(r)), {}, true};
+        for (int i = 0; i <= 60; ++i) loop.points.push_back(r * dvec2(std::cos(2 * pi * (i % 60) / 60), std::sin(2 * pi * (i % 60) / 60)));
+        out.push_back(loop);
+    }
+    return out;
+}
+
+core::Polyline polyline(const Shape& s) {
+    core::Polyline l;
+    l.closed = s.closed;
+    l.points_px = s.points;
+    for (const dvec2& p : s.points) l.points_world.emplace_back(p.x, p.y, 0.0);
+    for (size_t i = 0; i + 1 < s.points.size(); ++i) l.edges.push_back(uint32_t(i));
+    return l;
+}
+
+// Every shape drawn as build_strokes draws it (pure strokes, cleanup, brush), with the light
+// varying along the stroke; each outline is checked against its centerline and width.
+TEST(Outline, FaithfulToCenterlineAndWidth) {
+    core::BrushStyle style;
+    int checked = 0;
+    for (const Shape& shape : shapes()) {
+        const core::PureStrokes pure = core::build_pure_strokes({polyline(shape)}, {style.turn_angle_deg});
+        for (const core::StrokeGeometry& g : pure.strokes) {
+            const core::StrokePath path = core::build_stroke_path(g.points_px, g.closed, {.smooth_px = style.smooth_px});
+            std::vector<double> facing;
+            for (size_t k = 0; k < g.points_px.size(); ++k) facing.push_back(std::sin(0.1 * double(k)));
+            const core::BrushSamples brush = core::brush_samples(path, facing, g.ends, style);
+            if (path.length_px < style.min_length_px) continue;
+            const std::vector<core::Ring> rings = core::build_outline(path.points_px, brush.width, path.closed, {});
+            SCOPED_TRACE(shape.name + ", stroke of " + std::to_string(path.length_px) + " px");
+            ASSERT_EQ(rings.size(), path.closed ? 2u : 1u);
+            double worst = 0.0;
+            for (const core::Ring& ring : rings) {
+                EXPECT_TRUE(core::is_simple(ring));
+                for (const dvec2& p : ring) {
+                    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y));
+                    worst = std::max(worst, excess(p, path.points_px, brush.width, path.closed));
+                }
+            }
+            EXPECT_LE(worst, 0.25) << "an outline point sticks out";
+            const double expected = swept_area(path.points_px, brush.width, path.closed);
+            EXPECT_NEAR(core::outline_area(rings), expected, 0.03 * expected);
+            ++checked;
+        }
+    }
+    EXPECT_GE(checked, 15);
+}
+
+TEST(Outline, StraightStrokeWithRoundCaps) {
+    const std::vector<dvec2> c = {{0, 0}, {50, 0}, {100, 0}};
+    const std::vector<double> w = {4.0, 4.0, 4.0};
+    const std::vector<core::Ring> rings = core::build_outline(c, w, false, {});
+    ASSERT_EQ(rings.size(), 1u);
+    EXPECT_NEAR(core::outline_area(rings), 400.0 + std::numbers::pi * 4.0, 0.5);
+    double min_x = HUGE_VAL, max_x = -HUGE_VAL;
+    for (const dvec2& p : rings[0]) min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
+    EXPECT_NEAR(min_x, -2.0, 1e-9) << "a cap reaches half the width past the end";
+    EXPECT_NEAR(max_x, 102.0, 1e-9);
+}
+
+TEST(Outline, SharpTurnsNeverSpike) {
+    // Centerlines that turn back on themselves without being split: the joins stay round and
+    // the inner side's fold is cut away, so nothing sticks out and nothing is NaN.
+    for (const double turn_deg : {90.0, 150.0, 179.0, 180.0}) {
+        std::vector<dvec2> c;
+        for (int i = 0; i <= 40; ++i) c.push_back({0.5 * i, 0.0});
+        const double a = glm::radians(180.0 - turn_deg);
+        for (int i = 1; i <= 40; ++i) c.push_back({20.0 + 0.5 * i * std::cos(a), 0.5 * i * std::sin(a)});
+        const std::vector<double> w(c.size(), 5.0);
+        const std::vector<core::Ring> rings = core::build_outline(c, w, false, {});
+        ASSERT_EQ(rings.size(), 1u);
+        for (const dvec2& p : rings[0]) {
+            ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y));
+            EXPECT_LE(excess(p, c, w, false), 0.25) << turn_deg << " degrees at " << p.x << ", " << p.y;
+        }
+    }
+}
+
+TEST(Outline, LoopHasOuterAndInnerRing) {
+    std::vector<dvec2> c;
+    std::vector<double> w;
+    for (int i = 0; i < 200; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / 200;
+        c.push_back(50.0 * dvec2(std::cos(a), std::sin(a)));
+        w.push_back(2.0 + std::cos(a));
+    }
+    const std::vector<core::Ring> rings = core::build_outline(c, w, true, {});
+    ASSERT_EQ(rings.size(), 2u);
+    EXPECT_LT(core::signed_area(rings[0]) * core::signed_area(rings[1]), 0.0) << "opposite orientations";
+    EXPECT_NEAR(core::outline_area(rings), swept_area(c, w, true), 0.01 * swept_area(c, w, true));
+}
+
+TEST(Outline, SimplifyKeepsShapeWithinTolerance) {
+    core::Ring ring;
+    for (int i = 0; i < 400; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / 400;
+        ring.push_back(30.0 * dvec2(std::cos(a), std::sin(a)));
+    }
+    const core::Ring simple = core::simplify_ring(ring, 0.05);
+    EXPECT_LT(simple.size(), ring.size() / 2);
+    EXPECT_NEAR(core::signed_area(simple), core::signed_area(ring), 0.01 * core::signed_area(ring));
+}
+
+}  // namespace
+}  // namespace inkline

@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+#include "core/stroke_coherence.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace inkline {
+namespace {
+
+using glm::dvec2;
+
+// A straight stroke from a to b, sampled every kTraceSpacingPx, on edges first_edge...
+core::StrokeCandidate candidate(dvec2 a, dvec2 b, uint32_t first_edge, uint32_t edge_count = 10) {
+    core::StrokeCandidate c;
+    c.length_px = glm::length(b - a);
+    for (uint32_t e = 0; e < edge_count; ++e) c.edges.push_back(first_edge + e), c.edge_length_px.push_back(c.length_px / edge_count);
+    for (double s = 0.0; s <= c.length_px + 1e-9; s += core::kTraceSpacingPx) {
+        c.samples_px.push_back(a + (b - a) * (s / c.length_px));
+        c.samples_arc.push_back(s);
+    }
+    return c;
+}
+
+// What the state remembers of a candidate given an id and u offset.
+core::StrokeTrace trace(const core::StrokeCandidate& c, uint32_t id, double u_offset) {
+    core::StrokeTrace t;
+    t.id = id;
+    t.length_px = c.length_px;
+    t.edges = c.edges;
+    t.samples_px = c.samples_px;
+    for (double s : c.samples_arc) t.samples_u.push_back(u_offset + s);
+    return t;
+}
+
+TEST(StrokeCoherence, FirstFrameGetsFreshIdsInOrder) {
+    const core::StrokeCoherence state({}, 7);
+    const auto m = state.match({candidate({0, 0}, {100, 0}, 0), candidate({0, 50}, {100, 50}, 100)});
+    ASSERT_EQ(m.size(), 2u);
+    EXPECT_EQ(m[0].id, 7u);
+    EXPECT_EQ(m[1].id, 8u);
+    EXPECT_FALSE(m[0].inherited || m[1].inherited);
+}
+
+TEST(StrokeCoherence, SameStrokeKeepsIdAndParameter) {
+    const core::StrokeCandidate c = candidate({0, 0}, {100, 0}, 0);
+    const core::StrokeCoherence state({trace(c, 42, 17.0)}, 43);
+    const auto m = state.match({c});
+    ASSERT_EQ(m.size(), 1u);
+    EXPECT_EQ(m[0].id, 42u);
+    EXPECT_TRUE(m[0].inherited);
+    EXPECT_FALSE(m[0].reverse);
+    EXPECT_NEAR(m[0].u_offset, 17.0, 1e-9);
+}
+
+TEST(StrokeCoherence, ReversedStrokeIsTurnedBack) {
+    const core::StrokeCoherence state({trace(candidate({0, 0}, {100, 0}, 0), 3, 0.0)}, 4);
+    const auto m = state.match({candidate({100, 0}, {0, 0}, 0)});
+    EXPECT_EQ(m[0].id, 3u);
+    EXPECT_TRUE(m[0].reverse);
+    EXPECT_NEAR(m[0].u_offset, 0.0, 1e-9);
+}
+
+TEST(StrokeCoherence, ParameterStaysOnTheImageWhenAStrokeGrowsAndMoves) {
+    // Last frame: x in [0, 100], u = x. Now the stroke moved 3 px down and grew 10 px at its start:
+    // u must stay attached, so the new start gets u = -10.
+    const core::StrokeCoherence state({trace(candidate({0, 0}, {100, 0}, 0), 1, 0.0)}, 2);
+    const auto m = state.match({candidate({-10, 3}, {100, 3}, 500)});
+    EXPECT_EQ(m[0].id, 1u) << "no shared edge, but it lies close";
+    EXPECT_FALSE(m[0].reverse);
+    EXPECT_NEAR(m[0].u_offset, -10.0, 1.01);
+}
+
+TEST(StrokeCoherence, SplitStrokeKeepsItsIdOnTheLargerPart) {
+    const core::StrokeCoherence state({trace(candidate({0, 0}, {100, 0}, 0, 10), 5, 0.0)}, 6);
+    const auto m = state.match({candidate({0, 0}, {30, 0}, 0, 3), candidate({40, 0}, {100, 0}, 4, 6)});
+    EXPECT_EQ(m[1].id, 5u);
+    EXPECT_TRUE(m[1].inherited);
+    EXPECT_EQ(m[0].id, 6u);
+    EXPECT_FALSE(m[0].inherited);
+    EXPECT_NEAR(m[1].u_offset, 40.0, 1e-9);
+}
+
+TEST(StrokeCoherence, DistantStrokeIsNew) {
+    const core::StrokeCoherence state({trace(candidate({0, 0}, {100, 0}, 0), 5, 0.0)}, 6);
+    const auto m = state.match({candidate({0, 300}, {100, 300}, 1000)});
+    EXPECT_EQ(m[0].id, 6u);
+    EXPECT_FALSE(m[0].inherited);
+}
+
+TEST(StrokeCoherence, KindsAndVisibilityDoNotMix) {
+    core::StrokeCandidate c = candidate({0, 0}, {100, 0}, 0);
+    const core::StrokeCoherence state({trace(c, 5, 0.0)}, 6);
+    c.kind = core::LineKind::kCrease;
+    EXPECT_FALSE(state.match({c})[0].inherited);
+    c.kind = core::LineKind::kSilhouette;
+    c.visible = false;
+    EXPECT_FALSE(state.match({c})[0].inherited);
+}
+
+TEST(StrokeCoherence, LoopStartStaysPut) {
+    // A square loop seen twice: the start stays where it was.
+    core::StrokeCandidate loop;
+    loop.closed = true;
+    const std::vector<dvec2> corners = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+    for (int side = 0; side < 4; ++side) {
+        for (int i = 0; i < 50; ++i) {
+            loop.samples_px.push_back(corners[size_t(side)] + (corners[size_t((side + 1) % 4)] - corners[size_t(side)]) * (i / 50.0));
+            loop.samples_arc.push_back(100.0 * side + 2.0 * i);
+        }
+    }
+    loop.length_px = 400.0;
+    core::StrokeTrace t = trace(loop, 9, 0.0);
+    t.closed = true;
+    t.start_px = {100, 40};
+    const core::StrokeCoherence state({t}, 10);
+    const auto m = state.match({loop});
+    ASSERT_TRUE(m[0].start_px.has_value());
+    EXPECT_LT(glm::length(*m[0].start_px - dvec2(100, 40)), 1e-9);
+}
+
+}  // namespace
+}  // namespace inkline
