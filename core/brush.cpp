@@ -88,7 +88,7 @@ BrushSamples brush_samples(const StrokePath& path, std::span<const double> facin
         const double value = facing[k] + (facing[std::min(k + 1, facing.size() - 1)] - facing[k]) * f;
         raw[i] = std::clamp(value, 0.0, 1.0);
     }
-    out.intensity = smooth_along(raw, path.arc_px, style.smooth_px, path.closed, path.length_px);
+    out.intensity = smooth_samples(raw, path.step_px, style.smooth_px, path.closed);
 
     out.width.resize(n);
     for (size_t i = 0; i < n; ++i) out.width[i] = light_width_px(out.intensity[i], style);

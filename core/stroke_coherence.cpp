@@ -157,7 +157,8 @@ double distance_to_loop(const glm::dvec2& p, const std::vector<glm::dvec2>& loop
 // The loop's new start, within kMatchRadiusPx of last frame's: the point that costs least now
 // (its distance from last frame's start) plus later (kStartLookahead frames of the motion the
 // loop made around it since last frame, averaged over kStartMotionWindowPx either side). The
-// start so stays put where the outline stands still and slides off the parts that sweep.
+// start so stays put where the outline stands still and slides off the parts that sweep. A
+// start anchored last frame, before any motion was known, may move anywhere on the loop once.
 std::optional<glm::dvec2> loop_start(const StrokeCandidate& cand, const StrokeTrace& trace) {
     const size_t n = cand.samples_px.size();
     if (n == 0 || trace.samples_px.empty()) return std::nullopt;
@@ -176,11 +177,12 @@ std::optional<glm::dvec2> loop_start(const StrokeCandidate& cand, const StrokeTr
         return sum / double(2 * reach + 1);
     };
 
+    const double slide = trace.start_anchored ? HUGE_VAL : kMatchRadiusPx;
     std::optional<glm::dvec2> best, nearest;
     double best_cost = HUGE_VAL, nearest_d = HUGE_VAL;
     for (size_t i = 0; i < n; ++i) {
         const glm::dvec2 a = cand.samples_px[i], b = cand.samples_px[(i + 1) % n];
-        if (std::min(glm::length(a - trace.start_px), glm::length(b - trace.start_px)) > kMatchRadiusPx + kTraceSpacingPx) {
+        if (std::min(glm::length(a - trace.start_px), glm::length(b - trace.start_px)) > slide + kTraceSpacingPx) {
             // Far from last frame's start: only the fallback (nearest point) can lie here.
             const double d = distance_to_segment_px(trace.start_px, a, b);
             if (d < nearest_d) nearest_d = d, nearest = a;
@@ -192,7 +194,7 @@ std::optional<glm::dvec2> loop_start(const StrokeCandidate& cand, const StrokeTr
             const glm::dvec2 p = a + (b - a) * f;
             const double d = glm::length(p - trace.start_px);
             if (d < nearest_d) nearest_d = d, nearest = p;
-            if (d > kMatchRadiusPx) continue;
+            if (d > slide) continue;
             const double cost = d + kStartLookahead * (m0 + (m1 - m0) * f);
             if (cost < best_cost) best_cost = cost, best = p;
         }

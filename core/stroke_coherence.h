@@ -36,6 +36,7 @@ struct StrokeTrace {
     std::vector<glm::dvec2> samples_px;   // along the drawn centerline
     std::vector<double> samples_u;        // u at each sample, px
     glm::dvec2 start_px{0.0};             // a loop's start, where u = 0
+    bool start_anchored = false;          // the start was anchored this frame, not carried over
 };
 
 // A stroke of the current frame before it has an id.

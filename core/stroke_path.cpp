@@ -18,6 +18,13 @@ constexpr double kKernelSigmas = 3.0;
 
 constexpr size_t kNone = size_t(-1);
 
+// Unnormalised Gaussian weights for offsets 0..radius samples.
+std::vector<double> gaussian_weights(double sigma, std::ptrdiff_t radius) {
+    std::vector<double> weight(size_t(radius) + 1);
+    for (std::ptrdiff_t k = 0; k <= radius; ++k) weight[size_t(k)] = std::exp(-0.5 * double(k * k) / (sigma * sigma));
+    return weight;
+}
+
 // Cumulative arc length of a polyline.
 std::vector<double> cumulative_arc(std::span<const glm::dvec2> points) {
     std::vector<double> arc(points.size(), 0.0);
@@ -170,6 +177,7 @@ StrokePath build_stroke_path(std::span<const glm::dvec2> points, bool closed, co
     // Even resampling; each sample remembers its exact parameter.
     const size_t count = size_t(std::max(1.0, std::ceil(length / options.spacing_px)));
     const double step = length / double(count);
+    path.step_px = step;
     std::vector<glm::dvec2> even;
     std::vector<double> even_g;
     const size_t last = closed ? count - 1 : count;
@@ -194,23 +202,29 @@ StrokePath build_stroke_path(std::span<const glm::dvec2> points, bool closed, co
     const auto n = std::ptrdiff_t(even.size());
     if (options.smooth_px > 0.0 && n > 2) {
         const double sigma = options.smooth_px / step;
-        std::ptrdiff_t radius = std::ptrdiff_t(std::ceil(kKernelSigmas * sigma));
-        radius = std::min(radius, closed ? n / 2 : n - 1);
-        std::vector<double> weight(size_t(radius) + 1);
-        for (std::ptrdiff_t k = 0; k <= radius; ++k) weight[size_t(k)] = std::exp(-0.5 * double(k * k) / (sigma * sigma));
-        auto at = [&](std::ptrdiff_t i) -> glm::dvec2 {
-            if (closed) return even[size_t(((i % n) + n) % n)];
-            if (i < 0) return 2.0 * even[0] - even[size_t(-i)];
-            if (i >= n) return 2.0 * even[size_t(n - 1)] - even[size_t(2 * (n - 1) - i)];
-            return even[size_t(i)];
-        };
-        for (std::ptrdiff_t i = 0; i < n; ++i) {
-            glm::dvec2 sum = even[size_t(i)] * weight[0];
-            double total = weight[0];
-            for (std::ptrdiff_t k = 1; k <= radius; ++k) {
-                sum += (at(i - k) + at(i + k)) * weight[size_t(k)];
-                total += 2.0 * weight[size_t(k)];
+        const std::ptrdiff_t radius = std::min(std::ptrdiff_t(std::ceil(kKernelSigmas * sigma)), closed ? n / 2 : n - 1);
+        const std::vector<double> weight = gaussian_weights(sigma, radius);
+        // Padded copy: periodic on a loop, reflected through the ends of an open path.
+        std::vector<glm::dvec2> padded(size_t(n + 2 * radius));
+        for (std::ptrdiff_t i = -radius; i < n + radius; ++i) {
+            glm::dvec2 p;
+            if (closed) {
+                p = even[size_t(((i % n) + n) % n)];
+            } else if (i < 0) {
+                p = 2.0 * even[0] - even[size_t(-i)];
+            } else if (i >= n) {
+                p = 2.0 * even[size_t(n - 1)] - even[size_t(2 * (n - 1) - i)];
+            } else {
+                p = even[size_t(i)];
             }
+            padded[size_t(i + radius)] = p;
+        }
+        double total = weight[0];
+        for (std::ptrdiff_t k = 1; k <= radius; ++k) total += 2.0 * weight[size_t(k)];
+        for (std::ptrdiff_t i = 0; i < n; ++i) {
+            const glm::dvec2* c = &padded[size_t(i + radius)];
+            glm::dvec2 sum = c[0] * weight[0];
+            for (std::ptrdiff_t k = 1; k <= radius; ++k) sum += (c[-k] + c[k]) * weight[size_t(k)];
             smooth[size_t(i)] = sum / total;
         }
     }
@@ -262,35 +276,31 @@ double removed_extent_px(std::span<const glm::dvec2> points, const StrokePath& p
     return worst;
 }
 
-std::vector<double> smooth_along(std::span<const double> values, std::span<const double> arc_px, double sigma_px,
-                                 bool closed, double period_px) {
-    const size_t n = values.size();
+std::vector<double> smooth_samples(std::span<const double> values, double step_px, double sigma_px, bool closed) {
+    const auto n = std::ptrdiff_t(values.size());
     std::vector<double> out(values.begin(), values.end());
-    if (!(sigma_px > 0.0) || n < 3) return out;
-    const double reach = kKernelSigmas * sigma_px;
-    const double inv = 1.0 / (2.0 * sigma_px * sigma_px);
-    for (size_t i = 0; i < n; ++i) {
-        double sum = values[i], total = 1.0;
-        // Walk outwards both ways until the kernel's reach (or once around a loop).
-        for (int dir : {-1, 1}) {
-            for (size_t step = 1; step < (closed ? (n + 1) / 2 : n); ++step) {
-                std::ptrdiff_t j = std::ptrdiff_t(i) + dir * std::ptrdiff_t(step);
-                double d;
-                if (closed) {
-                    j = ((j % std::ptrdiff_t(n)) + std::ptrdiff_t(n)) % std::ptrdiff_t(n);
-                    d = std::abs(arc_px[size_t(j)] - arc_px[i]);
-                    d = std::min(d, period_px - d);
-                } else {
-                    if (j < 0 || j >= std::ptrdiff_t(n)) break;
-                    d = std::abs(arc_px[size_t(j)] - arc_px[i]);
+    if (!(sigma_px > 0.0) || !(step_px > 0.0) || n < 3) return out;
+    const double sigma = sigma_px / step_px;
+    const std::ptrdiff_t radius = std::min(std::ptrdiff_t(std::ceil(kKernelSigmas * sigma)), closed ? n / 2 : n - 1);
+    const std::vector<double> weight = gaussian_weights(sigma, radius);
+    double full = weight[0];
+    for (std::ptrdiff_t k = 1; k <= radius; ++k) full += 2.0 * weight[size_t(k)];
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+        double sum = values[size_t(i)] * weight[0], total = full;
+        if (i >= radius && i + radius < n) {
+            for (std::ptrdiff_t k = 1; k <= radius; ++k) sum += (values[size_t(i - k)] + values[size_t(i + k)]) * weight[size_t(k)];
+        } else {
+            // Near an end: a loop wraps around; an open path's kernel is cut there.
+            total = weight[0];
+            for (std::ptrdiff_t k = 1; k <= radius; ++k) {
+                for (const std::ptrdiff_t j : {i - k, i + k}) {
+                    if (!closed && (j < 0 || j >= n)) continue;
+                    sum += values[size_t(((j % n) + n) % n)] * weight[size_t(k)];
+                    total += weight[size_t(k)];
                 }
-                if (d > reach) break;
-                const double w = std::exp(-d * d * inv);
-                sum += values[size_t(j)] * w;
-                total += w;
             }
         }
-        out[i] = sum / total;
+        out[size_t(i)] = sum / total;
     }
     return out;
 }

@@ -32,6 +32,7 @@ struct StrokePath {
     std::vector<double> g;              // exact parameter of each sample: segment + fraction
     double g_end = 0.0;                 // exact parameter of the last exact point (a loop's seam)
     double length_px = 0.0;             // drawn length (a loop includes its closing segment)
+    double step_px = 0.0;               // sample spacing along the cleaned path, before smoothing
     double deviation_px = 0.0;          // largest distance of a sample from the exact polyline
 
     // Fractional sample index where the exact parameter g lies (monotone in g).
@@ -53,10 +54,9 @@ StrokePath build_stroke_path(std::span<const glm::dvec2> points_px, bool closed,
 // smoothing took away (px).
 double removed_extent_px(std::span<const glm::dvec2> points_px, const StrokePath& path);
 
-// Gaussian smoothing (sigma in px) of values given at increasing arc positions; a loop of
-// length period_px wraps around, an open path is clamped at its ends.
-std::vector<double> smooth_along(std::span<const double> values, std::span<const double> arc_px, double sigma_px,
-                                 bool closed, double period_px);
+// Gaussian smoothing (sigma in px) of values at samples step_px apart; a loop wraps around,
+// an open path's kernel is cut (and renormalised) at its ends.
+std::vector<double> smooth_samples(std::span<const double> values, double step_px, double sigma_px, bool closed);
 
 // Distance from p to the segment ab.
 double distance_to_segment(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b);

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace inkline::core {
 namespace {
@@ -116,13 +117,14 @@ void restart_loop(StrokeGeometry& g, size_t s, double t, const Projection& proje
 
 // Where a loop starts: where coherence carried last frame's start to, else at the point whose
 // normal faces the light least (something fixed in the scene rather than the chain's seam).
-void choose_loop_start(StrokeGeometry& g, const StrokeMatch& match, const StrokeLighting& lighting,
+// Returns true when the start was anchored.
+bool choose_loop_start(StrokeGeometry& g, const StrokeMatch& match, const StrokeLighting& lighting,
                        const Projection& projection, const glm::dmat4& object_from_world) {
     if (match.start_px) {
         const PointOnPolyline near = nearest_on(g.points_px, *match.start_px);
         if (near.distance <= kMatchRadiusPx) {
             restart_loop(g, near.segment, near.t, projection, object_from_world);
-            return;
+            return false;
         }
     }
     const std::vector<double> facing = lighting.facing(g.points_world, g.edges);
@@ -131,17 +133,20 @@ void choose_loop_start(StrokeGeometry& g, const StrokeMatch& match, const Stroke
         if (facing[k] < facing[least]) least = k;
     }
     restart_loop(g, least, 0.0, projection, object_from_world);
+    return true;
 }
 
-Stroke style_stroke(StrokeGeometry g, uint32_t id, double u_offset, const StrokeLighting& lighting,
-                    const BrushStyle& style) {
+// path: the drawn centerline of g when already built, else empty.
+Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint32_t id, double u_offset,
+                    const StrokeLighting& lighting, const BrushStyle& style) {
     Stroke stroke;
     stroke.id = id;
     stroke.kind = g.kind;
     stroke.visible = g.visible;
     stroke.closed = g.closed;
     stroke.ends = g.ends;
-    const StrokePath path = build_stroke_path(g.points_px, g.closed, path_options(style));
+    const StrokePath path =
+        path_built ? std::move(*path_built) : build_stroke_path(g.points_px, g.closed, path_options(style));
     const std::vector<double> facing = lighting.facing(g.points_world, g.edges);
     const BrushSamples brush = brush_samples(path, facing, g.ends, style);
 
@@ -169,8 +174,9 @@ Stroke style_stroke(StrokeGeometry g, uint32_t id, double u_offset, const Stroke
     return stroke;
 }
 
-StrokeTrace trace_of(const Stroke& stroke) {
+StrokeTrace trace_of(const Stroke& stroke, bool start_anchored) {
     StrokeTrace t;
+    t.start_anchored = start_anchored;
     t.id = stroke.id;
     t.kind = stroke.kind;
     t.visible = stroke.visible;
@@ -211,9 +217,11 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     out.stats.links = pure.links;
 
     // Ids, direction and u from the previous frame.
+    std::vector<StrokePath> paths;
     std::vector<StrokeCandidate> candidates;
     for (const StrokeGeometry& g : pure.strokes) {
-        candidates.push_back(candidate_of(g, build_stroke_path(g.points_px, g.closed, path_options(style))));
+        paths.push_back(build_stroke_path(g.points_px, g.closed, path_options(style)));
+        candidates.push_back(candidate_of(g, paths.back()));
     }
     const std::vector<StrokeMatch> matches = r_coherence.match(candidates);
 
@@ -224,9 +232,15 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     for (size_t i = 0; i < pure.strokes.size(); ++i) {
         StrokeGeometry& g = pure.strokes[i];
         const StrokeMatch& m = matches[i];
-        if (m.reverse) reverse(g);
-        if (g.closed && g.points_px.size() > 2) choose_loop_start(g, m, lighting, projection, object_from_world);
-        Stroke stroke = style_stroke(std::move(g), m.id, m.u_offset, lighting, style);
+        // The centerline is built again only where the stroke was turned round or restarted.
+        std::optional<StrokePath> path = std::move(paths[i]);
+        if (m.reverse) reverse(g), path.reset();
+        bool anchored = false;
+        if (g.closed && g.points_px.size() > 2) {
+            anchored = choose_loop_start(g, m, lighting, projection, object_from_world);
+            path.reset();
+        }
+        Stroke stroke = style_stroke(std::move(g), std::move(path), m.id, m.u_offset, lighting, style);
         next_id = std::max(next_id, m.id + 1);
 
         StrokeStats& s = out.stats;
@@ -241,7 +255,7 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
             s.max_deviation_px = std::max(s.max_deviation_px, stroke.deviation_px);
             s.max_removed_px = std::max(s.max_removed_px, stroke.removed_px);
         }
-        traces.push_back(trace_of(stroke));
+        traces.push_back(trace_of(stroke, anchored));
         out.strokes.push_back(std::move(stroke));
     }
     r_coherence.remember(std::move(traces), next_id);
