@@ -9,6 +9,7 @@
 
 #include "core/camera.h"
 #include "core/mesh.h"
+#include "core/topology.h"
 #include "core/visibility.h"
 #include "gl/context.h"
 
@@ -20,10 +21,12 @@ struct DepthVisibilityOptions {
     // Depth-map texels per image pixel along each axis. 2 keeps every measured disagreement
     // with the exact reference under a pixel at a quarter of the cost of 4 (docs/visibility.md).
     int supersampling = 2;
-    // Where the texels around a point disagree (the point is on a depth discontinuity: a
-    // silhouette, an occluder's edge), intersect the segment from the eye to the point with the
-    // faces seen there instead of calling it visible. Off: the depth map alone decides.
-    bool exact_at_edges = true;
+    // Settle what texels cannot resolve by intersecting the segment from the eye to the point
+    // with nearby faces: those around the point's own edge (sub-texel slivers along mesh
+    // silhouettes), on a depth discontinuity those seen in the texels around it, and their
+    // neighbours that project within 3 texels. Off: the depth map alone decides, which disagrees
+    // with the exact test on a fifth to half of the visible length of dense meshes.
+    bool local_ray_test = true;
 };
 
 // What changed in the mesh since the previous prepare().
@@ -55,16 +58,17 @@ class DepthOcclusion final : public core::Occlusion {
     DepthOcclusion& operator=(const DepthOcclusion&) = delete;
 
     // Renders and reads back the depth map of `mesh` (object space) seen through `projection`;
-    // call once per frame before core::split_by_visibility with the same projection. `mesh` must
-    // stay alive and unchanged until the queries of this frame are done. Uploads
+    // call once per frame before core::split_by_visibility with the same projection. `mesh` and
+    // its `table` must stay alive and unchanged until the queries of this frame are done. Uploads
     // triangles and positions on the first call and for kTopology, only positions for
     // kPositions, nothing for kNone: rigid motion travels in the projection's matrix.
     // Throws InputError when even one texel per pixel exceeds GL's framebuffer size limit.
-    void prepare(const core::Mesh& mesh, const core::Projection& projection, MeshChange change);
+    void prepare(const core::Mesh& mesh, const core::EdgeTable& table, const core::Projection& projection,
+                 MeshChange change);
 
     // Tests each query against the depth map of the last prepare(); eye_object must be that
-    // projection's eye. Query edges are not needed: the point's own faces pass the depth test
-    // because their planes contain it.
+    // projection's eye. The point's own faces pass both tests: their planes contain it, and the
+    // ray stops just short of it. Not safe to call from two threads at once.
     void occluded(const glm::dvec3& eye_object, std::span<const core::OcclusionQuery> queries,
                   std::span<uint8_t> r_occluded) const override;
 

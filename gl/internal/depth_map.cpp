@@ -47,11 +47,12 @@ DepthVerdict classify_in_depth_map(const DepthMap& map, const DepthSample& sampl
     return in_front == 4 ? DepthVerdict::kHidden : DepthVerdict::kEdge;
 }
 
-void faces_around(const DepthMap& map, const glm::dvec2& p_window, std::vector<uint32_t>& r_faces) {
-    const int i0 = int(std::floor(p_window.x - 0.5)) - 1;
-    const int j0 = int(std::floor(p_window.y - 0.5)) - 1;
-    for (int j = std::max(j0, 0); j < std::min(j0 + 4, map.height); ++j) {
-        for (int i = std::max(i0, 0); i < std::min(i0 + 4, map.width); ++i) {
+void faces_around(const DepthMap& map, const glm::dvec2& p_window, int rings, std::vector<uint32_t>& r_faces) {
+    const int i0 = int(std::floor(p_window.x - 0.5)) - rings;
+    const int j0 = int(std::floor(p_window.y - 0.5)) - rings;
+    const int side = 2 + 2 * rings;
+    for (int j = std::max(j0, 0); j < std::min(j0 + side, map.height); ++j) {
+        for (int i = std::max(i0, 0); i < std::min(i0 + side, map.width); ++i) {
             const float id = map.at(i, j).face;
             if (id == 0.0f) continue;
             const auto face = uint32_t(id) - 1;

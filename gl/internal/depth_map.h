@@ -52,8 +52,8 @@ enum class DepthVerdict : uint8_t {
 // that grows with the surface's slope.
 DepthVerdict classify_in_depth_map(const DepthMap& map, const DepthSample& sample);
 
-// Appends to r_faces, without repeats, the faces seen at the 4x4 texels around the point: the
-// candidates that may cover it when the verdict is kEdge.
-void faces_around(const DepthMap& map, const glm::dvec2& p_window, std::vector<uint32_t>& r_faces);
+// Appends to r_faces, without repeats, the faces seen at the texels around the point: its
+// bilinear footprint widened by `rings` texels on every side, clipped to the map.
+void faces_around(const DepthMap& map, const glm::dvec2& p_window, int rings, std::vector<uint32_t>& r_faces);
 
 }  // namespace inkline::gl::internal
