@@ -89,10 +89,10 @@ TEST(DepthMap, FacesAroundListsEachFaceOnce) {
     DepthMap map = make_map(8, 8, [&](int, int) { return &near; });
     for (size_t k = 0; k < map.texels.size(); ++k) map.texels[k].face = float(1 + k % 2);  // faces 0 and 1
     std::vector<uint32_t> faces{1};
-    gl::internal::faces_around(map, {4.2, 4.7}, faces);
+    gl::internal::faces_around(map, {4.2, 4.7}, 1, faces);
     EXPECT_EQ(faces, (std::vector<uint32_t>{1, 0}));
     faces.clear();
-    gl::internal::faces_around(map, {0.0, 0.0}, faces);  // clipped to the map
+    gl::internal::faces_around(map, {0.0, 0.0}, 1, faces);  // clipped to the map
     EXPECT_EQ(faces.size(), 2u);
 }
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // How closely two visibility results on the same chains agree: the visible length classified
 // the same way and the longest run classified differently, found by sampling every chain finely
-// and looking each sample up in both results' polylines.
+// and either looking each sample up in both results' polylines (what a user sees) or asking both
+// occlusion tests directly (the test alone, without the splitter's sampling and bisection).
 #pragma once
 
 #include "core/camera.h"
@@ -35,5 +36,11 @@ VisibilityAgreement compare_visibility(const std::vector<core::Chain>& chains, c
                                        const core::Projection& projection,
                                        const std::vector<core::Polyline>& reference,
                                        const std::vector<core::Polyline>& candidate, double step_px = 0.25);
+
+// Compares two occlusion tests directly on the same samples: a sample is visible for a test
+// when it lies inside the image, in front of the near plane and the test finds it unoccluded.
+VisibilityAgreement compare_occlusion(const std::vector<core::Chain>& chains, const core::Mesh& mesh,
+                                      const core::Projection& projection, const core::Occlusion& reference,
+                                      const core::Occlusion& candidate, double step_px = 0.25);
 
 }  // namespace inkline::test
