@@ -1,0 +1,343 @@
+// SPDX-License-Identifier: MIT
+// GL depth-map visibility vs exact ray casting (CGAL AABB tree) on generated meshes of 5k to 1M
+// faces and on mesh files given on the command line: time per frame of a 1024x1024 turntable,
+// and how closely the depth pass agrees with the exact reference. Prints a markdown table.
+//
+//   inkline_visibility_bench [--frames N] [--size PX] [--min-faces N] [--max-faces N]
+//                            [--gl auto|egl|osmesa]
+//                            [--supersampling 1,2,4] [--ray-test on|off|both] [MESH ...]
+//
+// Real meshes, e.g. from Debian's libcgal-demo:
+//   tar xzf /usr/share/doc/libcgal-dev/data.tar.gz data/meshes/armadillo.off
+
+#include "core/chaining.h"
+#include "core/exact_visibility.h"
+#include "core/features.h"
+#include "core/mesh.h"
+#include "core/mesh_io.h"
+#include "core/scene.h"
+#include "core/topology.h"
+#include "core/visibility.h"
+#include "gl/context.h"
+#include "gl/depth_visibility.h"
+#include "tests/support/agreement.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace core = inkline::core;
+namespace gl = inkline::gl;
+namespace test = inkline::test;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Unit icosphere: an icosahedron split `levels` times into four (20 * 4^levels faces).
+core::Mesh icosphere(int levels) {
+    const float t = float((1.0 + std::sqrt(5.0)) / 2.0);
+    core::Mesh m;
+    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                   {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    for (glm::vec3& p : m.positions) p = glm::normalize(p);
+    for (int level = 0; level < levels; ++level) {
+        // One new vertex per edge; each face (a, b, c) becomes four.
+        const core::EdgeTable table = core::build_edge_table(m);
+        const auto base = uint32_t(m.positions.size());
+        for (const glm::uvec2& e : table.edge_vertices) {
+            m.positions.push_back(glm::normalize(m.positions[e.x] + m.positions[e.y]));
+        }
+        std::vector<glm::uvec3> split;
+        split.reserve(4 * m.triangles.size());
+        for (size_t f = 0; f < m.triangles.size(); ++f) {
+            const glm::uvec3 c = m.triangles[f];
+            const glm::uvec3 mid = table.face_edges[f] + glm::uvec3(base);  // (ab, bc, ca)
+            split.emplace_back(c.x, mid.x, mid.z);
+            split.emplace_back(mid.x, c.y, mid.y);
+            split.emplace_back(mid.z, mid.y, c.z);
+            split.emplace_back(mid.x, mid.y, mid.z);
+        }
+        m.triangles = std::move(split);
+    }
+    return m;
+}
+
+// A unit sphere pushed out by Gaussian bumps at `count` points and jittered radially by up to
+// `rough`: bumps hide parts of each other's silhouettes, jitter adds short silhouette loops.
+core::Mesh bumpy_sphere(int levels, int count, double rough, uint32_t seed) {
+    core::Mesh m = icosphere(levels);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> height(0.05, 0.2), width(0.1, 0.3), jitter(-rough, rough);
+    struct Bump {
+        glm::dvec3 centre;
+        double height, inv_width2;
+    };
+    std::vector<Bump> bumps;
+    for (int k = 0; k < count; ++k) {
+        const double y = 1.0 - 2.0 * (k + 0.5) / count;
+        const double phi = k * std::numbers::pi * (3.0 - std::sqrt(5.0));
+        const double rho = std::sqrt(1.0 - y * y);
+        const double w = width(rng);
+        bumps.push_back({{rho * std::cos(phi), y, rho * std::sin(phi)}, height(rng), 1.0 / (w * w)});
+    }
+    for (glm::vec3& p : m.positions) {
+        const glm::dvec3 dir = glm::normalize(glm::dvec3(p));
+        double r = 1.0 + jitter(rng);
+        for (const Bump& b : bumps) r += b.height * std::exp(-2.0 * (1.0 - glm::dot(dir, b.centre)) * b.inv_width2);
+        p = glm::vec3(dir * r);
+    }
+    return m;
+}
+
+// Torus around y with a tube radius modulated by waves: folds and self-occlusion everywhere.
+core::Mesh noisy_torus(int major_segments, int minor_segments) {
+    core::Mesh m;
+    const double pi = std::numbers::pi;
+    for (int i = 0; i < major_segments; ++i) {
+        const double u = 2.0 * pi * i / major_segments;
+        for (int j = 0; j < minor_segments; ++j) {
+            const double v = 2.0 * pi * j / minor_segments;
+            const double r = 0.35 * (1.0 + 0.15 * std::sin(7.0 * u) * std::sin(3.0 * v) + 0.06 * std::sin(23.0 * u + 5.0 * v));
+            const double rho = 1.0 + r * std::cos(v);
+            m.positions.emplace_back(float(rho * std::cos(u)), float(r * std::sin(v)), float(-rho * std::sin(u)));
+        }
+    }
+    auto at = [&](int i, int j) { return unsigned((i % major_segments) * minor_segments + (j % minor_segments)); };
+    for (int i = 0; i < major_segments; ++i) {
+        for (int j = 0; j < minor_segments; ++j) {
+            m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    }
+    return m;
+}
+
+struct Case {
+    std::string name;
+    size_t faces;  // known before generating, for --max-faces
+    std::function<core::Mesh()> make;
+};
+
+struct Config {
+    int supersampling;
+    bool ray_test;
+};
+
+struct Row {
+    std::string name;
+    size_t faces = 0;
+    Config config{};
+    int frames = 0;
+    double exact_build_ms = 0.0;  // AABB tree, once per mesh
+    double exact_ms = 0.0;        // split_by_visibility with ExactOcclusion, per frame
+    double pass_ms = 0.0;         // depth pass: render + read back, per frame
+    double test_ms = 0.0;         // split_by_visibility with DepthOcclusion, per frame
+    test::VisibilityAgreement lines;   // split outputs compared: what a user sees
+    test::VisibilityAgreement direct;  // both occlusion tests asked on the same fine samples
+};
+
+struct Args {
+    int frames = 8;
+    int size = 1024;
+    size_t min_faces = 0;
+    size_t max_faces = 1100000;
+    std::string backend = "auto";
+    std::vector<int> supersampling{2};
+    std::vector<bool> ray_test{true};
+    std::vector<std::string> meshes;
+};
+
+std::vector<int> parse_list(const std::string& text) {
+    std::vector<int> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) out.push_back(std::stoi(item));
+    return out;
+}
+
+Args parse_args(int argc, char** argv) {
+    Args a;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) {
+                std::fprintf(stderr, "%s needs a value\n", arg.c_str());
+                std::exit(2);
+            }
+            return argv[++i];
+        };
+        if (arg == "--frames") {
+            a.frames = std::stoi(value());
+        } else if (arg == "--size") {
+            a.size = std::stoi(value());
+        } else if (arg == "--min-faces") {
+            a.min_faces = std::stoul(value());
+        } else if (arg == "--max-faces") {
+            a.max_faces = std::stoul(value());
+        } else if (arg == "--gl") {
+            a.backend = value();
+        } else if (arg == "--supersampling") {
+            a.supersampling = parse_list(value());
+        } else if (arg == "--ray-test") {
+            const std::string v = value();
+            a.ray_test = v == "both" ? std::vector<bool>{true, false} : std::vector<bool>{v == "on"};
+        } else if (!arg.empty() && arg[0] == '-') {
+            std::fprintf(stderr, "unknown option %s\n", arg.c_str());
+            std::exit(2);
+        } else {
+            a.meshes.push_back(arg);
+        }
+    }
+    return a;
+}
+
+// One frame of a turntable around a mesh, as `inkline render mesh` frames it: the camera orbits.
+struct TurntableFrame {
+    core::Projection projection;
+    std::vector<core::Chain> chains;
+};
+
+std::vector<TurntableFrame> turntable(const core::Mesh& mesh, const core::EdgeTable& table, int frames, int size) {
+    const core::Bounds bounds = core::bounds_of(mesh.positions);
+    core::Scene scene = core::default_turntable_scene("bench", bounds);
+    scene.first_frame = 0;
+    scene.last_frame = frames - 1;
+    scene.image = {size, size};
+    std::vector<TurntableFrame> out;
+    for (int frame = 0; frame < frames; ++frame) {
+        const core::Camera camera = core::camera_at(scene, frame, bounds);
+        const core::Projection projection(camera, scene.image, glm::dmat4(1.0));
+        const core::FeatureEdges features =
+            core::extract_feature_edges(mesh, table, projection.eye_object(), scene.lines);
+        out.push_back({projection, core::chain_feature_edges(features, table)});
+    }
+    return out;
+}
+
+std::vector<Row> run(const std::string& name, const core::Mesh& mesh, const Args& args, const gl::Context& context) {
+    const core::EdgeTable table = core::build_edge_table(mesh);
+    const std::vector<TurntableFrame> frames = turntable(mesh, table, args.frames, args.size);
+    core::VisibilityOptions options;
+
+    // Exact reference: the tree is built once; rigid turntables reuse it.
+    auto start = Clock::now();
+    const core::ExactOcclusion exact(mesh, table);
+    const double build_ms = ms_since(start);
+    std::vector<std::vector<core::Polyline>> reference;
+    double exact_ms = 0.0;
+    for (const TurntableFrame& f : frames) {
+        start = Clock::now();
+        reference.push_back(core::split_by_visibility(f.chains, mesh, f.projection, exact, options));
+        exact_ms += ms_since(start);
+    }
+
+    std::vector<Row> rows;
+    for (int ss : args.supersampling) {
+        for (bool ray_test : args.ray_test) {
+            Row row;
+            row.name = name;
+            row.faces = mesh.triangles.size();
+            row.config = {ss, ray_test};
+            row.frames = int(frames.size());
+            row.exact_build_ms = build_ms;
+            row.exact_ms = exact_ms / double(frames.size());
+            gl::DepthOcclusion depth(context, {.supersampling = ss, .local_ray_test = ray_test});
+            // Warm-up: uploads the mesh and compiles the pipeline, as the first frame of a run would.
+            depth.prepare(mesh, table, frames[0].projection, gl::MeshChange::kTopology);
+            for (size_t i = 0; i < frames.size(); ++i) {
+                const TurntableFrame& f = frames[i];
+                start = Clock::now();
+                depth.prepare(mesh, table, f.projection, gl::MeshChange::kNone);
+                row.pass_ms += ms_since(start);
+                start = Clock::now();
+                const std::vector<core::Polyline> lines = core::split_by_visibility(f.chains, mesh, f.projection, depth, options);
+                row.test_ms += ms_since(start);
+                row.lines.add(test::compare_visibility(f.chains, mesh, f.projection, reference[i], lines));
+                row.direct.add(test::compare_occlusion(f.chains, mesh, f.projection, exact, depth));
+            }
+            row.pass_ms /= double(frames.size());
+            row.test_ms /= double(frames.size());
+            rows.push_back(row);
+            std::fprintf(stderr, "  %s ss %d ray test %s: %.1f + %.1f ms/frame (exact %.1f), lines %.3f%% / %.2f px, test %.3f%% / %.2f px\n",
+                         name.c_str(), ss, ray_test ? "on" : "off", row.pass_ms, row.test_ms, row.exact_ms,
+                         100.0 * row.lines.agreement(), row.lines.longest_disagreement_px,
+                         100.0 * row.direct.agreement(), row.direct.longest_disagreement_px);
+        }
+    }
+    return rows;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Args args = parse_args(argc, argv);
+    std::unique_ptr<gl::Context> context;
+    try {
+        context = gl::create_context(gl::parse_backend(args.backend));
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "inkline_visibility_bench: %s\n", e.what());
+        return 1;
+    }
+
+    std::vector<Case> cases = {
+        {"bumpy sphere", 5120, [] { return bumpy_sphere(4, 40, 0.0, 1); }},
+        {"noisy torus", 5000, [] { return noisy_torus(100, 25); }},
+        {"bumpy sphere", 81920, [] { return bumpy_sphere(6, 120, 0.002, 2); }},
+        {"noisy torus", 100000, [] { return noisy_torus(400, 125); }},
+        {"bumpy sphere", 327680, [] { return bumpy_sphere(7, 300, 0.001, 3); }},
+        {"noisy torus", 1000000, [] { return noisy_torus(1000, 500); }},
+    };
+    std::vector<Row> rows;
+    for (const Case& c : cases) {
+        if (c.faces > args.max_faces || c.faces < args.min_faces) continue;
+        std::fprintf(stderr, "%s, %zu faces\n", c.name.c_str(), c.faces);
+        for (Row& r : run(c.name, c.make(), args, *context)) rows.push_back(r);
+    }
+    for (const std::string& path : args.meshes) {
+        std::fprintf(stderr, "%s\n", path.c_str());
+        try {
+            const core::Mesh mesh = core::load_mesh(path).mesh;
+            for (Row& r : run(std::filesystem::path(path).stem().string(), mesh, args, *context)) rows.push_back(r);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "  skipped: %s\n", e.what());
+        }
+    }
+
+    std::printf("GL: %s, %s (%s); %d frames of a %dx%d turntable per mesh\n\n", context->backend_name(),
+                context->renderer().c_str(), context->version().c_str(), args.frames, args.size, args.size);
+    std::printf("| mesh | faces | ss | ray test | exact ms/frame | depth pass ms | depth test ms | gl ms/frame | speed-up "
+                "| lines agree %% | longest run px | test agree %% | test longest px |\n");
+    std::printf("|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const Row& r : rows) {
+        const double gl_ms = r.pass_ms + r.test_ms;
+        std::printf("| %s | %zu | %d | %s | %.1f | %.1f | %.1f | %.1f | %.2fx | %.3f | %.2f | %.3f | %.2f |\n",
+                    r.name.c_str(), r.faces, r.config.supersampling, r.config.ray_test ? "on" : "off", r.exact_ms,
+                    r.pass_ms, r.test_ms, gl_ms, r.exact_ms / gl_ms, 100.0 * r.lines.agreement(),
+                    r.lines.longest_disagreement_px, 100.0 * r.direct.agreement(), r.direct.longest_disagreement_px);
+    }
+    std::printf("\nExact: AABB tree built once per mesh, not in ms/frame:");
+    for (size_t i = 0; i < rows.size(); ++i) {
+        if (i > 0 && rows[i].name == rows[i - 1].name && rows[i].faces == rows[i - 1].faces) continue;
+        std::printf(" %s (%zu) %.0f ms;", rows[i].name.c_str(), rows[i].faces, rows[i].exact_build_ms);
+    }
+    std::printf("\n");
+    return 0;
+}
