@@ -18,7 +18,7 @@ using internal::ClusterFacing;
 // Edge rings walked from an edge that stopped being a silhouette, through faces of the facing
 // its two faces now share, before the search is left to the cone hierarchy: a silhouette that
 // moved by a few faces is found again here, and one that vanished costs no more than this.
-constexpr int kStoppedWalkRings = 3;
+constexpr int kStoppedWalkRings = 2;
 
 }  // namespace
 
@@ -29,11 +29,12 @@ SilhouetteTracker::SilhouetteTracker(const EdgeTable& table, const Mesh& mesh, c
     for (uint32_t e = 0; e < table.edge_count(); ++e) {
         if (!table.is_interior(e)) boundary_.push_back(e);
     }
-    face_stamp_.assign(face_count_, 0);
-    face_front_.assign(face_count_, 0);
-    edge_stamp_.assign(table.edge_count(), 0);
-    node_stamp_.assign(tree_->nodes.size(), 0);
-    node_facing_.assign(tree_->nodes.size(), ClusterFacing::kUnknown);
+    face_stamp_.assign(tree_->faces.size(), 0);
+    face_front_.assign(tree_->faces.size(), 0);
+    // The hierarchy alone reaches each edge at most once a frame; the walk and a deforming
+    // mesh's crease pass can reach edges again.
+    stamp_edges_ = options.search != TrackerSearch::kHierarchy || options.deforming;
+    if (stamp_edges_) edge_stamp_.assign(table.edge_count(), 0);
 }
 
 SilhouetteTracker::~SilhouetteTracker() = default;
@@ -56,13 +57,16 @@ FeatureEdges SilhouetteTracker::update(const Mesh& mesh, const glm::dvec3& eye_o
         full_pass(lines, cos_crease);
     } else {
         if (options_.deforming) tree_->refit(mesh);
-        if (lines.silhouette) track();
-        // Creases of a static mesh change only with the crease angle.
-        if (lines.crease && (options_.deforming || creases_angle_ != lines.crease_angle_deg)) {
+        if (lines.silhouette) search();
+        if (lines.crease && options_.deforming) {
             creases_.clear();
             if (!tree_->nodes.empty()) collect_creases(0, crease_angle, cos_crease, creases_);
             std::sort(creases_.begin(), creases_.end());
-            creases_angle_ = options_.deforming ? std::nullopt : std::optional<double>(lines.crease_angle_deg);
+        } else if (lines.crease && creases_angle_ != lines.crease_angle_deg) {
+            // Creases of a static mesh change only with the crease angle.
+            all_creases(cos_crease);
+            creases_angle_ = lines.crease_angle_deg;
+            edges_tested_ = table_->edge_count();
         }
     }
     silhouettes_ = found_;
@@ -77,7 +81,6 @@ void SilhouetteTracker::begin_frame() {
     if (frame_ == 0xffffffffu) {  // stamps wrapped: forget them all
         std::fill(face_stamp_.begin(), face_stamp_.end(), 0u);
         std::fill(edge_stamp_.begin(), edge_stamp_.end(), 0u);
-        std::fill(node_stamp_.begin(), node_stamp_.end(), 0u);
         frame_ = 0;
     }
     ++frame_;
@@ -88,22 +91,33 @@ void SilhouetteTracker::begin_frame() {
     stats_ = {};
 }
 
-bool SilhouetteTracker::is_front(uint32_t face) {
-    if (face_stamp_[face] != frame_) {
-        face_stamp_[face] = frame_;
-        face_front_[face] = facing_value(*mesh_, face, eye_) > 0.0 ? 1 : 0;
+bool SilhouetteTracker::is_front(uint32_t face) { return is_front(tree_->face_position[face], face); }
+
+bool SilhouetteTracker::is_front(uint32_t position, uint32_t face) {
+    if (face_stamp_[position] != frame_) {
+        face_stamp_[position] = frame_;
+        face_front_[position] = facing_value(*mesh_, face, eye_) > 0.0 ? 1 : 0;
         ++faces_tested_;
     }
-    return face_front_[face] != 0;
+    return face_front_[position] != 0;
 }
 
 SilhouetteTracker::Visit SilhouetteTracker::visit_edge(uint32_t edge) {
-    if (edge_stamp_[edge] == frame_ || !table_->is_interior(edge)) return Visit::kSeen;
-    edge_stamp_[edge] = frame_;
-    ++edges_tested_;
+    if (!table_->is_interior(edge)) return Visit::kSeen;
     const auto faces = table_->faces_of(edge);
-    if (is_front(faces[0]) == is_front(faces[1])) return Visit::kPlain;
-    found_.push_back(edge);
+    const internal::ListedEdge le{
+        edge, {faces[0], faces[1]}, {tree_->face_position[faces[0]], tree_->face_position[faces[1]]}};
+    return visit_interior_edge(le);
+}
+
+SilhouetteTracker::Visit SilhouetteTracker::visit_interior_edge(const internal::ListedEdge& le) {
+    if (stamp_edges_) {
+        if (edge_stamp_[le.edge] == frame_) return Visit::kSeen;
+        edge_stamp_[le.edge] = frame_;
+    }
+    ++edges_tested_;
+    if (is_front(le.position[0], le.face[0]) == is_front(le.position[1], le.face[1])) return Visit::kPlain;
+    found_.push_back(le.edge);
     return Visit::kSilhouette;
 }
 
@@ -115,14 +129,9 @@ void SilhouetteTracker::full_pass(const LineOptions& lines, double cos_crease) {
         }
         for (uint32_t e = 0; e < table.edge_count(); ++e) visit_edge(e);
     }
-    creases_.clear();
     creases_angle_.reset();
     if (lines.crease) {
-        for (uint32_t e = 0; e < table.edge_count(); ++e) {
-            if (!table.is_interior(e)) continue;
-            const auto faces = table.faces_of(e);
-            if (is_crease(*mesh_, faces[0], faces[1], cos_crease)) creases_.push_back(e);
-        }
+        all_creases(cos_crease);
         if (!options_.deforming) creases_angle_ = lines.crease_angle_deg;
     }
     edges_tested_ = table.edge_count();
@@ -130,7 +139,24 @@ void SilhouetteTracker::full_pass(const LineOptions& lines, double cos_crease) {
     stats_.full_pass = true;
 }
 
-void SilhouetteTracker::track() {
+void SilhouetteTracker::all_creases(double cos_crease) {
+    creases_.clear();
+    for (uint32_t e = 0; e < table_->edge_count(); ++e) {
+        if (!table_->is_interior(e)) continue;
+        const auto faces = table_->faces_of(e);
+        if (is_crease(*mesh_, faces[0], faces[1], cos_crease)) creases_.push_back(e);
+    }
+}
+
+void SilhouetteTracker::search() {
+    if (options_.search != TrackerSearch::kHierarchy) walk();
+    // Prove that nothing else exists: loops that appeared, lines that the walk lost.
+    proven_.clear();
+    if (options_.search != TrackerSearch::kWalkOnly && !tree_->nodes.empty()) prove(0);
+    stats_.proven = found_.size() - stats_.kept - stats_.walked;
+}
+
+void SilhouetteTracker::walk() {
     // 1. Re-test last frame's silhouette.
     stopped_.clear();
     for (uint32_t e : silhouettes_) {
@@ -145,9 +171,6 @@ void SilhouetteTracker::track() {
         extend_from_found();
     }
     stats_.walked = found_.size() - stats_.kept;
-    // 3. Prove that nothing else exists: loops that appeared, lines that the walk lost.
-    if (options_.exact && !tree_->nodes.empty()) prove(0);
-    stats_.proven = found_.size() - stats_.kept - stats_.walked;
 }
 
 void SilhouetteTracker::extend_from_found() {
@@ -181,38 +204,64 @@ void SilhouetteTracker::walk_from_stopped(uint32_t edge) {
 ClusterFacing SilhouetteTracker::prove(uint32_t index) {
     ++stats_.nodes_visited;
     const internal::ConeNode& node = tree_->nodes[index];
-    ClusterFacing facing = tree_->facing(index, eye_);
-    if (facing == ClusterFacing::kUnknown) {
-        if (node.is_leaf()) {
-            for (uint32_t k = node.edge_begin; k < node.edge_end; ++k) visit_edge(tree_->edges[k]);
-        } else {
-            const ClusterFacing l = prove(node.first_child);
-            const ClusterFacing r = prove(node.first_child + 1);
-            if (l == r && l != ClusterFacing::kUnknown) {
-                facing = l;  // both halves proven alike, so is the whole
-            } else {
-                // Edges joining the halves: skip those whose faces both lie in proven clusters
-                // of one facing.
-                for (uint32_t k = node.edge_begin; k < node.edge_end; ++k) {
-                    const uint32_t e = tree_->edges[k];
-                    const auto faces = table_->faces_of(e);
-                    const ClusterFacing f0 = certified_facing(faces[0], index);
-                    if (f0 == ClusterFacing::kUnknown || f0 != certified_facing(faces[1], index)) visit_edge(e);
-                }
+    const ClusterFacing facing = tree_->facing(index, eye_);
+    if (facing != ClusterFacing::kUnknown) {
+        proven_.push_back({node.face_begin, node.face_end, facing});
+        return facing;
+    }
+    if (node.is_leaf()) {
+        for (uint32_t k = node.edge_begin; k < node.edge_end; ++k) {
+            const internal::ListedEdge& le = tree_->edges[k];
+            visit_interior_edge(le);
+        }
+        return ClusterFacing::kUnknown;
+    }
+    // Depth first, left to right: the children's proven ranges are appended in tree order.
+    const size_t first_range = proven_.size();
+    const ClusterFacing l = prove(index + 1);
+    const ClusterFacing r = prove(node.second_child);
+    if (l == r && l != ClusterFacing::kUnknown) {
+        proven_.resize(first_range);  // both halves proven alike, so is the whole
+        proven_.push_back({node.face_begin, node.face_end, l});
+        return l;
+    }
+    // Edges joining the halves: skip those whose faces both lie in proven ranges of one facing,
+    // a whole run at a time where possible.
+    const std::span<const ProvenRange> ranges(proven_.begin() + std::ptrdiff_t(first_range), proven_.end());
+    for (uint32_t j = 0, k = node.edge_begin; k < node.edge_end; ++j, k += internal::kSpanEdges) {
+        const internal::EdgeSpan& span = tree_->spans[node.span_begin + j];
+        const std::span<const ProvenRange> near0 = overlapping(ranges, span.first_min, span.first_max);
+        const std::span<const ProvenRange> near1 = overlapping(ranges, span.second_min, span.second_max);
+        if (near0.size() == 1 && near1.size() == 1 && near0[0].facing == near1[0].facing &&
+            near0[0].begin <= span.first_min && span.first_max < near0[0].end &&
+            near1[0].begin <= span.second_min && span.second_max < near1[0].end) {
+            continue;
+        }
+        for (uint32_t i = k; i < std::min(k + internal::kSpanEdges, node.edge_end); ++i) {
+            const internal::ListedEdge& le = tree_->edges[i];
+            const ClusterFacing f0 = facing_at(near0, le.position[0]);
+            if (f0 == ClusterFacing::kUnknown || f0 != facing_at(near1, le.position[1])) {
+                visit_interior_edge(le);
             }
         }
     }
-    node_stamp_[index] = frame_;
-    node_facing_[index] = facing;
-    return facing;
+    return ClusterFacing::kUnknown;
 }
 
-ClusterFacing SilhouetteTracker::certified_facing(uint32_t face, uint32_t below_node) const {
-    // Nodes not visited this frame carry old stamps; the proven ancestor that hid them has one.
-    for (uint32_t n = tree_->face_leaf[face]; n != below_node; n = tree_->nodes[n].parent) {
-        if (node_stamp_[n] == frame_ && node_facing_[n] != ClusterFacing::kUnknown) return node_facing_[n];
-    }
-    return ClusterFacing::kUnknown;
+std::span<const SilhouetteTracker::ProvenRange> SilhouetteTracker::overlapping(std::span<const ProvenRange> ranges,
+                                                                                uint32_t lo, uint32_t hi) {
+    auto by_begin = [](uint32_t p, const ProvenRange& range) { return p < range.begin; };
+    auto first = std::upper_bound(ranges.begin(), ranges.end(), lo, by_begin);
+    if (first != ranges.begin() && lo < std::prev(first)->end) --first;
+    const auto last = std::upper_bound(first, ranges.end(), hi, by_begin);
+    return {first, last};
+}
+
+ClusterFacing SilhouetteTracker::facing_at(std::span<const ProvenRange> ranges, uint32_t position) {
+    const auto after = std::upper_bound(ranges.begin(), ranges.end(), position,
+                                        [](uint32_t p, const ProvenRange& range) { return p < range.begin; });
+    if (after == ranges.begin() || position >= std::prev(after)->end) return ClusterFacing::kUnknown;
+    return std::prev(after)->facing;
 }
 
 void SilhouetteTracker::collect_creases(uint32_t index, double crease_angle_rad, double cos_crease,
@@ -220,17 +269,18 @@ void SilhouetteTracker::collect_creases(uint32_t index, double crease_angle_rad,
     if (tree_->crease_free(index, crease_angle_rad)) return;
     const internal::ConeNode& node = tree_->nodes[index];
     for (uint32_t k = node.edge_begin; k < node.edge_end; ++k) {
-        const uint32_t e = tree_->edges[k];
-        if (edge_stamp_[e] != frame_) {
-            edge_stamp_[e] = frame_;
+        const internal::ListedEdge& le = tree_->edges[k];
+        if (edge_stamp_[le.edge] != frame_) {
+            edge_stamp_[le.edge] = frame_;
             ++edges_tested_;
         }
-        const auto faces = table_->faces_of(e);
-        if (is_crease(*mesh_, faces[0], faces[1], cos_crease)) r_creases.push_back(e);
+        if (tree_->maybe_crease(le, cos_crease) && is_crease(*mesh_, le.face[0], le.face[1], cos_crease)) {
+            r_creases.push_back(le.edge);
+        }
     }
     if (!node.is_leaf()) {
-        collect_creases(node.first_child, crease_angle_rad, cos_crease, r_creases);
-        collect_creases(node.first_child + 1, crease_angle_rad, cos_crease, r_creases);
+        collect_creases(index + 1, crease_angle_rad, cos_crease, r_creases);
+        collect_creases(node.second_child, crease_angle_rad, cos_crease, r_creases);
     }
 }
 

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace inkline::core {
@@ -23,12 +24,20 @@ namespace inkline::core {
 namespace internal {
 class ConeTree;
 enum class ClusterFacing : uint8_t;
+struct ListedEdge;
 }  // namespace internal
 
+// How frames after a full pass search for silhouette edges.
+enum class TrackerSearch : uint8_t {
+    kHierarchy,         // the cone hierarchy alone: exact, and the fastest
+    kWalkAndHierarchy,  // the thesis's walk from last frame's silhouette, then the hierarchy: exact
+    kWalkOnly,          // the thesis's walk alone: loses lines that appear or jump (comparison only)
+};
+
 struct TrackerOptions {
-    bool deforming = false;    // positions change between updates (same topology): refit each frame
-    bool exact = true;         // false: the thesis's walk alone, which loses lines (for comparison)
-    uint32_t leaf_faces = 8;   // faces per leaf cluster of the cone hierarchy
+    bool deforming = false;  // positions change between updates (same topology): refit each frame
+    TrackerSearch search = TrackerSearch::kHierarchy;
+    uint32_t leaf_faces = 16;  // faces per leaf cluster of the cone hierarchy
 };
 
 // What the last update did, beyond FeatureEdges' edges_tested and faces_tested.
@@ -66,13 +75,24 @@ class SilhouetteTracker {
 
     void begin_frame();
     bool is_front(uint32_t face);
+    bool is_front(uint32_t position, uint32_t face);  // position: the face's in ConeTree::faces
     Visit visit_edge(uint32_t edge);
+    Visit visit_interior_edge(const internal::ListedEdge& edge);
     void full_pass(const LineOptions& lines, double cos_crease);
-    void track();
+    void all_creases(double cos_crease);
+    void search();
+    void walk();
     void extend_from_found();
     void walk_from_stopped(uint32_t edge);
     internal::ClusterFacing prove(uint32_t node);
-    internal::ClusterFacing certified_facing(uint32_t face, uint32_t below_node) const;
+    struct ProvenRange {  // faces [begin, end) of ConeTree::faces share a facing
+        uint32_t begin, end;
+        internal::ClusterFacing facing;
+    };
+    // The ranges, sorted and disjoint, that hold any position in [lo, hi].
+    static std::span<const ProvenRange> overlapping(std::span<const ProvenRange> ranges, uint32_t lo, uint32_t hi);
+    // The facing proven for a position by one of the ranges; kUnknown if none holds it.
+    static internal::ClusterFacing facing_at(std::span<const ProvenRange> ranges, uint32_t position);
     void collect_creases(uint32_t node, double crease_angle_rad, double cos_crease,
                          std::vector<uint32_t>& r_creases);
     FeatureEdges assemble(const LineOptions& lines) const;
@@ -92,11 +112,11 @@ class SilhouetteTracker {
     const Mesh* mesh_ = nullptr;
     glm::dvec3 eye_{0.0};
     uint32_t frame_ = 0;
-    std::vector<uint32_t> face_stamp_;   // #F
-    std::vector<uint8_t> face_front_;    // #F, facing_value > 0 when face_stamp_ == frame_
-    std::vector<uint32_t> edge_stamp_;   // #E, tested this frame
-    std::vector<uint32_t> node_stamp_;   // per cone node, tested this frame
-    std::vector<internal::ClusterFacing> node_facing_;  // proven this frame
+    std::vector<uint32_t> face_stamp_;   // per valid face, in ConeTree::faces order
+    std::vector<uint8_t> face_front_;    // facing_value > 0, when face_stamp_ == frame_
+    bool stamp_edges_ = true;
+    std::vector<uint32_t> edge_stamp_;   // #E when stamp_edges_, tested this frame
+    std::vector<ProvenRange> proven_;    // this frame's proven clusters, in tree order
     std::vector<uint32_t> found_;        // silhouette edges found this frame, discovery order
     std::vector<uint32_t> stopped_;      // last frame's silhouette edges that no longer are
     std::vector<uint32_t> ring_, next_ring_;  // scratch of walk_from_stopped

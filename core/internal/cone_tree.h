@@ -23,20 +23,39 @@ struct ConeNode {
     glm::dvec3 box_max{0.0};
     glm::dvec3 axis{0.0, 0.0, 1.0};  // unit cone axis
     double spread = 2.0;             // max |unit normal - axis| over the faces; 2 bounds nothing
+    double cos_alpha = -1.0;         // of the cone's half-angle alpha = 2 asin(spread / 2)
+    double sin_alpha = 0.0;
     double error = 1.0;              // largest relative error of facing_value's normal (see .cpp)
     uint32_t face_begin = 0;         // range in ConeTree::faces
     uint32_t face_end = 0;
     uint32_t edge_begin = 0;         // range in ConeTree::edges
     uint32_t edge_end = 0;
-    uint32_t first_child = kNoIndex;  // children are first_child and first_child + 1; kNoIndex: leaf
-    uint32_t parent = kNoIndex;
+    uint32_t span_begin = 0;         // ConeTree::spans[span_begin + j] bounds the j-th kSpanEdges edges
+    uint32_t second_child = kNoIndex;  // the first child is the next node; kNoIndex: a leaf
 
-    bool is_leaf() const { return first_child == kNoIndex; }
+    bool is_leaf() const { return second_child == kNoIndex; }
 };
 
-// Node 0 is the root (absent when the mesh has no valid face); a parent precedes its children.
+// An interior edge with its two faces and their indices in ConeTree::faces, the lower first.
+struct ListedEdge {
+    uint32_t edge;
+    uint32_t face[2];
+    uint32_t position[2];
+};
+
+// Bounds of the face positions of a run of kSpanEdges consecutive listed edges of one node: a
+// run whose two sides each lie inside one proven cluster can be skipped without reading it.
+inline constexpr uint32_t kSpanEdges = 16;
+struct EdgeSpan {
+    uint32_t first_min, first_max;    // of position[0]
+    uint32_t second_min, second_max;  // of position[1]
+};
+
+// Nodes are in depth-first order: node 0 is the root (absent when the mesh has no valid face) and
+// an inner node i has children i + 1 and second_child.
 // Every interior edge (two faces) is listed once, at the deepest node holding both its faces:
-// a leaf's edges lie inside it, an inner node's edges join its two children.
+// a leaf's edges lie inside it, an inner node's edges join its two children and are sorted by
+// the position of their face in the first child, so that runs of them stay close on the mesh.
 class ConeTree {
   public:
     // Splits the valid faces at the median of their widest position or normal spread, down to
@@ -55,10 +74,15 @@ class ConeTree {
     // holds for none of its edges.
     bool crease_free(uint32_t node, double crease_angle_rad) const;
 
+    // False when is_crease(mesh, edge faces, cos_crease) is certainly false for the mesh last
+    // given to refit (valid only after refit).
+    bool maybe_crease(const ListedEdge& edge, double cos_crease) const;
+
     std::vector<ConeNode> nodes;
-    std::vector<uint32_t> faces;      // valid faces, grouped by node
-    std::vector<uint32_t> face_leaf;  // #F, leaf of each face; kNoIndex for invalid faces
-    std::vector<uint32_t> edges;      // interior edges, grouped by node, ascending within one
+    std::vector<uint32_t> faces;          // valid faces; a node holds faces[face_begin, face_end)
+    std::vector<uint32_t> face_position;  // #F, index of each face in `faces`; kNoIndex if invalid
+    std::vector<ListedEdge> edges;        // interior edges; a node lists edges[edge_begin, edge_end)
+    std::vector<EdgeSpan> spans;
 
   private:
     struct FaceCone {
@@ -66,10 +90,11 @@ class ConeTree {
         glm::dvec3 normal;  // unit
         double error;
     };
-    void fit_faces(const Mesh& mesh);
-    void fit_leaf(ConeNode& node) const;
+    static FaceCone face_cone(const Mesh& mesh, uint32_t face);
+    void fit_node(ConeNode& node) const;
+    static void set_spread(ConeNode& node, double spread);
 
-    std::vector<FaceCone> face_cones_;  // #F, scratch for build and refit
+    std::vector<FaceCone> cones_;  // parallel to faces; scratch for build and refit
 };
 
 }  // namespace inkline::core::internal

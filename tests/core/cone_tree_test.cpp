@@ -66,6 +66,19 @@ TEST(ConeTree, RefitKeepsProofsValidAfterDeformation) {
     size_t proven = 0;
     for (int i = 0; i < 30; ++i) proven += check_proofs(tree, sphere, {coord(rng), coord(rng), coord(rng)});
     EXPECT_GT(proven, 0u);
+    // The crease prefilter only rules out edges that is_crease rejects too.
+    for (const double degrees : {1.0, 5.0, 30.0}) {
+        const double cos_crease = std::cos(degrees * M_PI / 180.0);
+        size_t ruled_out = 0;
+        for (const core::internal::ListedEdge& le : tree.edges) {
+            if (tree.maybe_crease(le, cos_crease)) continue;
+            ++ruled_out;
+            EXPECT_FALSE(core::is_crease(sphere, le.face[0], le.face[1], cos_crease)) << "edge " << le.edge;
+        }
+        if (degrees > 10.0) {
+            EXPECT_GT(ruled_out, 0u);
+        }
+    }
 }
 
 TEST(ConeTree, EveryInteriorEdgeListedOnceAtItsFacesCommonNode) {
@@ -75,16 +88,18 @@ TEST(ConeTree, EveryInteriorEdgeListedOnceAtItsFacesCommonNode) {
     std::vector<int> seen(table.edge_count(), 0);
     std::vector<uint32_t> position(sphere.triangles.size());
     for (uint32_t k = 0; k < tree.faces.size(); ++k) position[tree.faces[k]] = k;
-    for (const core::internal::ConeNode& node : tree.nodes) {
+    for (uint32_t n = 0; n < tree.nodes.size(); ++n) {
+        const core::internal::ConeNode& node = tree.nodes[n];
         for (uint32_t k = node.edge_begin; k < node.edge_end; ++k) {
-            const uint32_t e = tree.edges[k];
+            const uint32_t e = tree.edges[k].edge;
             ++seen[e];
             for (uint32_t f : table.faces_of(e)) {
                 EXPECT_GE(position[f], node.face_begin);
                 EXPECT_LT(position[f], node.face_end);
             }
             if (!node.is_leaf()) {
-                const uint32_t split = tree.nodes[node.first_child].face_end;
+                const uint32_t split = tree.nodes[n + 1].face_end;
+                EXPECT_EQ(split, tree.nodes[node.second_child].face_begin);
                 const auto faces = table.faces_of(e);
                 EXPECT_NE(position[faces[0]] < split, position[faces[1]] < split) << "edge " << e;
             }

@@ -87,6 +87,19 @@ RunTotals run_against_brute(core::SilhouetteTracker& tracker, const core::EdgeTa
     return t;
 }
 
+// Both exact searches must give brute force's result.
+constexpr core::TrackerSearch kExactSearches[] = {core::TrackerSearch::kHierarchy,
+                                                  core::TrackerSearch::kWalkAndHierarchy};
+
+const char* search_name(core::TrackerSearch search) {
+    switch (search) {
+        case core::TrackerSearch::kHierarchy: return "hierarchy";
+        case core::TrackerSearch::kWalkAndHierarchy: return "walk and hierarchy";
+        case core::TrackerSearch::kWalkOnly: return "walk only";
+    }
+    return "?";
+}
+
 // A point at `distance` from the origin, `degrees` around a tilted orbit.
 glm::dvec3 orbit_eye(double degrees, double distance) {
     const double a = glm::radians(degrees);
@@ -122,7 +135,6 @@ TEST(SilhouetteTracker, TorusTurntableSampleMatchesBruteEveryFrame) {
     const core::Scene scene = core::load_scene(std::string(INKLINE_SAMPLES) + "/torus/scene.json");
     core::MeshFrames meshes(scene.mesh, scene.first_frame);
     const core::EdgeTable& table = meshes.edges();
-    core::SilhouetteTracker tracker(table, meshes.at(scene.first_frame));
     auto eye_at = [&](int i) {
         const int frame = scene.first_frame + i;
         const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
@@ -131,44 +143,57 @@ TEST(SilhouetteTracker, TorusTurntableSampleMatchesBruteEveryFrame) {
         return core::Projection(camera, scene.image, world_from_object).eye_object();
     };
     const int frames = scene.last_frame - scene.first_frame + 1;
-    const RunTotals t = run_against_brute(
-        tracker, table, frames, [&](int i) -> const core::Mesh& { return meshes.at(scene.first_frame + i); },
-        eye_at, scene.lines);
-    EXPECT_EQ(t.frames, 48u);
-    EXPECT_EQ(t.mismatched_frames, 0u);
-    EXPECT_LT(t.edges_tested, t.edges / 2) << "the tracker should test well under half the edges";
+    for (const core::TrackerSearch search : kExactSearches) {
+        SCOPED_TRACE(search_name(search));
+        core::SilhouetteTracker tracker(table, meshes.at(scene.first_frame), {.search = search});
+        const RunTotals t = run_against_brute(
+            tracker, table, frames, [&](int i) -> const core::Mesh& { return meshes.at(scene.first_frame + i); },
+            eye_at, scene.lines);
+        EXPECT_EQ(t.frames, 48u);
+        EXPECT_EQ(t.mismatched_frames, 0u);
+        EXPECT_LT(t.edges_tested, t.edges / 2) << "the tracker should test well under half the edges";
+    }
 }
 
 TEST(SilhouetteTracker, FastOrbitAroundSphereMatchesBrute) {
     // 41 degrees a frame and a varying distance, down to just above the surface.
     const core::Mesh sphere = test::uv_sphere(96, 48, 1.0);
     const core::EdgeTable table = core::build_edge_table(sphere);
-    core::SilhouetteTracker tracker(table, sphere);
-    const RunTotals t = run_against_brute(
-        tracker, table, 60, [&](int) -> const core::Mesh& { return sphere; },
-        [](int i) { return orbit_eye(41.0 * i, 1.02 + 3.0 * (0.5 + 0.5 * std::sin(0.9 * i))); });
-    EXPECT_EQ(t.mismatched_frames, 0u);
-    EXPECT_LT(t.edges_tested, t.edges / 3);
+    for (const core::TrackerSearch search : kExactSearches) {
+        SCOPED_TRACE(search_name(search));
+        core::SilhouetteTracker tracker(table, sphere, {.search = search});
+        const RunTotals t = run_against_brute(
+            tracker, table, 60, [&](int) -> const core::Mesh& { return sphere; },
+            [](int i) { return orbit_eye(41.0 * i, 1.02 + 3.0 * (0.5 + 0.5 * std::sin(0.9 * i))); });
+        EXPECT_EQ(t.mismatched_frames, 0u);
+        EXPECT_LT(t.edges_tested, t.edges / 3);
+    }
 }
 
 TEST(SilhouetteTracker, BumpsEnteringAndLeavingSilhouetteMatchBrute) {
     const core::Mesh mesh = bumpy_sphere(128, 64, 40, 0.06, 0.12);
     const core::EdgeTable table = core::build_edge_table(mesh);
-    core::SilhouetteTracker tracker(table, mesh);
     auto eye_at = [](int i) { return orbit_eye(3.0 * i, 3.5); };
-    const RunTotals t = run_against_brute(tracker, table, 120, [&](int) -> const core::Mesh& { return mesh; }, eye_at);
-    EXPECT_EQ(t.mismatched_frames, 0u);
-    EXPECT_GT(t.proven, 0u) << "bumps turning to the side should open loops the walk cannot reach";
-    EXPECT_GT(t.walked, 0u);
-    EXPECT_LT(t.edges_tested, t.edges / 4);
+    for (const core::TrackerSearch search : kExactSearches) {
+        SCOPED_TRACE(search_name(search));
+        core::SilhouetteTracker tracker(table, mesh, {.search = search});
+        const RunTotals t =
+            run_against_brute(tracker, table, 120, [&](int) -> const core::Mesh& { return mesh; }, eye_at);
+        EXPECT_EQ(t.mismatched_frames, 0u);
+        EXPECT_LT(t.edges_tested, t.edges / 4);
+        if (search == core::TrackerSearch::kWalkAndHierarchy) {
+            EXPECT_GT(t.walked, 0u);
+            EXPECT_GT(t.proven, 0u) << "bumps turning to the side should open loops the walk cannot reach";
+        }
+    }
 }
 
 TEST(SilhouetteTracker, WalkAloneLosesLinesThatTheHierarchyFinds) {
-    // The thesis's method (exact = false) misses loops that open away from last frame's
+    // The thesis's method (kWalkOnly) misses loops that open away from last frame's
     // silhouette; this is the failure the cone hierarchy exists to prevent.
     const core::Mesh mesh = bumpy_sphere(128, 64, 40, 0.06, 0.12);
     const core::EdgeTable table = core::build_edge_table(mesh);
-    core::SilhouetteTracker walk_only(table, mesh, {.exact = false});
+    core::SilhouetteTracker walk_only(table, mesh, {.search = core::TrackerSearch::kWalkOnly});
     auto eye_at = [](int i) { return orbit_eye(3.0 * i, 3.5); };
     const RunTotals t = run_against_brute(
         walk_only, table, 60, [&](int) -> const core::Mesh& { return mesh; }, eye_at, {}, false);
@@ -179,14 +204,18 @@ TEST(SilhouetteTracker, OpenMeshSeenFromBothSidesMatchesBrute) {
     // A hemisphere orbited so that the eye passes below its rim and sees the inside.
     const core::Mesh mesh = test::hemisphere(96, 48, 1.0);
     const core::EdgeTable table = core::build_edge_table(mesh);
-    core::SilhouetteTracker tracker(table, mesh);
     auto eye_at = [](int i) {
         const double a = glm::radians(7.0 * i);
         return glm::dvec3(3.0 * std::sin(a), 2.5 * std::sin(0.37 * i), 3.0 * std::cos(a));
     };
-    const RunTotals t = run_against_brute(tracker, table, 90, [&](int) -> const core::Mesh& { return mesh; }, eye_at);
-    EXPECT_EQ(t.mismatched_frames, 0u);
-    EXPECT_GT(t.max_silhouette_edges, 0u);
+    for (const core::TrackerSearch search : kExactSearches) {
+        SCOPED_TRACE(search_name(search));
+        core::SilhouetteTracker tracker(table, mesh, {.search = search});
+        const RunTotals t =
+            run_against_brute(tracker, table, 90, [&](int) -> const core::Mesh& { return mesh; }, eye_at);
+        EXPECT_EQ(t.mismatched_frames, 0u);
+        EXPECT_GT(t.max_silhouette_edges, 0u);
+    }
 }
 
 TEST(SilhouetteTracker, DeformingSequenceMatchesBrute) {
@@ -205,12 +234,15 @@ TEST(SilhouetteTracker, DeformingSequenceMatchesBrute) {
         }
         frames.push_back(std::move(m));
     }
-    core::SilhouetteTracker tracker(table, frames[0], {.deforming = true});
-    const RunTotals t = run_against_brute(
-        tracker, table, int(frames.size()), [&](int i) -> const core::Mesh& { return frames[size_t(i)]; },
-        [](int i) { return orbit_eye(5.0 * i, 4.0); });
-    EXPECT_EQ(t.mismatched_frames, 0u);
-    EXPECT_LT(t.edges_tested, t.edges);
+    for (const core::TrackerSearch search : kExactSearches) {
+        SCOPED_TRACE(search_name(search));
+        core::SilhouetteTracker tracker(table, frames[0], {.deforming = true, .search = search});
+        const RunTotals t = run_against_brute(
+            tracker, table, int(frames.size()), [&](int i) -> const core::Mesh& { return frames[size_t(i)]; },
+            [](int i) { return orbit_eye(5.0 * i, 4.0); });
+        EXPECT_EQ(t.mismatched_frames, 0u);
+        EXPECT_LT(t.edges_tested, t.edges);
+    }
 }
 
 TEST(SilhouetteTracker, CameraCutMatchesBruteWithAndWithoutReset) {
@@ -221,8 +253,11 @@ TEST(SilhouetteTracker, CameraCutMatchesBruteWithAndWithoutReset) {
         return i < 20 ? orbit_eye(2.0 * i, 4.0) : glm::dvec3(0.4, -1.8, 0.9) + 0.01 * double(i - 20);
     };
     const MeshAt same = [&](int) -> const core::Mesh& { return mesh; };
-    core::SilhouetteTracker no_reset(table, mesh);
-    EXPECT_EQ(run_against_brute(no_reset, table, 40, same, eye_at).mismatched_frames, 0u);
+    for (const core::TrackerSearch search : kExactSearches) {
+        SCOPED_TRACE(search_name(search));
+        core::SilhouetteTracker no_reset(table, mesh, {.search = search});
+        EXPECT_EQ(run_against_brute(no_reset, table, 40, same, eye_at).mismatched_frames, 0u);
+    }
 
     core::SilhouetteTracker with_reset(table, mesh);
     const core::LineOptions lines;
@@ -266,11 +301,14 @@ TEST(SilhouetteTracker, DegenerateAndNonManifoldFacesMatchBrute) {
     mesh.triangles.emplace_back(a, b, top);  // fin: its base edge now has three faces
     mesh.triangles.emplace_back(a, b, a);    // degenerate
     const core::EdgeTable table = core::build_edge_table(mesh);
-    core::SilhouetteTracker tracker(table, mesh);
-    const RunTotals t = run_against_brute(
-        tracker, table, 40, [&](int) -> const core::Mesh& { return mesh; },
-        [](int i) { return orbit_eye(11.0 * i, 2.5); });
-    EXPECT_EQ(t.mismatched_frames, 0u);
+    for (const core::TrackerSearch search : kExactSearches) {
+        SCOPED_TRACE(search_name(search));
+        core::SilhouetteTracker tracker(table, mesh, {.search = search});
+        const RunTotals t = run_against_brute(
+            tracker, table, 40, [&](int) -> const core::Mesh& { return mesh; },
+            [](int i) { return orbit_eye(11.0 * i, 2.5); });
+        EXPECT_EQ(t.mismatched_frames, 0u);
+    }
 }
 
 }  // namespace
