@@ -2,14 +2,19 @@
 // Per-frame visibility cost of ray casting (Embree) vs the exact CGAL reference on generated
 // meshes of 10k to 1M+ faces at 1024x1024: a rigid turntable (trees built once, the eye moves in
 // object space) and a deforming variant (exact rebuilds its tree every frame, raycast refits).
+// Mesh files given on the command line join the generated ones, moved to centre on the origin.
 // Prints a markdown table.
 //
-//   inkline_raycast_bench [--max-faces N] [--frames N] [--size PX]
+//   inkline_raycast_bench [--max-faces N] [--frames N] [--size PX] [MESH ...]
+//
+// Real meshes, e.g. from Debian's libcgal-dev:
+//   tar xzf /usr/share/doc/libcgal-dev/data.tar.gz data/meshes/armadillo.off
 
 #include "core/chaining.h"
 #include "core/exact_visibility.h"
 #include "core/features.h"
 #include "core/mesh.h"
+#include "core/mesh_io.h"
 #include "core/raycast_visibility.h"
 #include "core/scene.h"
 #include "core/topology.h"
@@ -23,6 +28,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <numbers>
@@ -120,12 +127,14 @@ core::Mesh bumpy_icosphere(int levels) {
     return m;
 }
 
-// The deforming variant at a phase: a travelling radial wave, up to 6% of the size.
+// The deforming variant at a phase: a travelling radial wave, up to 6% of the size (the mesh
+// centred on the origin).
 core::Mesh wobbled(const core::Mesh& base, double phase) {
     core::Mesh m = base;
+    const double radius = core::bounds_of(base.positions).radius();
     for (glm::vec3& p : m.positions) {
         const double angle = std::atan2(double(p.z), double(p.x));
-        p *= float(1.0 + 0.06 * std::sin(3.0 * angle + 2.0 * double(p.y) + phase));
+        p *= float(1.0 + 0.06 * std::sin(3.0 * angle + 2.0 * double(p.y) / radius + phase));
     }
     return m;
 }
@@ -228,17 +237,21 @@ int main(int argc, char** argv) {
     size_t max_faces = 1'400'000;
     int frame_count = 4;
     int size = 1024;
-    for (int i = 1; i + 1 < argc; i += 2) {
+    std::vector<std::string> files;
+    for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--max-faces") {
-            max_faces = size_t(std::atol(argv[i + 1]));
-        } else if (arg == "--frames") {
-            frame_count = std::max(2, std::atoi(argv[i + 1]));
-        } else if (arg == "--size") {
-            size = std::atoi(argv[i + 1]);
-        } else {
-            std::fprintf(stderr, "usage: %s [--max-faces N] [--frames N] [--size PX]\n", argv[0]);
+        const bool has_value = i + 1 < argc;
+        if (arg == "--max-faces" && has_value) {
+            max_faces = size_t(std::atol(argv[++i]));
+        } else if (arg == "--frames" && has_value) {
+            frame_count = std::max(2, std::atoi(argv[++i]));
+        } else if (arg == "--size" && has_value) {
+            size = std::atoi(argv[++i]);
+        } else if (arg.starts_with("-")) {
+            std::fprintf(stderr, "usage: %s [--max-faces N] [--frames N] [--size PX] [MESH ...]\n", argv[0]);
             return 2;
+        } else {
+            files.push_back(arg);
         }
     }
     if (!core::raycast_available()) {
@@ -252,6 +265,17 @@ int main(int argc, char** argv) {
     }
     for (int levels : {5, 7, 8}) {
         if ((size_t(20) << (2 * levels)) <= max_faces) shapes.push_back({"bumpy icosphere", bumpy_icosphere(levels)});
+    }
+    for (const std::string& file : files) {
+        try {
+            core::Mesh mesh = core::load_mesh(file).mesh;
+            const glm::vec3 center(core::bounds_of(mesh.positions).center());
+            for (glm::vec3& p : mesh.positions) p -= center;
+            shapes.push_back({std::filesystem::path(file).filename().string(), std::move(mesh)});
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "inkline_raycast_bench: %s\n", e.what());
+            return 2;
+        }
     }
 
     std::printf("%d frames per motion at %dx%d, %u hardware threads. Per frame: visibility of the\n", frame_count,
