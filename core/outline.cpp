@@ -18,6 +18,8 @@ namespace {
 constexpr double kCapMinWidthPx = 1e-3;
 // Consecutive outline points closer than this (px) are merged.
 constexpr double kSamePointPx = 1e-9;
+// Simplification error stays below this fraction of a stroke's mean width (and simplify_px).
+constexpr double kSimplifyWidthFraction = 0.02;
 // Folds are looked for this far (px of centerline, beyond the widest width) ahead of a segment.
 constexpr double kFoldReachPx = 2.0;
 
@@ -158,8 +160,15 @@ std::vector<Ring> build_outline(std::span<const glm::dvec2> c, std::span<const d
         if (w.front() > kCapMinWidthPx) cap(c.front(), -perp(t.front()), -t.front(), 0.5 * w.front(), step, ring);
         rings.push_back(dedupe(std::move(ring)));
     }
+    // Thin strokes simplify finer, so that the tolerance stays a small part of their width.
+    double mean_width = 0.0;
+    for (const double x : w) mean_width += x / double(n);
+    const double tolerance = std::min(options.simplify_px, kSimplifyWidthFraction * mean_width);
     for (Ring& ring : rings) {
-        if (options.simplify_px > 0.0) ring = simplify_ring(ring, options.simplify_px);
+        if (!(tolerance > 0.0)) continue;
+        // Simplification can make a thin ring touch itself; then the full ring is kept.
+        Ring simple = simplify_ring(ring, tolerance);
+        if (simple.size() >= 3 && is_simple(simple)) ring = std::move(simple);
     }
     std::erase_if(rings, [](const Ring& r) { return r.size() < 3; });
     return rings;

@@ -12,11 +12,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace inkline {
@@ -106,6 +108,46 @@ TEST(Strokes, PerPointDataIsComplete) {
         EXPECT_LE(s.deviation_px, core::BrushStyle{}.max_deviation_px + 1e-9);
     }
     EXPECT_EQ(frame.stats.inherited, 0u) << "the first frame inherits nothing";
+}
+
+// Outlines of a real frame: closed, simple, faithful to the width (area within 3% of the width
+// integral plus round caps) and never sticking out of the centerline's width.
+TEST(Strokes, OutlinesOfATorusFrameAreFaithful) {
+    TorusTurn torus;
+    core::StrokeCoherence coherence;
+    const core::FrameStrokes frame = torus.next(coherence, torus.first_frame() + 10);
+    size_t checked = 0;
+    for (const core::Stroke& s : frame.strokes) {
+        if (!s.drawn) continue;
+        const std::vector<glm::dvec2>& c = s.centerline_px;
+        const std::vector<double>& w = s.centerline_width;
+        const size_t n = c.size();
+        double swept = 0.0;
+        for (size_t i = 0; i + 1 < n + (s.closed ? 1 : 0); ++i) {
+            swept += 0.5 * (w[i] + w[(i + 1) % n]) * glm::length(c[(i + 1) % n] - c[i]);
+        }
+        if (!s.closed) swept += (w.front() * w.front() + w.back() * w.back()) * 3.141592653589793 / 8.0;
+        SCOPED_TRACE("stroke " + std::to_string(s.id));
+        if (s.length_px() >= 20.0) {
+            EXPECT_NEAR(core::outline_area(s.outline), swept, 0.03 * swept);
+        }
+        for (const core::Ring& ring : s.outline) {
+            EXPECT_TRUE(core::is_simple(ring));
+            for (const glm::dvec2& p : ring) {
+                ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y));
+                double excess = HUGE_VAL;
+                for (size_t i = 0; i + (s.closed ? 0 : 1) < n; ++i) {
+                    const glm::dvec2 a = c[i], ab = c[(i + 1) % n] - a;
+                    const double len2 = glm::dot(ab, ab);
+                    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+                    excess = std::min(excess, glm::length(p - (a + ab * t)) - 0.5 * (w[i] + (w[(i + 1) % n] - w[i]) * t));
+                }
+                EXPECT_LE(excess, 0.25);
+            }
+        }
+        ++checked;
+    }
+    EXPECT_GE(checked, 5u);
 }
 
 TEST(Strokes, SequenceIsDeterministicAndStateIsAValue) {
