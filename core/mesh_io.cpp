@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace inkline::core {
@@ -205,22 +206,90 @@ constexpr uintmax_t kMinTextFaceBytes = 8;    // "3 0 1 2\n"
 constexpr uintmax_t kMinBinaryVertexBytes = 12;
 constexpr uintmax_t kMinBinaryFaceBytes = 13;
 
+struct PlyCounts {
+    uintmax_t vertices = 0;
+    uintmax_t faces = 0;
+    bool binary = false;
+};
+
+// OpenMesh's PLY reader trusts the header's structure (a property before any element crashes
+// it), so the header is checked line by line first: "ply", one "format", then "element NAME N",
+// "property TYPE NAME", "property list TYPE TYPE NAME", "comment" and "obj_info" lines, up to
+// "end_header".
+PlyCounts check_ply_header(const std::filesystem::path& path) {
+    static const std::set<std::string> kTypes = {"char",  "uchar",  "short",  "ushort",  "int",    "uint",
+                                                 "float", "double", "int8",   "uint8",   "int16",  "uint16",
+                                                 "int32", "uint32", "float32", "float64"};
+    constexpr int kMaxHeaderLines = 1000;
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    PlyCounts counts;
+    bool have_format = false, in_element = false;
+    for (int number = 1; number <= kMaxHeaderLines && std::getline(in, line); ++number) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        auto fail = [&](const std::string& problem) {
+            throw InputError(path.string() + ":" + std::to_string(number) + ": malformed PLY header: " + problem);
+        };
+        std::istringstream words(line);
+        std::string keyword;
+        words >> keyword;
+        if (number == 1) {
+            if (keyword != "ply") fail("the file must start with 'ply'");
+            continue;
+        }
+        if (keyword == "end_header") {
+            if (!have_format) fail("no format line");
+            return counts;
+        }
+        if (keyword == "comment" || keyword == "obj_info" || keyword.empty()) continue;
+        if (keyword == "format") {
+            std::string format, version;
+            if (!(words >> format >> version) ||
+                (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")) {
+                fail("unknown format");
+            }
+            have_format = true;
+            counts.binary = format != "ascii";
+        } else if (keyword == "element") {
+            std::string name, count_text, extra;
+            if (!(words >> name >> count_text) || (words >> extra) ||
+                count_text.find_first_not_of("0123456789") != std::string::npos || count_text.size() > 12) {
+                fail("expected 'element NAME COUNT'");
+            }
+            const uintmax_t count = std::stoull(count_text);
+            if (name == "vertex") counts.vertices = count;
+            if (name == "face") counts.faces = count;
+            in_element = true;
+        } else if (keyword == "property") {
+            if (!in_element) fail("a property before any element");
+            std::string type, name, extra;
+            if (!(words >> type)) fail("expected a property type");
+            if (type == "list") {
+                std::string count_type, item_type;
+                if (!(words >> count_type >> item_type >> name) || !kTypes.count(count_type) || !kTypes.count(item_type))
+                    fail("expected 'property list TYPE TYPE NAME'");
+            } else if (!kTypes.count(type) || !(words >> name)) {
+                fail("expected 'property TYPE NAME'");
+            }
+            if (words >> extra) fail("unexpected words after the property name");
+        } else {
+            fail("unknown keyword '" + keyword + "'");
+        }
+    }
+    throw InputError(path.string() + ": malformed PLY header: no end_header in the first " +
+                     std::to_string(kMaxHeaderLines) + " lines");
+}
+
 void check_declared_counts(const std::filesystem::path& path, const std::string& extension, uintmax_t file_size) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
     uintmax_t vertices = 0, faces = 0;
     bool binary = false;
     if (extension == ".ply") {
-        for (int lines = 0; lines < 1000 && std::getline(in, line) && line.rfind("end_header", 0) != 0; ++lines) {
-            std::istringstream words(line);
-            std::string keyword, element;
-            uintmax_t count = 0;
-            words >> keyword;
-            if (keyword == "format") binary = line.find("binary") != std::string::npos;
-            if (keyword != "element" || !(words >> element >> count)) continue;
-            if (element == "vertex") vertices = count;
-            if (element == "face") faces = count;
-        }
+        const PlyCounts counts = check_ply_header(path);
+        vertices = counts.vertices;
+        faces = counts.faces;
+        binary = counts.binary;
     } else if (extension == ".off") {
         std::string header;
         while (std::getline(in, line)) {

@@ -144,6 +144,16 @@ TEST_F(MeshIo, HeaderCountsBeyondTheFileSizeAreRefused_fuzz_huge_counts) {
     EXPECT_NE(error_of(dir / "huge.ply").find("more than the file's"), std::string::npos);
 }
 
+// Found by tests/fuzz/run.sh: OpenMesh's PLY reader crashed on a property before any element.
+TEST_F(MeshIo, MalformedPlyHeaderIsRefused_fuzz_crash_2c8c58c8) {
+    test::write_text(dir / "p.ply", "ply\nformat ascii 1.0\nelemex\nproperty float y\nelement face 2\n"
+                                    "property list uchar int vertex_indices\nend_header\n0 0 0\n");
+    EXPECT_NE(error_of(dir / "p.ply").find("p.ply:3: malformed PLY header"), std::string::npos) << error_of(dir / "p.ply");
+    test::write_text(dir / "q.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n");
+    EXPECT_NE(error_of(dir / "q.ply").find("q.ply:3: malformed PLY header: a property before any element"),
+              std::string::npos);
+}
+
 TEST_F(MeshIo, UnknownExtensionIsAnError) {
     test::write_text(dir / "mesh.xyz", "garbage");
     EXPECT_NE(error_of(dir / "mesh.xyz").find("cannot read"), std::string::npos);
