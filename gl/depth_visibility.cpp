@@ -174,7 +174,12 @@ struct DepthOcclusion::Impl {
 
     void upload(const core::Mesh& mesh, MeshChange change) {
         const bool everything = !uploaded || change == MeshChange::kTopology;
-        if (!everything && change == MeshChange::kNone) return;
+        if (!everything) {
+            // Same topology promised: a different mesh here would draw stale buffers.
+            INKLINE_CHECK_EQ(mesh.positions.size(), vertex_count);
+            INKLINE_CHECK_EQ(GLsizei(3 * mesh.triangles.size()), index_count);
+            if (change == MeshChange::kNone) return;
+        }
         const auto position_bytes = GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3));
         fn.BindVertexArray(vao);
         fn.BindBuffer(GL_ARRAY_BUFFER, positions);
@@ -191,8 +196,6 @@ struct DepthOcclusion::Impl {
             face_mark.assign(mesh.triangles.size(), 0);
             epoch = 0;
         } else {
-            INKLINE_CHECK_EQ(mesh.positions.size(), vertex_count);
-            INKLINE_CHECK_EQ(GLsizei(3 * mesh.triangles.size()), index_count);
             fn.BufferSubData(GL_ARRAY_BUFFER, 0, position_bytes, mesh.positions.data());
         }
         check_gl(fn, "uploading the mesh");

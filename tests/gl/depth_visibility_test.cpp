@@ -256,6 +256,17 @@ TEST(DepthVisibility, SupersamplingSetsTheDepthMapSize) {
     EXPECT_THROW(gl::DepthOcclusion(*context, {.supersampling = 0}), InputError);
 }
 
+TEST(DepthVisibility, ADifferentMeshWithoutKTopologyIsABug) {
+    const auto context = context_or_skip(gl::Backend::kAuto);
+    gl::DepthOcclusion depth(*context);
+    const core::Mesh cube = test::cube(1.0), sphere = test::uv_sphere(16, 8, 1.0);
+    const core::EdgeTable cube_table = core::build_edge_table(cube), sphere_table = core::build_edge_table(sphere);
+    const core::Projection projection(test::camera_for({}, cube), {64, 64}, glm::dmat4(1.0));
+    depth.prepare(cube, cube_table, projection, gl::MeshChange::kNone);  // the first call uploads anyway
+    EXPECT_THROW(depth.prepare(sphere, sphere_table, projection, gl::MeshChange::kPositions), InternalError);
+    EXPECT_NO_THROW(depth.prepare(sphere, sphere_table, projection, gl::MeshChange::kTopology));
+}
+
 TEST(DepthVisibility, QueryBeforePrepareIsABug) {
     const auto context = context_or_skip(gl::Backend::kAuto);
     const gl::DepthOcclusion depth(*context);
