@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Incremental silhouette tracker: each frame's feature edges, identical to extract_feature_edges,
-// found by re-testing last frame's silhouette and walking from it, with a hierarchy of normal
-// cones proving that no silhouette was missed elsewhere. Holds the only frame-to-frame state.
+// testing only the edges that a hierarchy of normal cones cannot prove silhouette-free, with
+// boundary and crease edges cached per topology. Holds the only frame-to-frame state. The
+// thesis's walk from last frame's silhouette is kept as an option to compare (TrackerSearch).
 // Based on: P. Sander, X. Gu, S. Gortler, H. Hoppe, J. Snyder. Silhouette Clipping. SIGGRAPH 2000.
 //           A. Johannsen, M. Carter. Clustered Backface Culling. Journal of Graphics Tools, 1998.
 #pragma once
@@ -44,9 +45,9 @@ struct TrackerOptions {
 struct TrackerStats {
     bool full_pass = false;          // every edge tested (first update, after reset)
     size_t silhouette_edges = 0;
-    size_t kept = 0;                 // last frame's silhouette edges that still are
-    size_t walked = 0;               // found by walking from last frame's silhouette
-    size_t proven = 0;               // found only by the cone hierarchy (new loops, lost lines)
+    size_t kept = 0;                 // last frame's silhouette edges that still are (walk only)
+    size_t walked = 0;               // found by walking from last frame's silhouette (walk only)
+    size_t proven = 0;               // found by the cone hierarchy, after the walk if any
     size_t nodes_visited = 0;        // cone tests
 };
 
