@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "core/bezier_fit.h"
 
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <span>
 #include <unordered_map>
 
@@ -102,7 +101,8 @@ void reparameterize(std::span<const dvec2> d, const CubicBezier& c, std::vector<
 
 // Fits points d (an open piece) with tangents t1 at the start (pointing in) and t2 at the end
 // (pointing back), splitting at the worst point until every point is within tolerance.
-void fit_piece(std::span<const dvec2> d, const dvec2& t1, const dvec2& t2, double tolerance, std::vector<CubicBezier>& out) {
+void fit_piece(std::span<const dvec2> d, const dvec2& t1, const dvec2& t2, double tolerance,
+               std::vector<CubicBezier>& out) {
     if (d.size() == 2) {
         const double third = glm::length(d[1] - d[0]) / 3.0;
         out.push_back({d[0], d[0] + t1 * third, d[1] + t2 * third, d[1]});

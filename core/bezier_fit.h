@@ -4,11 +4,10 @@
 // Graphics Gems, 1990 (least squares with Newton reparameterization, split at the worst point).
 #pragma once
 
-#include "core/outline.h"
-
 #include <glm/vec2.hpp>
-
 #include <vector>
+
+#include "core/outline.h"
 
 namespace inkline::core {
 

@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "core/brush.h"
 
-#include <glm/geometric.hpp>
-#include <glm/matrix.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 namespace inkline::core {
 

@@ -6,21 +6,20 @@
 // silhouette-stroke framework (an SS stroke is thin at its beginning and end).
 #pragma once
 
+#include <array>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
 #include "core/brush_style.h"
 #include "core/mesh.h"
 #include "core/pure_strokes.h"
 #include "core/scene.h"
 #include "core/stroke_path.h"
 #include "core/topology.h"
-
-#include <glm/mat3x3.hpp>
-#include <glm/mat4x4.hpp>
-#include <glm/vec3.hpp>
-
-#include <array>
-#include <span>
-#include <string>
-#include <vector>
 
 namespace inkline::core {
 

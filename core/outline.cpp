@@ -3,11 +3,11 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <numbers>
 #include <optional>
 
@@ -31,7 +31,8 @@ glm::dvec2 rotate(const glm::dvec2& v, double angle) {
 }
 
 // Where segments ab and cd cross, if they do.
-std::optional<glm::dvec2> intersect(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, const glm::dvec2& d) {
+std::optional<glm::dvec2> intersect(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c,
+                                    const glm::dvec2& d) {
     const glm::dvec2 r = b - a, s = d - c;
     const double denom = cross(r, s);
     if (std::abs(denom) < 1e-18) return std::nullopt;
@@ -45,7 +46,9 @@ std::optional<glm::dvec2> intersect(const glm::dvec2& a, const glm::dvec2& b, co
 std::vector<glm::dvec2> tangents(std::span<const glm::dvec2> c, bool closed) {
     const auto n = std::ptrdiff_t(c.size());
     std::vector<glm::dvec2> t(c.size(), glm::dvec2(1.0, 0.0));
-    auto at = [&](std::ptrdiff_t i) { return c[size_t(closed ? ((i % n) + n) % n : std::clamp<std::ptrdiff_t>(i, 0, n - 1))]; };
+    auto at = [&](std::ptrdiff_t i) {
+        return c[size_t(closed ? ((i % n) + n) % n : std::clamp<std::ptrdiff_t>(i, 0, n - 1))];
+    };
     for (std::ptrdiff_t i = 0; i < n; ++i) {
         for (std::ptrdiff_t k = 1; k < n; ++k) {
             const glm::dvec2 d = at(i + k) - at(i - k);

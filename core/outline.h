@@ -6,7 +6,6 @@
 #pragma once
 
 #include <glm/vec2.hpp>
-
 #include <span>
 #include <vector>
 
@@ -15,7 +14,7 @@ namespace inkline::core {
 using Ring = std::vector<glm::dvec2>;  // closed polygon, px; the last point does not repeat the first
 
 struct OutlineOptions {
-    double simplify_px = 0.05;   // dropped points lie this close to the simplified ring (finer on thin strokes)
+    double simplify_px = 0.05;    // dropped points lie this close to the simplified ring (finer on thin strokes)
     double join_step_deg = 15.0;  // the normal turns at most this much between outline points
 };
 

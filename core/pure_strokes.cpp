@@ -1,14 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "core/pure_strokes.h"
 
-#include "core/stroke_path.h"
-
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <numeric>
+
+#include "core/stroke_path.h"
 
 namespace inkline::core {
 namespace {
@@ -238,9 +237,8 @@ std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends
     };
     std::vector<size_t> order(ends.size());
     std::iota(order.begin(), order.end(), size_t(0));
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        return ends[a].p.x < ends[b].p.x || (ends[a].p.x == ends[b].p.x && a < b);
-    });
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return ends[a].p.x < ends[b].p.x || (ends[a].p.x == ends[b].p.x && a < b); });
     for (size_t i = 0; i < order.size(); ++i) {
         for (size_t j = i + 1; j < order.size() && ends[order[j]].p.x - ends[order[i]].p.x <= kTouchPx; ++j) {
             if (glm::length(ends[order[i]].p - ends[order[j]].p) <= kTouchPx) {
@@ -377,10 +375,14 @@ class Linker {
 
 const char* stroke_end_name(StrokeEnd end) {
     switch (end) {
-        case StrokeEnd::kFree: return "S";
-        case StrokeEnd::kCorner: return "A";
-        case StrokeEnd::kJunction: return "C";
-        case StrokeEnd::kLoop: return "L";
+        case StrokeEnd::kFree:
+            return "S";
+        case StrokeEnd::kCorner:
+            return "A";
+        case StrokeEnd::kJunction:
+            return "C";
+        case StrokeEnd::kLoop:
+            return "L";
     }
     return "?";
 }

@@ -6,15 +6,14 @@
 // silhouette-stroke framework for calligraphic line drawing.
 #pragma once
 
-#include "core/features.h"
-#include "core/visibility.h"
-
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-
 #include <array>
 #include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <vector>
+
+#include "core/features.h"
+#include "core/visibility.h"
 
 namespace inkline::core {
 

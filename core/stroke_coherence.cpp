@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "core/stroke_coherence.h"
 
-#include <glm/geometric.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <tuple>
 
 namespace inkline::core {
@@ -29,16 +28,15 @@ class SampleGrid {
                 entries_.push_back({key(cell(traces[t].samples_px[s])), t, s});
             }
         }
-        std::sort(entries_.begin(), entries_.end(),
-                  [](const Entry& a, const Entry& b) { return std::tie(a.key, a.trace, a.sample) < std::tie(b.key, b.trace, b.sample); });
+        std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+            return std::tie(a.key, a.trace, a.sample) < std::tie(b.key, b.trace, b.sample);
+        });
     }
 
     struct Hit {
         size_t trace = size_t(-1), sample = 0;
         double distance = HUGE_VAL;
     };
-
-    double radius() const { return radius_; }
 
     // Nearest sample within the radius among traces accepted by `use`; ties go to the lower
     // (trace, sample).
@@ -54,8 +52,9 @@ class SampleGrid {
                 for (; it != entries_.end() && it->key == k; ++it) {
                     if (!use(it->trace)) continue;
                     const double d = glm::length(traces_[it->trace].samples_px[it->sample] - p);
-                    const bool better = d < best.distance ||
-                                        (d == best.distance && std::tie(it->trace, it->sample) < std::tie(best.trace, best.sample));
+                    const bool better =
+                        d < best.distance ||
+                        (d == best.distance && std::tie(it->trace, it->sample) < std::tie(best.trace, best.sample));
                     if (d <= radius_ && better) best = {it->trace, it->sample, d};
                 }
             }
@@ -113,7 +112,8 @@ std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const
         for (size_t s = 0; s < cand.edges.size(); ++s) {
             auto it = std::lower_bound(edge_owner.begin(), edge_owner.end(), std::make_pair(cand.edges[s], size_t(0)));
             for (; it != edge_owner.end() && it->first == cand.edges[s]; ++it) {
-                if (compatible(cand, traces[it->second]) && cand.edge_length_px[s] > 0.0) add(it->second, cand.edge_length_px[s]);
+                if (compatible(cand, traces[it->second]) && cand.edge_length_px[s] > 0.0)
+                    add(it->second, cand.edge_length_px[s]);
             }
         }
         // Samples count with their share of the length where last frame's nearest stroke lies close.
@@ -150,7 +150,8 @@ double distance_to_segment_px(const glm::dvec2& p, const glm::dvec2& a, const gl
 // Distance from p to a closed polyline.
 double distance_to_loop(const glm::dvec2& p, const std::vector<glm::dvec2>& loop) {
     double best = HUGE_VAL;
-    for (size_t i = 0; i < loop.size(); ++i) best = std::min(best, distance_to_segment_px(p, loop[i], loop[(i + 1) % loop.size()]));
+    for (size_t i = 0; i < loop.size(); ++i)
+        best = std::min(best, distance_to_segment_px(p, loop[i], loop[(i + 1) % loop.size()]));
     return best;
 }
 

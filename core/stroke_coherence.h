@@ -6,13 +6,12 @@
 // after Bourdev: each sample takes the parameter of the nearest sample of the previous frame.
 #pragma once
 
-#include "core/features.h"
-
-#include <glm/vec2.hpp>
-
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <optional>
 #include <vector>
+
+#include "core/features.h"
 
 namespace inkline::core {
 
@@ -31,12 +30,12 @@ struct StrokeTrace {
     LineKind kind = LineKind::kSilhouette;
     bool visible = true;
     bool closed = false;
-    double length_px = 0.0;               // drawn length
-    std::vector<uint32_t> edges;          // mesh edges, sorted and unique
-    std::vector<glm::dvec2> samples_px;   // along the drawn centerline
-    std::vector<double> samples_u;        // u at each sample, px
-    glm::dvec2 start_px{0.0};             // a loop's start, where u = 0
-    bool start_anchored = false;          // the start was anchored this frame, not carried over
+    double length_px = 0.0;              // drawn length
+    std::vector<uint32_t> edges;         // mesh edges, sorted and unique
+    std::vector<glm::dvec2> samples_px;  // along the drawn centerline
+    std::vector<double> samples_u;       // u at each sample, px
+    glm::dvec2 start_px{0.0};            // a loop's start, where u = 0
+    bool start_anchored = false;         // the start was anchored this frame, not carried over
 };
 
 // A stroke of the current frame before it has an id.
@@ -44,20 +43,20 @@ struct StrokeCandidate {
     LineKind kind = LineKind::kSilhouette;
     bool visible = true;
     bool closed = false;
-    double length_px = 0.0;               // drawn length
-    std::vector<uint32_t> edges;          // mesh edge of each exact segment
-    std::vector<double> edge_length_px;   // image length of each exact segment
-    std::vector<glm::dvec2> samples_px;   // along the drawn centerline, from its start
-    std::vector<double> samples_arc;      // arc length of each sample from the start, px
+    double length_px = 0.0;              // drawn length
+    std::vector<uint32_t> edges;         // mesh edge of each exact segment
+    std::vector<double> edge_length_px;  // image length of each exact segment
+    std::vector<glm::dvec2> samples_px;  // along the drawn centerline, from its start
+    std::vector<double> samples_arc;     // arc length of each sample from the start, px
 };
 
 // How a candidate continues last frame's stroke (or starts a new one).
 struct StrokeMatch {
     uint32_t id = 0;
-    bool inherited = false;               // the id was present last frame
-    bool reverse = false;                 // run the stroke backwards to keep last frame's direction
-    double u_offset = 0.0;                // open stroke: u at its start once reversed as asked
-    std::optional<glm::dvec2> start_px;   // loop: where on the candidate's samples to start
+    bool inherited = false;              // the id was present last frame
+    bool reverse = false;                // run the stroke backwards to keep last frame's direction
+    double u_offset = 0.0;               // open stroke: u at its start once reversed as asked
+    std::optional<glm::dvec2> start_px;  // loop: where on the candidate's samples to start
 };
 
 class StrokeCoherence {

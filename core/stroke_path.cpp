@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "core/stroke_path.h"
 
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <numeric>
 
 namespace inkline::core {
@@ -202,7 +201,8 @@ StrokePath build_stroke_path(std::span<const glm::dvec2> points, bool closed, co
     const auto n = std::ptrdiff_t(even.size());
     if (options.smooth_px > 0.0 && n > 2) {
         const double sigma = options.smooth_px / step;
-        const std::ptrdiff_t radius = std::min(std::ptrdiff_t(std::ceil(kKernelSigmas * sigma)), closed ? n / 2 : n - 1);
+        const std::ptrdiff_t radius =
+            std::min(std::ptrdiff_t(std::ceil(kKernelSigmas * sigma)), closed ? n / 2 : n - 1);
         const std::vector<double> weight = gaussian_weights(sigma, radius);
         // Padded copy: periodic on a loop, reflected through the ends of an open path.
         std::vector<glm::dvec2> padded(size_t(n + 2 * radius));
@@ -288,7 +288,8 @@ std::vector<double> smooth_samples(std::span<const double> values, double step_p
     for (std::ptrdiff_t i = 0; i < n; ++i) {
         double sum = values[size_t(i)] * weight[0], total = full;
         if (i >= radius && i + radius < n) {
-            for (std::ptrdiff_t k = 1; k <= radius; ++k) sum += (values[size_t(i - k)] + values[size_t(i + k)]) * weight[size_t(k)];
+            for (std::ptrdiff_t k = 1; k <= radius; ++k)
+                sum += (values[size_t(i - k)] + values[size_t(i + k)]) * weight[size_t(k)];
         } else {
             // Near an end: a loop wraps around; an open path's kernel is cut there.
             total = weight[0];

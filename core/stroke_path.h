@@ -6,9 +6,8 @@
 // framework, which cleans extracted silhouettes before strokes are built from them.
 #pragma once
 
-#include <glm/vec2.hpp>
-
 #include <cstddef>
+#include <glm/vec2.hpp>
 #include <span>
 #include <vector>
 
@@ -26,7 +25,7 @@ struct StrokePathOptions {
 };
 
 struct StrokePath {
-    bool closed = false;               // samples form a loop; the last does not repeat the first
+    bool closed = false;                // samples form a loop; the last does not repeat the first
     std::vector<glm::dvec2> points_px;  // samples
     std::vector<double> arc_px;         // arc length of each sample along the drawn path
     std::vector<double> g;              // exact parameter of each sample: segment + fraction

@@ -1,15 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "core/strokes.h"
 
-#include "core/brush.h"
-#include "core/stroke_path.h"
-
-#include <glm/geometric.hpp>
-#include <glm/matrix.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <optional>
+
+#include "core/brush.h"
+#include "core/stroke_path.h"
 
 namespace inkline::core {
 namespace {
@@ -43,7 +42,8 @@ StrokeCandidate candidate_of(const StrokeGeometry& g, const StrokePath& path) {
     c.closed = g.closed;
     c.length_px = path.length_px;
     c.edges = g.edges;
-    for (size_t s = 0; s + 1 < g.points_px.size(); ++s) c.edge_length_px.push_back(glm::length(g.points_px[s + 1] - g.points_px[s]));
+    for (size_t s = 0; s + 1 < g.points_px.size(); ++s)
+        c.edge_length_px.push_back(glm::length(g.points_px[s + 1] - g.points_px[s]));
     for (size_t i : trace_samples(path)) {
         c.samples_px.push_back(path.points_px[i]);
         c.samples_arc.push_back(path.arc_px[i]);

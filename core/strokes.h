@@ -6,6 +6,12 @@
 // light-weighted brush (N. Sirikulpiboon) and propagated arc-length parameterization (Bourdev).
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <vector>
+
 #include "core/brush_style.h"
 #include "core/camera.h"
 #include "core/frame_lines.h"
@@ -14,13 +20,6 @@
 #include "core/pure_strokes.h"
 #include "core/stroke_coherence.h"
 #include "core/topology.h"
-
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
-
-#include <array>
-#include <cstdint>
-#include <vector>
 
 namespace inkline::core {
 
@@ -53,12 +52,12 @@ struct Stroke {
 };
 
 struct StrokeStats {
-    size_t polylines = 0;     // input polylines
-    size_t pure_strokes = 0;  // after splitting at corners, before linking
-    size_t corners = 0;       // splits at sharp turns
-    size_t links = 0;         // joins through junctions
-    size_t drawn = 0;         // strokes with an outline
-    size_t inherited = 0;     // strokes whose id was present last frame
+    size_t polylines = 0;              // input polylines
+    size_t pure_strokes = 0;           // after splitting at corners, before linking
+    size_t corners = 0;                // splits at sharp turns
+    size_t links = 0;                  // joins through junctions
+    size_t drawn = 0;                  // strokes with an outline
+    size_t inherited = 0;              // strokes whose id was present last frame
     double visible_length_px = 0.0;    // exact length of the visible strokes
     double inherited_length_px = 0.0;  // ... of those whose id was present last frame
     double max_deviation_px = 0.0;     // over drawn strokes

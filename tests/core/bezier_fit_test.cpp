@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "core/bezier_fit.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <numbers>
 #include <vector>
 

@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: MIT
 #include "core/brush.h"
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <glm/geometric.hpp>
+#include <vector>
+
 #include "core/strokes.h"
 #include "core/topology.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/shapes.h"
-
-#include <glm/geometric.hpp>
-#include <gtest/gtest.h>
-
-#include <algorithm>
-#include <vector>
 
 namespace inkline {
 namespace {
@@ -99,7 +99,8 @@ TEST(Brush, PointLightShinesFromItsPosition) {
     const core::StrokeLighting lit(sphere, table, glm::dmat4(1.0), above);
     // The north pole (vertex 0) and its first edge.
     const uint32_t edge = table.edges_around(0)[0];
-    const std::vector<double> facing = lit.facing(std::vector<glm::dvec3>{{0.0, 1.0, 0.0}}, std::vector<uint32_t>{edge});
+    const std::vector<double> facing =
+        lit.facing(std::vector<glm::dvec3>{{0.0, 1.0, 0.0}}, std::vector<uint32_t>{edge});
     EXPECT_NEAR(facing[0], 1.0, 1e-9);
     above.position = {0.0, -10.0, 0.0};
     const core::StrokeLighting below(sphere, table, glm::dmat4(1.0), above);

@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: MIT
 #include "core/outline.h"
 
-#include "core/brush.h"
-#include "core/pure_strokes.h"
-#include "core/stroke_path.h"
-
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include "core/brush.h"
+#include "core/pure_strokes.h"
+#include "core/stroke_path.h"
 
 namespace inkline {
 namespace {
@@ -66,7 +66,8 @@ std::vector<Shape> shapes() {
     out.push_back(hairpin);
     Shape round_hairpin{"round hairpin", {}, false};
     for (int i = 0; i <= 20; ++i) round_hairpin.points.push_back({60.0 - 3.0 * i, -4.0});
-    for (int i = 1; i < 12; ++i) round_hairpin.points.push_back({-4.0 * std::sin(pi * i / 12), -4.0 * std::cos(pi * i / 12)});
+    for (int i = 1; i < 12; ++i)
+        round_hairpin.points.push_back({-4.0 * std::sin(pi * i / 12), -4.0 * std::cos(pi * i / 12)});
     for (int i = 0; i <= 20; ++i) round_hairpin.points.push_back({3.0 * i, 4.0});
     out.push_back(round_hairpin);
     Shape wave{"wave", {}, false};
@@ -79,11 +80,13 @@ std::vector<Shape> shapes() {
     }
     out.push_back(spiral);
     Shape noisy{"noisy line", {}, false};
-    for (int i = 0; i <= 150; ++i) noisy.points.push_back({1.3 * i, 0.6 * std::sin(12.9898 * i) * std::cos(78.233 * i)});
+    for (int i = 0; i <= 150; ++i)
+        noisy.points.push_back({1.3 * i, 0.6 * std::sin(12.9898 * i) * std::cos(78.233 * i)});
     out.push_back(noisy);
     for (const double r : {40.0, 4.0}) {
         Shape loop{"loop r=" + std::to_string(int(r)), {}, true};
-        for (int i = 0; i <= 60; ++i) loop.points.push_back(r * dvec2(std::cos(2 * pi * (i % 60) / 60), std::sin(2 * pi * (i % 60) / 60)));
+        for (int i = 0; i <= 60; ++i)
+            loop.points.push_back(r * dvec2(std::cos(2 * pi * (i % 60) / 60), std::sin(2 * pi * (i % 60) / 60)));
         out.push_back(loop);
     }
     return out;
@@ -106,7 +109,8 @@ TEST(Outline, FaithfulToCenterlineAndWidth) {
     for (const Shape& shape : shapes()) {
         const core::PureStrokes pure = core::build_pure_strokes({polyline(shape)}, {style.turn_angle_deg});
         for (const core::StrokeGeometry& g : pure.strokes) {
-            const core::StrokePath path = core::build_stroke_path(g.points_px, g.closed, {.smooth_px = style.smooth_px});
+            const core::StrokePath path =
+                core::build_stroke_path(g.points_px, g.closed, {.smooth_px = style.smooth_px});
             std::vector<double> facing;
             for (size_t k = 0; k < g.points_px.size(); ++k) facing.push_back(std::sin(0.1 * double(k)));
             const core::BrushSamples brush = core::brush_samples(path, facing, g.ends, style);

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "core/pure_strokes.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <numbers>
 #include <vector>
 
@@ -120,9 +120,9 @@ TEST(PureStrokes, JunctionLinksTheLongestStrokeToItsSmoothestContinuation) {
     // Three polylines meet at the origin: a long one from the left, a nearly straight
     // continuation to the right and a branch going down. The long one continues to the right.
     const std::vector<core::Polyline> lines = {
-        line(segment({0, 0}, {0, 50}), 100),       // branch, 50 px
-        line(segment({-100, 0}, {0, 0}), 200),     // main, 100 px
-        line(segment({0, 0}, {80, 6}), 300),       // continuation, 80 px, turns 4 degrees
+        line(segment({0, 0}, {0, 50}), 100),    // branch, 50 px
+        line(segment({-100, 0}, {0, 0}), 200),  // main, 100 px
+        line(segment({0, 0}, {80, 6}), 300),    // continuation, 80 px, turns 4 degrees
     };
     const core::PureStrokes r = core::build_pure_strokes(lines, {});
     EXPECT_EQ(r.links, 1u);
@@ -147,9 +147,8 @@ TEST(PureStrokes, TwoEndsMeetingSharplyAreCorners) {
 }
 
 TEST(PureStrokes, SmoothMeetingOfDifferentKindsIsAJunction) {
-    const std::vector<core::Polyline> lines = {
-        line(segment({-50, 0}, {0, 0}), 0),
-        line(segment({0, 0}, {50, 0}), 100, false, core::LineKind::kBoundary)};
+    const std::vector<core::Polyline> lines = {line(segment({-50, 0}, {0, 0}), 0),
+                                               line(segment({0, 0}, {50, 0}), 100, false, core::LineKind::kBoundary)};
     const core::PureStrokes r = core::build_pure_strokes(lines, {});
     EXPECT_EQ(r.links, 0u);
     ASSERT_EQ(r.strokes.size(), 2u);

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "core/stroke_coherence.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
 #include <vector>
 
 namespace inkline {
@@ -15,7 +15,8 @@ using glm::dvec2;
 core::StrokeCandidate candidate(dvec2 a, dvec2 b, uint32_t first_edge, uint32_t edge_count = 10) {
     core::StrokeCandidate c;
     c.length_px = glm::length(b - a);
-    for (uint32_t e = 0; e < edge_count; ++e) c.edges.push_back(first_edge + e), c.edge_length_px.push_back(c.length_px / edge_count);
+    for (uint32_t e = 0; e < edge_count; ++e)
+        c.edges.push_back(first_edge + e), c.edge_length_px.push_back(c.length_px / edge_count);
     for (double s = 0.0; s <= c.length_px + 1e-9; s += core::kTraceSpacingPx) {
         c.samples_px.push_back(a + (b - a) * (s / c.length_px));
         c.samples_arc.push_back(s);
@@ -106,7 +107,8 @@ TEST(StrokeCoherence, LoopStartStaysPut) {
     const std::vector<dvec2> corners = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
     for (int side = 0; side < 4; ++side) {
         for (int i = 0; i < 50; ++i) {
-            loop.samples_px.push_back(corners[size_t(side)] + (corners[size_t((side + 1) % 4)] - corners[size_t(side)]) * (i / 50.0));
+            loop.samples_px.push_back(corners[size_t(side)] +
+                                      (corners[size_t((side + 1) % 4)] - corners[size_t(side)]) * (i / 50.0));
             loop.samples_arc.push_back(100.0 * side + 2.0 * i);
         }
     }

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "core/stroke_path.h"
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <numbers>
 #include <vector>
 
@@ -16,7 +16,8 @@ using glm::dvec2;
 // Distance from p to an exact polyline.
 double distance_to(const std::vector<dvec2>& line, const dvec2& p) {
     double best = HUGE_VAL;
-    for (size_t i = 0; i + 1 < line.size(); ++i) best = std::min(best, core::distance_to_segment(p, line[i], line[i + 1]));
+    for (size_t i = 0; i + 1 < line.size(); ++i)
+        best = std::min(best, core::distance_to_segment(p, line[i], line[i + 1]));
     return best;
 }
 

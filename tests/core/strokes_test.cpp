@@ -1,25 +1,25 @@
 // SPDX-License-Identifier: MIT
 #include "core/strokes.h"
 
-#include "core/chaining.h"
-#include "core/exact_visibility.h"
-#include "core/features.h"
-#include "core/mesh_frames.h"
-#include "core/scene.h"
-#include "core/visibility.h"
-
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <glm/geometric.hpp>
 #include <map>
 #include <memory>
 #include <set>
 #include <string>
 #include <vector>
+
+#include "core/chaining.h"
+#include "core/exact_visibility.h"
+#include "core/features.h"
+#include "core/mesh_frames.h"
+#include "core/scene.h"
+#include "core/visibility.h"
 
 namespace inkline {
 namespace {
@@ -41,7 +41,8 @@ class TorusTurn {
         const core::Mesh& mesh = meshes_->at(frame);
         const glm::dmat4 world_from_object = core::world_from_object_at(scene_, frame);
         core::Bounds world_bounds;
-        for (const glm::vec3& p : mesh.positions) world_bounds.add(glm::dvec3(world_from_object * glm::dvec4(glm::dvec3(p), 1.0)));
+        for (const glm::vec3& p : mesh.positions)
+            world_bounds.add(glm::dvec3(world_from_object * glm::dvec4(glm::dvec3(p), 1.0)));
         core::FrameLines lines;
         lines.frame = frame;
         lines.image = scene_.image;
@@ -49,9 +50,10 @@ class TorusTurn {
         lines.camera = core::camera_at(scene_, frame, world_bounds);
         const core::Projection projection(lines.camera, scene_.image, world_from_object);
         const core::EdgeTable& table = meshes_->edges();
-        const core::FeatureEdges features = core::extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
-        lines.strokes = core::split_by_visibility(core::chain_feature_edges(features, table), mesh, projection,
-                                                  *occlusion_, {});
+        const core::FeatureEdges features =
+            core::extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
+        lines.strokes =
+            core::split_by_visibility(core::chain_feature_edges(features, table), mesh, projection, *occlusion_, {});
         return core::build_strokes(lines, mesh, table, projection, style_, coherence);
     }
 
@@ -140,7 +142,8 @@ TEST(Strokes, OutlinesOfATorusFrameAreFaithful) {
                     const glm::dvec2 a = c[i], ab = c[(i + 1) % n] - a;
                     const double len2 = glm::dot(ab, ab);
                     const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-                    excess = std::min(excess, glm::length(p - (a + ab * t)) - 0.5 * (w[i] + (w[(i + 1) % n] - w[i]) * t));
+                    excess =
+                        std::min(excess, glm::length(p - (a + ab * t)) - 0.5 * (w[i] + (w[(i + 1) % n] - w[i]) * t));
                 }
                 EXPECT_LE(excess, 0.25);
             }
@@ -192,10 +195,10 @@ TEST(Strokes, CoherentOverATorusTurn) {
     std::sort(start_moves.begin(), start_moves.end());
     ASSERT_FALSE(start_moves.empty());
     const double median_move = start_moves[start_moves.size() / 2];
-    std::printf("torus turn: inherited length %.2f%% overall, frames >= 95%%: %zu of %zu, worst frame %.1f%%;"
-                " loop start moves: median %.2f px over %zu\n",
-                100.0 * inherited / visible, at_95, sorted.size(), 100.0 * sorted.front(), median_move,
-                start_moves.size());
+    std::printf(
+        "torus turn: inherited length %.2f%% overall, frames >= 95%%: %zu of %zu, worst frame %.1f%%;"
+        " loop start moves: median %.2f px over %zu\n",
+        100.0 * inherited / visible, at_95, sorted.size(), 100.0 * sorted.front(), median_move, start_moves.size());
     EXPECT_GE(inherited / visible, 0.95);
     EXPECT_GE(double(at_95), 0.85 * double(sorted.size())) << "frames where new lines appear fall short";
     EXPECT_LE(median_move, 2.0);
