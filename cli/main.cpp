@@ -35,8 +35,15 @@ int main(int argc, char** argv) {
     render_cmd->add_option("--dpi", render.dpi, "PDF pixels per inch without --page")->capture_default_str();
     render_cmd->add_option("--background", render.background, "colour behind the lines, #rrggbb (default: transparent)");
     render_cmd->add_option("-o,--out", render.out_dir, "folder for every output not given explicitly (default: out)");
-    render_cmd->add_option("--tracker", render.tracker, "silhouette extraction: brute")->capture_default_str();
-    render_cmd->add_option("--visibility", render.visibility, "visibility test: exact")->capture_default_str();
+    render_cmd->add_option("--tracker", render.tracker, "silhouette extraction: incremental or brute")
+        ->capture_default_str();
+    render_cmd->add_option("--visibility", render.visibility,
+                           "occlusion test: auto (gl on hardware GL, else raycast), gl, raycast or exact")
+        ->capture_default_str();
+    render_cmd->add_option("--gl", render.gl_backend, "GL context: auto (EGL, then OSMesa), egl or osmesa")
+        ->capture_default_str();
+    render_cmd->add_flag("--centerline", render.centerline,
+                         "constant-width centerlines instead of brush outlines (pen plotters, cutters)");
     render_cmd->add_flag("--hidden", render.hidden, "also output occluded lines (visible: false)");
     render_cmd->add_flag("--keep-going", render.keep_going, "report a frame that fails and render the rest");
     render_cmd->add_option("--max-faces", render.max_faces, "refuse meshes with more faces")->capture_default_str();

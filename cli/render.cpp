@@ -12,7 +12,10 @@
 #include "core/frame_pattern.h"
 #include "core/mesh_frames.h"
 #include "core/mesh_io.h"
+#include "core/raycast_visibility.h"
 #include "core/scene.h"
+#include "core/silhouette_tracker.h"
+#include "core/strokes.h"
 #include "core/topology.h"
 #include "core/visibility.h"
 #include "export/atomic_file.h"
@@ -21,6 +24,8 @@
 #include "export/pdf.h"
 #include "export/png.h"
 #include "export/svg.h"
+#include "gl/context.h"
+#include "gl/depth_visibility.h"
 
 #include <glm/mat4x4.hpp>
 
@@ -125,15 +130,72 @@ Outputs resolve_outputs(const RenderArgs& args, const FrameRange& frames) {
     return out;
 }
 
-// Everything that lives across frames.
+struct DrawnFrame {
+    core::FrameLines lines;
+    core::FrameStrokes strokes;
+};
+
+// The occlusion test chosen for a run, and why.
+struct VisibilityChoice {
+    std::string mode;  // gl, raycast or exact
+    std::string reason;
+    std::unique_ptr<gl::Context> context;  // for gl
+};
+
+VisibilityChoice choose_visibility(const RenderArgs& args) {
+    VisibilityChoice choice;
+    const std::string& asked = args.visibility;
+    if (asked != "auto" && asked != "gl" && asked != "raycast" && asked != "exact") {
+        throw InputError("--visibility '" + asked + "': expected auto, gl, raycast or exact");
+    }
+    if (asked == "exact" || asked == "raycast") {
+        choice.mode = asked;
+        choice.reason = "asked for";
+        if (asked == "raycast" && !core::raycast_available())
+            throw InputError("--visibility raycast: this build has no Embree");
+        return choice;
+    }
+    const gl::Backend backend = gl::parse_backend(args.gl_backend);
+    try {
+        choice.context = gl::create_context(backend);
+    } catch (const gl::ContextError& e) {
+        if (asked == "gl") throw InputError(std::string("--visibility gl: no OpenGL context: ") + e.what());
+        choice.mode = core::raycast_available() ? "raycast" : "exact";
+        choice.reason = std::string("no OpenGL context (") + e.what() + ")";
+        return choice;
+    }
+    const std::string renderer = choice.context->backend_name() + std::string(": ") + choice.context->renderer();
+    if (asked == "gl") {
+        choice.mode = "gl";
+        choice.reason = "asked for, " + renderer;
+    } else if (!choice.context->is_software()) {
+        choice.mode = "gl";
+        choice.reason = "hardware OpenGL (" + renderer + ")";
+    } else if (core::raycast_available()) {
+        choice.mode = "raycast";
+        choice.reason = "software OpenGL (" + renderer + "): CPU ray casting is faster";
+        choice.context.reset();
+    } else {
+        choice.mode = "gl";
+        choice.reason = "software OpenGL (" + renderer + ") and no Embree in this build";
+    }
+    return choice;
+}
+
+// Everything that lives across frames: the tracker, the occlusion test and stroke coherence.
 class Sequence {
   public:
     Sequence(const core::Scene& scene, const RenderArgs& args, core::MeshFrames& meshes)
-        : scene_(scene), args_(args), meshes_(meshes) {}
+        : scene_(scene), args_(args), meshes_(meshes), visibility_(choose_visibility(args)) {
+        if (args.tracker != "incremental" && args.tracker != "brute")
+            throw InputError("--tracker '" + args.tracker + "': expected incremental or brute");
+        if (args.verbose) std::fprintf(stderr, "inkline: visibility %s: %s\n", visibility_.mode.c_str(), visibility_.reason.c_str());
+    }
 
-    core::FrameLines draw(int frame) {
+    DrawnFrame draw(int frame) {
         Clock clock;
-        core::FrameLines result;
+        DrawnFrame out;
+        core::FrameLines& result = out.lines;
         result.frame = frame;
         result.image = scene_.image;
         result.light = scene_.light;
@@ -150,23 +212,36 @@ class Sequence {
             warn("frame " + std::to_string(frame) + ": the camera is inside the mesh's bounds; lines may be hidden");
         }
 
-        const core::FeatureEdges features = core::extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
+        const core::FeatureEdges features = extract(mesh, table, projection.eye_object());
         const double extract_ms = clock.lap_ms();
         const std::vector<core::Chain> chains = core::chain_feature_edges(features, table);
         const double chain_ms = clock.lap_ms();
-        if (!occlusion_ || meshes_.is_sequence()) occlusion_ = std::make_unique<core::ExactOcclusion>(mesh, table);
+        const core::Occlusion& occlusion = prepare_occlusion(mesh, table, projection);
         const core::VisibilityOptions visibility{.keep_hidden = scene_.lines.hidden};
-        result.strokes = core::split_by_visibility(chains, mesh, projection, *occlusion_, visibility);
+        result.strokes = core::split_by_visibility(chains, mesh, projection, occlusion, visibility);
         const double visibility_ms = clock.lap_ms();
+        out.strokes = core::build_strokes(result, mesh, table, projection, scene_.brush, coherence_);
+        const double strokes_ms = clock.lap_ms();
+        first_frame_ = false;
 
-        result.stats.faces = mesh.triangles.size();
-        result.stats.edges = table.edge_count();
-        result.stats.edges_tested = features.edges_tested;
-        result.stats.faces_tested = features.faces_tested;
-        result.stats.feature_edges = features.count_by_kind();
+        core::FrameStats& stats = result.stats;
+        stats.faces = mesh.triangles.size();
+        stats.edges = table.edge_count();
+        stats.edges_tested = features.edges_tested;
+        stats.faces_tested = features.faces_tested;
+        stats.feature_edges = features.count_by_kind();
+        stats.silhouette_edges = stats.feature_edges[size_t(core::LineKind::kSilhouette)];
+        stats.tracker = args_.tracker;
+        stats.visibility = visibility_.mode;
+        stats.visibility_reason = visibility_.reason;
+        if (visibility_.mode == "gl") stats.gl_context = visibility_.context->backend_name() + std::string(": ") + visibility_.context->renderer();
         core::tally_visible_length(result);
-        result.stats.ms = {{"load", load_ms}, {"extract", extract_ms}, {"chain", chain_ms}, {"visibility", visibility_ms}};
-        return result;
+        stats.ms = {{"load", load_ms},
+                    {"extract", extract_ms},
+                    {"chain", chain_ms},
+                    {"visibility", visibility_ms},
+                    {"strokes", strokes_ms}};
+        return out;
     }
 
     void warn(const std::string& message) const {
@@ -174,10 +249,46 @@ class Sequence {
     }
 
   private:
+    core::FeatureEdges extract(const core::Mesh& mesh, const core::EdgeTable& table, const glm::dvec3& eye_object) {
+        if (args_.tracker == "brute") return core::extract_feature_edges(mesh, table, eye_object, scene_.lines);
+        if (!tracker_) {
+            tracker_.emplace(table, mesh, core::TrackerOptions{.deforming = meshes_.is_sequence()});
+        }
+        return tracker_->update(mesh, eye_object, scene_.lines);
+    }
+
+    // The occlusion test for this frame: built once for a static mesh, updated for a sequence.
+    const core::Occlusion& prepare_occlusion(const core::Mesh& mesh, const core::EdgeTable& table,
+                                             const core::Projection& projection) {
+        const bool moved = meshes_.is_sequence() && !first_frame_;
+        if (visibility_.mode == "gl") {
+            if (!depth_) depth_ = std::make_unique<gl::DepthOcclusion>(*visibility_.context);
+            depth_->prepare(mesh, table, projection,
+                            first_frame_ ? gl::MeshChange::kTopology : moved ? gl::MeshChange::kPositions : gl::MeshChange::kNone);
+            return *depth_;
+        }
+        if (visibility_.mode == "raycast") {
+            if (!raycast_) {
+                raycast_ = std::make_unique<core::RaycastOcclusion>(mesh, table);
+            } else if (moved) {
+                raycast_->update_positions(mesh);
+            }
+            return *raycast_;
+        }
+        if (!exact_ || moved) exact_ = std::make_unique<core::ExactOcclusion>(mesh, table);
+        return *exact_;
+    }
+
     const core::Scene& scene_;
     const RenderArgs& args_;
     core::MeshFrames& meshes_;
-    std::unique_ptr<core::ExactOcclusion> occlusion_;  // static meshes build the tree once
+    VisibilityChoice visibility_;
+    std::optional<core::SilhouetteTracker> tracker_;
+    std::unique_ptr<gl::DepthOcclusion> depth_;
+    std::unique_ptr<core::RaycastOcclusion> raycast_;
+    std::unique_ptr<core::ExactOcclusion> exact_;
+    core::StrokeCoherence coherence_;
+    bool first_frame_ = true;
     bool warned_inside_ = false;
 };
 
@@ -206,7 +317,11 @@ class Progress {
 // Writes every per-frame file of a drawn frame; collects pages of a multi-page PDF.
 class Writers {
   public:
-    Writers(const Outputs& outputs, const RenderArgs& args, const fs::path& mesh_name) : outputs_(outputs) {
+    Writers(const Outputs& outputs, const RenderArgs& args, const core::Scene& scene)
+        : outputs_(outputs), centerline_(args.centerline) {
+        const fs::path& mesh_name = scene.mesh.path;
+        style_.color = output::hex_color(scene.brush.color);
+        style_.opacity = scene.brush.opacity;
         style_.background = args.background.empty() ? std::nullopt : std::optional(args.background);
         if (style_.background) output::parse_color(*style_.background, "--background");
         pdf_options_.page = args.page.empty() ? std::nullopt : std::optional(output::parse_page_size(args.page));
@@ -219,10 +334,11 @@ class Writers {
     }
 
     // Returns the number of files written for this frame.
-    size_t write(core::FrameLines& frame) {
+    size_t write(DrawnFrame& drawn) {
+        core::FrameLines& frame = drawn.lines;
         size_t files = 0;
         Clock clock;
-        const output::Drawing drawing = output::centerline_drawing(frame, style_);
+        const output::Drawing drawing = output::brush_drawing(frame, drawn.strokes, style_, centerline_);
         if (!outputs_.svg.empty()) {
             output::write_file_atomically(core::format_frame(outputs_.svg, frame.frame), output::svg_document(drawing, {}));
             ++files;
@@ -242,7 +358,8 @@ class Writers {
         }
         frame.stats.ms.emplace_back("png_pdf", clock.lap_ms());
         if (!outputs_.json.empty()) {
-            output::write_file_atomically(core::format_frame(outputs_.json, frame.frame), output::polylines_json(frame));
+            output::write_file_atomically(core::format_frame(outputs_.json, frame.frame),
+                                          output::polylines_json(frame, &drawn.strokes));
             ++files;
         }
         return files;
@@ -259,6 +376,7 @@ class Writers {
 
   private:
     const Outputs& outputs_;
+    bool centerline_;
     output::DrawStyle style_;
     output::PdfOptions pdf_options_;
     std::unique_ptr<output::PdfDocument> pdf_;
@@ -281,8 +399,6 @@ int run_render(const RenderArgs& args) {
     if (!args.frames.empty()) frames = parse_frames(args.frames);
     if (!args.size.empty()) scene.image = parse_size(args.size);
     if (args.hidden) scene.lines.hidden = true;
-    if (args.tracker != "brute") throw InputError("--tracker '" + args.tracker + "': only 'brute' is available");
-    if (args.visibility != "exact") throw InputError("--visibility '" + args.visibility + "': only 'exact' is available");
     const Outputs outputs = resolve_outputs(args, frames);
 
     core::MeshFrames meshes(scene.mesh, frames.first);
@@ -300,13 +416,13 @@ int run_render(const RenderArgs& args) {
 
     Sequence sequence(scene, args, meshes);
     for (const std::string& w : meshes.warnings()) sequence.warn(w);
-    Writers writers(outputs, args, scene.mesh.path);
+    Writers writers(outputs, args, scene);
     Progress progress(frames.count(), !args.quiet && !args.verbose);
 
     const auto start = std::chrono::steady_clock::now();
     size_t strokes = 0, files = 0, failed = 0;
     for (int frame = frames.first; frame <= frames.last; ++frame) {
-        core::FrameLines result;
+        DrawnFrame result;
         try {
             result = sequence.draw(frame);
         } catch (const InputError& e) {
@@ -319,12 +435,13 @@ int run_render(const RenderArgs& args) {
             continue;
         }
         files += writers.write(result);
-        strokes += result.strokes.size();
+        strokes += result.strokes.strokes.size();
         progress.frame_done();
         if (args.verbose) {
-            std::fprintf(stderr, "frame %d: %zu strokes, %zu of %zu edges tested", frame, result.strokes.size(),
-                         result.stats.edges_tested, result.stats.edges);
-            for (const auto& [stage, ms] : result.stats.ms) std::fprintf(stderr, ", %s %.1f ms", stage.c_str(), ms);
+            const core::FrameStats& stats = result.lines.stats;
+            std::fprintf(stderr, "frame %d: %zu strokes, %zu of %zu edges tested", frame, result.strokes.strokes.size(),
+                         stats.edges_tested, stats.edges);
+            for (const auto& [stage, ms] : stats.ms) std::fprintf(stderr, ", %s %.1f ms", stage.c_str(), ms);
             std::fprintf(stderr, "\n");
         }
     }

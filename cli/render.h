@@ -20,8 +20,10 @@ struct RenderArgs {
     double dpi = 96.0;
     std::string background;   // colour behind the lines; empty: transparent (SVG, PNG) / white paper (PDF)
     std::string out_dir;
-    std::string tracker = "brute";
-    std::string visibility = "exact";
+    std::string tracker = "incremental";  // incremental | brute
+    std::string visibility = "auto";      // auto | gl | raycast | exact
+    std::string gl_backend = "auto";      // auto | egl | osmesa
+    bool centerline = false;              // constant-width centerlines instead of brush outlines
     bool hidden = false;
     bool keep_going = false;
     size_t max_faces = 50'000'000;

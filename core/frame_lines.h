@@ -20,6 +20,11 @@ struct FrameStats {
     size_t edges = 0;
     size_t edges_tested = 0;
     size_t faces_tested = 0;
+    size_t silhouette_edges = 0;
+    std::string tracker;            // "incremental" or "brute"
+    std::string visibility;         // the occlusion test used: "gl", "raycast" or "exact"
+    std::string visibility_reason;  // why that one (with --visibility auto)
+    std::string gl_context;         // "egl: <renderer>" when a GL context was used
     std::array<size_t, kLineKindCount> feature_edges{};         // by LineKind
     std::array<double, kLineKindCount> visible_length_px{};     // by LineKind
     std::vector<std::pair<std::string, double>> ms;             // stage name -> milliseconds

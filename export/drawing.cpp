@@ -3,7 +3,10 @@
 
 #include "core/error.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 
 namespace inkline::output {
 
@@ -34,11 +37,43 @@ Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style
         s.hidden = !line.visible;
         s.filled = false;
         s.closed = line.closed;
-        s.points = line.points_px;
-        if (s.closed && s.points.size() > 1) s.points.pop_back();  // the first point closes it
+        s.paths.push_back(line.points_px);
+        if (s.closed && s.paths[0].size() > 1) s.paths[0].pop_back();  // the first point closes it
         d.shapes.push_back(std::move(s));
     }
     return d;
+}
+
+Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& strokes, const DrawStyle& style,
+                      bool centerline) {
+    Drawing d{frame.frame, frame.image, frame.camera, style, {}};
+    d.shapes.reserve(strokes.strokes.size());
+    for (const core::Stroke& stroke : strokes.strokes) {
+        Shape s;
+        s.stroke_id = stroke.id;
+        s.kind = stroke.kind;
+        s.hidden = !stroke.visible;
+        s.closed = stroke.closed;
+        if (stroke.visible && !stroke.drawn) continue;
+        if (stroke.visible && !centerline) {
+            if (stroke.outline.empty()) continue;
+            s.filled = true;
+            s.paths.assign(stroke.outline.begin(), stroke.outline.end());
+        } else {
+            // Hidden lines and plotter output follow the drawn centerline when there is one.
+            s.paths.push_back(stroke.centerline_px.size() >= 2 ? stroke.centerline_px : stroke.points_px);
+            if (s.closed && s.paths[0].size() > 2 && s.paths[0].front() == s.paths[0].back()) s.paths[0].pop_back();
+        }
+        d.shapes.push_back(std::move(s));
+    }
+    return d;
+}
+
+std::string hex_color(const glm::dvec3& rgb) {
+    char buf[8];
+    auto channel = [](double v) { return int(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); };
+    std::snprintf(buf, sizeof buf, "#%02x%02x%02x", channel(rgb.r), channel(rgb.g), channel(rgb.b));
+    return buf;
 }
 
 std::vector<std::string> layer_names() {

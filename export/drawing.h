@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/frame_lines.h"
+#include "core/strokes.h"
 
 #include <glm/vec2.hpp>
 
@@ -31,9 +32,9 @@ struct Shape {
     uint32_t stroke_id = 0;  // written as the element id stroke-<id>
     core::LineKind kind = core::LineKind::kSilhouette;
     bool hidden = false;  // occluded line: dashed centerline in the "hidden" layer
-    bool filled = false;  // points form a closed outline to fill; otherwise a centerline to stroke
+    bool filled = false;  // paths are closed rings filled together (nonzero rule); else stroked
     bool closed = false;  // a stroked centerline that closes on itself
-    std::vector<glm::dvec2> points;  // px, origin top-left, y down
+    std::vector<std::vector<glm::dvec2>> paths;  // px, origin top-left, y down
 };
 
 struct Drawing {
@@ -44,8 +45,17 @@ struct Drawing {
     std::vector<Shape> shapes;
 };
 
-// Every polyline as a constant-width centerline (pen plotters, cutters, and the fallback look).
+// Every polyline as a constant-width centerline, one shape per polyline.
 Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style);
+
+// Brush strokes: each drawn visible stroke as its filled outline, or with `centerline` as its
+// drawn centerline at constant width (pen plotters, cutters); hidden strokes as dashed
+// centerlines. Strokes too short to draw are left out.
+Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& strokes, const DrawStyle& style,
+                      bool centerline);
+
+// "#rrggbb" of an sRGB colour with components in [0, 1].
+std::string hex_color(const glm::dvec3& rgb);
 
 // Layer names in drawing order: the line kinds, then "hidden".
 std::vector<std::string> layer_names();

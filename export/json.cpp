@@ -29,27 +29,89 @@ json per_kind(const auto& values, auto transform) {
     return out;
 }
 
-}  // namespace
+json points_json(const std::vector<glm::dvec2>& points) {
+    json out = json::array();
+    for (const glm::dvec2& p : points) out.push_back({round_px(p.x), round_px(p.y)});
+    return out;
+}
 
-std::string polylines_json(const core::FrameLines& frame) {
+json world_json(const std::vector<glm::dvec3>& points) {
+    json out = json::array();
+    for (const glm::dvec3& p : points) out.push_back(vec3(p));
+    return out;
+}
+
+// Per-point values rounded to `scale` (1e3: thousandths).
+json rounded(const std::vector<double>& values, double scale) {
+    json out = json::array();
+    for (double v : values) out.push_back(std::round(v * scale) / scale);
+    return out;
+}
+
+json polyline_strokes(const core::FrameLines& frame) {
     json strokes = json::array();
     for (const core::Polyline& line : frame.strokes) {
-        json points = json::array();
-        for (const glm::dvec2& p : line.points_px) points.push_back({round_px(p.x), round_px(p.y)});
-        json world = json::array();
-        for (const glm::dvec3& p : line.points_world) world.push_back(vec3(p));
         strokes.push_back({{"id", line.id},
                            {"kind", core::line_kind_name(line.kind)},
                            {"closed", line.closed},
                            {"visible", line.visible},
-                           {"points", std::move(points)},
-                           {"world", std::move(world)},
+                           {"points", points_json(line.points_px)},
+                           {"world", world_json(line.points_world)},
                            {"edges", line.edges}});
     }
+    return strokes;
+}
+
+json brush_strokes(const core::FrameStrokes& frame_strokes) {
+    json strokes = json::array();
+    for (const core::Stroke& s : frame_strokes.strokes) {
+        json outline = json::array();
+        for (const core::Ring& ring : s.outline) outline.push_back(points_json(ring));
+        strokes.push_back({{"id", s.id},
+                           {"kind", core::line_kind_name(s.kind)},
+                           {"closed", s.closed},
+                           {"visible", s.visible},
+                           {"drawn", s.drawn},
+                           {"ends", {core::stroke_end_name(s.ends[0]), core::stroke_end_name(s.ends[1])}},
+                           {"points", points_json(s.points_px)},
+                           {"world", world_json(s.points_world)},
+                           {"edges", s.edges},
+                           {"u", rounded(s.u, 1e3)},
+                           {"intensity", rounded(s.intensity, 1e4)},
+                           {"width", rounded(s.width, 1e3)},
+                           {"outline", std::move(outline)}});
+    }
+    return strokes;
+}
+
+}  // namespace
+
+std::string polylines_json(const core::FrameLines& frame, const core::FrameStrokes* frame_strokes) {
+    json strokes = frame_strokes ? brush_strokes(*frame_strokes) : polyline_strokes(frame);
     json ms = json::object();
     for (const auto& [stage, value] : frame.stats.ms) ms[stage] = std::round(value * 1000.0) / 1000.0;
 
     const core::FrameStats& s = frame.stats;
+    json stats = {{"faces", s.faces},
+                  {"edges", s.edges},
+                  {"edges_tested", s.edges_tested},
+                  {"faces_tested", s.faces_tested},
+                  {"silhouette_edges", s.silhouette_edges},
+                  {"feature_edges", per_kind(s.feature_edges, [](size_t n) { return n; })},
+                  {"visible_length_px", per_kind(s.visible_length_px, [](double v) { return std::round(v * 1000.0) / 1000.0; })},
+                  {"ms", std::move(ms)}};
+    if (!s.tracker.empty()) stats["tracker"] = s.tracker;
+    if (!s.visibility.empty()) stats["visibility"] = {{"mode", s.visibility}, {"reason", s.visibility_reason}};
+    if (!s.gl_context.empty()) stats["gl_context"] = s.gl_context;
+    if (frame_strokes) {
+        const core::StrokeStats& t = frame_strokes->stats;
+        stats["strokes"] = {{"pure_strokes", t.pure_strokes},
+                            {"drawn", t.drawn},
+                            {"inherited_ids", t.inherited},
+                            {"inherited_length_fraction",
+                             t.visible_length_px > 0.0 ? std::round(1e4 * t.inherited_length_px / t.visible_length_px) / 1e4 : 1.0},
+                            {"max_deviation_px", std::round(t.max_deviation_px * 1e4) / 1e4}};
+    }
     const json doc = {
         {"format", "inkline.polylines"},
         {"version", 1},
@@ -64,14 +126,7 @@ std::string polylines_json(const core::FrameLines& frame) {
           {"far", frame.camera.far}}},
         {"light", light_json(frame.light)},
         {"strokes", std::move(strokes)},
-        {"stats",
-         {{"faces", s.faces},
-          {"edges", s.edges},
-          {"edges_tested", s.edges_tested},
-          {"faces_tested", s.faces_tested},
-          {"feature_edges", per_kind(s.feature_edges, [](size_t n) { return n; })},
-          {"visible_length_px", per_kind(s.visible_length_px, [](double v) { return std::round(v * 1000.0) / 1000.0; })},
-          {"ms", std::move(ms)}}}};
+        {"stats", std::move(stats)}};
     return doc.dump() + "\n";
 }
 

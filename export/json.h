@@ -3,11 +3,14 @@
 #pragma once
 
 #include "core/frame_lines.h"
+#include "core/strokes.h"
 
 #include <string>
 
 namespace inkline::output {
 
-std::string polylines_json(const core::FrameLines& frame);
+// With `strokes`, the strokes are the frame's brush strokes (stable ids, u, intensity, width,
+// ends, outline); without, its visible polylines.
+std::string polylines_json(const core::FrameLines& frame, const core::FrameStrokes* strokes = nullptr);
 
 }  // namespace inkline::output

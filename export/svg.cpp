@@ -42,12 +42,16 @@ class Writer {
 };
 
 void path_data(Writer& w, const Shape& shape) {
-    for (size_t i = 0; i < shape.points.size(); ++i) {
-        w << (i == 0 ? "M" : " L");
-        w.number(shape.points[i].x) << " ";
-        w.number(shape.points[i].y);
+    bool first = true;
+    for (const std::vector<glm::dvec2>& path : shape.paths) {
+        for (size_t i = 0; i < path.size(); ++i) {
+            w << (i == 0 ? (first ? "M" : " M") : " L");
+            w.number(path[i].x) << " ";
+            w.number(path[i].y);
+            first = false;
+        }
+        if (shape.filled || shape.closed) w << " Z";
     }
-    if (shape.filled || shape.closed) w << " Z";
 }
 
 void metadata(Writer& w, const Drawing& d) {

@@ -6,10 +6,10 @@ namespace {
 
 void trace_path(cairo_t* cr, const Shape& shape) {
     cairo_new_path(cr);
-    for (size_t i = 0; i < shape.points.size(); ++i) {
-        (i == 0 ? cairo_move_to : cairo_line_to)(cr, shape.points[i].x, shape.points[i].y);
+    for (const std::vector<glm::dvec2>& path : shape.paths) {
+        for (size_t i = 0; i < path.size(); ++i) (i == 0 ? cairo_move_to : cairo_line_to)(cr, path[i].x, path[i].y);
+        if (shape.filled || shape.closed) cairo_close_path(cr);
     }
-    if (shape.filled || shape.closed) cairo_close_path(cr);
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <regex>
+#include <set>
 
 namespace inkline {
 namespace {
@@ -61,15 +63,21 @@ TEST_F(Cli, PngPdfAndMatchingIds) {
     const RunResult info = test::run_shell("pdfinfo " + (dir / "all.pdf").string());
     EXPECT_NE(info.output.find("Pages:           3"), std::string::npos) << info.output;
     EXPECT_NE(info.output.find("Title:           torus"), std::string::npos) << info.output;
-    // Every JSON stroke id has its SVG element, and the SVG has no other strokes.
+    // Every drawn JSON stroke has its SVG element, and every SVG element names a JSON stroke.
     const auto doc = nlohmann::json::parse(test::read_text(dir / "json" / "frame_0002.json"));
     const std::string svg = test::read_text(dir / "svg" / "frame_0002.svg");
+    std::set<int> drawn, all;
     for (const auto& stroke : doc["strokes"]) {
-        EXPECT_NE(svg.find("id=\"stroke-" + std::to_string(stroke["id"].get<int>()) + "\""), std::string::npos);
+        all.insert(stroke["id"].get<int>());
+        if (stroke["drawn"].get<bool>()) drawn.insert(stroke["id"].get<int>());
     }
-    size_t paths = 0;
-    for (size_t at = svg.find("<path id=\"stroke-"); at != std::string::npos; at = svg.find("<path id=\"stroke-", at + 1)) ++paths;
-    EXPECT_EQ(paths, doc["strokes"].size());
+    ASSERT_FALSE(drawn.empty());
+    std::set<int> elements;
+    const std::regex id(R"re(<path id="stroke-(\d+)")re");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), id); it != std::sregex_iterator(); ++it)
+        elements.insert(std::stoi((*it)[1]));
+    EXPECT_EQ(elements, drawn);
+    for (int e : elements) EXPECT_TRUE(all.count(e));
 }
 
 TEST_F(Cli, PdfPerFramePattern) {

@@ -44,7 +44,7 @@ TEST(Svg, FilledShapesAndBackground) {
     output::Drawing d;
     d.image = {10, 10};
     d.style.background = "#ffffff";
-    d.shapes.push_back({.stroke_id = 3, .filled = true, .points = {{1, 1}, {9, 1}, {5, 9}}});
+    d.shapes.push_back({.stroke_id = 3, .filled = true, .paths = {{{1, 1}, {9, 1}, {5, 9}}}});
     const std::string svg = output::svg_document(d, {});
     EXPECT_NE(svg.find("<rect id=\"background\" width=\"10\" height=\"10\" fill=\"#ffffff\"/>"), std::string::npos);
     EXPECT_NE(svg.find("<path id=\"stroke-3\" d=\"M1 1 L9 1 L5 9 Z\" fill=\"#000000\" stroke=\"none\"/>"),
