@@ -6,6 +6,8 @@
 #include "export/svg.h"
 
 #include "core/error.h"
+#include "core/strokes.h"
+#include "core/topology.h"
 #include "tests/support/obj.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/run.h"
@@ -75,6 +77,24 @@ TEST_F(Raster, SvgIsWellFormedAndRendersLikeCairo) {
     const test::RunResult rsvg =
         test::run_shell("rsvg-convert " + (dir / "f.svg").string() + " -o " + (dir / "rsvg.png").string());
     ASSERT_EQ(rsvg.code, 0) << rsvg.output;
+    EXPECT_GE(iou(coverage(dir / "rsvg.png"), coverage(dir / "f.png")), 0.98);
+}
+
+TEST_F(Raster, BrushOutlinesRenderAlikeInSvgAndCairo) {
+    const core::Mesh torus = test::torus(1.0, 0.4, 64, 32);
+    const core::EdgeTable table = core::build_edge_table(torus);
+    const test::View view{.eye = {0.0, 2.6, 4.6}, .fov_y_deg = 40.0, .size = 512};
+    const core::FrameLines frame = test::trace(torus, view);
+    const core::Projection projection(frame.camera, frame.image, glm::dmat4(1.0));
+    core::StrokeCoherence coherence;
+    const core::FrameStrokes strokes = core::build_strokes(frame, torus, table, projection, {}, coherence);
+    const output::Drawing d = output::brush_drawing(frame, strokes, {}, false);
+    size_t filled = 0;
+    for (const output::Shape& s : d.shapes) filled += s.filled;
+    ASSERT_GT(filled, 0u);
+    test::write_text(dir / "f.svg", output::svg_document(d, {}));
+    test::write_text(dir / "f.png", output::png_image(d));
+    ASSERT_EQ(test::run_shell("rsvg-convert " + (dir / "f.svg").string() + " -o " + (dir / "rsvg.png").string()).code, 0);
     EXPECT_GE(iou(coverage(dir / "rsvg.png"), coverage(dir / "f.png")), 0.98);
 }
 
