@@ -27,8 +27,8 @@ constexpr double kBoxPad = 1e-12;
 // counts as crease-free only this far below the crease angle.
 constexpr double kCreaseMargin = 1e-6;
 
-// Chord between two unit vectors at 90 degrees: a cone this wide proves no facing.
-const double kMaxSpread = std::sqrt(2.0);
+// Chord between two unit vectors at 90 degrees (sqrt 2): a cone this wide proves no facing.
+constexpr double kMaxSpread = 1.4142135623730951;
 
 // Weight of a node's centroid spread (relative to the whole mesh's diagonal) against its spread
 // of unit normals when choosing the split: both widen the cone test's uncertain band by about

@@ -94,7 +94,7 @@ class ConeTree {
     void fit_node(ConeNode& node) const;
     static void set_spread(ConeNode& node, double spread);
 
-    std::vector<FaceCone> cones_;  // parallel to faces; scratch for build and refit
+    std::vector<FaceCone> cones_;  // parallel to faces: build scratch, then kept by refit for maybe_crease
 };
 
 }  // namespace inkline::core::internal
