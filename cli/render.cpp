@@ -185,10 +185,14 @@ VisibilityChoice choose_visibility(const RenderArgs& args) {
 // Everything that lives across frames: the tracker, the occlusion test and stroke coherence.
 class Sequence {
   public:
-    Sequence(const core::Scene& scene, const RenderArgs& args, core::MeshFrames& meshes)
+    Sequence(const core::Scene& scene, const RenderArgs& args, core::MeshFrames& meshes, int frame_count)
         : scene_(scene), args_(args), meshes_(meshes), visibility_(choose_visibility(args)) {
         if (args.tracker != "incremental" && args.tracker != "brute")
             throw InputError("--tracker '" + args.tracker + "': expected incremental or brute");
+        // The tracker's cone hierarchy costs about one brute-force pass per few hundred thousand
+        // faces to build and repays it over later frames; a single frame gets the identical
+        // result cheaper by brute force.
+        tracker_mode_ = frame_count > 1 ? args.tracker : "brute";
         if (args.verbose) std::fprintf(stderr, "inkline: visibility %s: %s\n", visibility_.mode.c_str(), visibility_.reason.c_str());
     }
 
@@ -231,7 +235,7 @@ class Sequence {
         stats.faces_tested = features.faces_tested;
         stats.feature_edges = features.count_by_kind();
         stats.silhouette_edges = stats.feature_edges[size_t(core::LineKind::kSilhouette)];
-        stats.tracker = args_.tracker;
+        stats.tracker = tracker_mode_;
         stats.visibility = visibility_.mode;
         stats.visibility_reason = visibility_.reason;
         if (visibility_.mode == "gl") stats.gl_context = visibility_.context->backend_name() + std::string(": ") + visibility_.context->renderer();
@@ -250,7 +254,7 @@ class Sequence {
 
   private:
     core::FeatureEdges extract(const core::Mesh& mesh, const core::EdgeTable& table, const glm::dvec3& eye_object) {
-        if (args_.tracker == "brute") return core::extract_feature_edges(mesh, table, eye_object, scene_.lines);
+        if (tracker_mode_ == "brute") return core::extract_feature_edges(mesh, table, eye_object, scene_.lines);
         if (!tracker_) {
             tracker_.emplace(table, mesh, core::TrackerOptions{.deforming = meshes_.is_sequence()});
         }
@@ -283,6 +287,7 @@ class Sequence {
     const RenderArgs& args_;
     core::MeshFrames& meshes_;
     VisibilityChoice visibility_;
+    std::string tracker_mode_;
     std::optional<core::SilhouetteTracker> tracker_;
     std::unique_ptr<gl::DepthOcclusion> depth_;
     std::unique_ptr<core::RaycastOcclusion> raycast_;
@@ -414,7 +419,7 @@ int run_render(const RenderArgs& args) {
         scene.last_frame = last;
     }
 
-    Sequence sequence(scene, args, meshes);
+    Sequence sequence(scene, args, meshes, frames.count());
     for (const std::string& w : meshes.warnings()) sequence.warn(w);
     Writers writers(outputs, args, scene);
     Progress progress(frames.count(), !args.quiet && !args.verbose);
