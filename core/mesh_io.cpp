@@ -280,6 +280,29 @@ PlyCounts check_ply_header(const std::filesystem::path& path) {
                      std::to_string(kMaxHeaderLines) + " lines");
 }
 
+// A face of an ASCII OFF file starts with its corner count; OpenMesh collects that many corners
+// before reading them, so an absurd count would allocate without bound. Faces follow the
+// vertex lines; each corner takes at least two bytes ("0 ").
+void check_off_face_sizes(std::istream& in, uintmax_t vertices, uintmax_t faces, uintmax_t file_size,
+                          const std::filesystem::path& path) {
+    if (vertices > file_size || faces > file_size) return;  // refused by the caller
+    std::string line;
+    std::getline(in, line);  // rest of the counts line
+    for (uintmax_t read = 0; read < vertices && std::getline(in, line);) {
+        if (line.find_first_not_of(" \t\r") != std::string::npos && line[line.find_first_not_of(" \t\r")] != '#') ++read;
+    }
+    for (uintmax_t read = 0; read < faces && std::getline(in, line);) {
+        std::istringstream words(line);
+        long long corners = 0;
+        if (!(words >> corners)) continue;
+        ++read;
+        if (corners < 0 || uintmax_t(corners) > file_size / 2) {
+            throw InputError(path.string() + ": a face declares " + std::to_string(corners) +
+                             " corners, more than the file can hold");
+        }
+    }
+}
+
 void check_declared_counts(const std::filesystem::path& path, const std::string& extension, uintmax_t file_size) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
@@ -291,27 +314,32 @@ void check_declared_counts(const std::filesystem::path& path, const std::string&
         faces = counts.faces;
         binary = counts.binary;
     } else if (extension == ".off") {
-        std::string header;
-        while (std::getline(in, line)) {
-            const size_t hash = line.find('#');
-            if (hash != std::string::npos) line.resize(hash);
-            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-            if (header.empty() && line.find("OFF") != std::string::npos) {
-                header = line;
-                binary = line.find("BINARY") != std::string::npos;
-                if (binary) break;
-                const std::string rest = line.substr(line.find("OFF") + 3);
-                if (rest.find_first_not_of(" \t\r") == std::string::npos) continue;
-                line = rest;
-            }
-            std::istringstream(line) >> vertices >> faces;
-            break;
-        }
+        // The counts are read as OpenMesh reads them: the keyword line, then stream tokens.
+        std::string keyword_line;
+        std::getline(in, keyword_line);
+        binary = keyword_line.find("BINARY") != std::string::npos;
         if (binary) {
             uint32_t counts[3] = {0, 0, 0};
             in.read(reinterpret_cast<char*>(counts), sizeof counts);
             vertices = counts[0];
             faces = counts[1];
+        } else {
+            in.seekg(0);
+            std::string keyword;
+            in >> keyword;
+            const bool counts_on_keyword_line = keyword_line.find_first_of("0123456789") != std::string::npos &&
+                                                keyword.find("OFF") != std::string::npos;
+            if (!counts_on_keyword_line) {
+                in.seekg(0);
+                std::getline(in, keyword_line);
+            }
+            long long v = 0, f = 0;
+            if (in >> v >> f) {
+                vertices = uintmax_t(std::max(v, 0LL));
+                faces = uintmax_t(std::max(f, 0LL));
+                if (v < 0 || f < 0) throw InputError(path.string() + ": negative element counts in the header");
+            }
+            check_off_face_sizes(in, vertices, faces, file_size, path);
         }
     }
     const uintmax_t needed = binary ? vertices * kMinBinaryVertexBytes + faces * kMinBinaryFaceBytes
