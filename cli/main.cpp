@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
     render_cmd->add_flag("--centerline", render.centerline,
                          "constant-width centerlines instead of brush outlines (pen plotters, cutters)");
     render_cmd->add_flag("--hidden", render.hidden, "also output occluded lines (visible: false)");
+    render_cmd->add_option("--chunk", render.chunk,
+                           "render chunk K of N contiguous chunks of the frames (K/N), or 'slurm' for the job array task");
     render_cmd->add_flag("--keep-going", render.keep_going, "report a frame that fails and render the rest");
     render_cmd->add_option("--max-faces", render.max_faces, "refuse meshes with more faces")->capture_default_str();
     render_cmd->add_flag("-v,--verbose", render.verbose, "per-frame details on stderr");

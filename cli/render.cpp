@@ -31,11 +31,14 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <regex>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace inkline::cli {
@@ -297,6 +300,44 @@ class Sequence {
     bool warned_inside_ = false;
 };
 
+// SOURCE_DATE_EPOCH when set (the reproducible-builds convention), else the input file's
+// modification time: the same input gives byte-identical PDFs, whichever chunk wrote them.
+std::string reproducible_date(const std::string& input) {
+    std::time_t when = 0;
+    if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch && *epoch) {
+        when = std::time_t(std::strtoll(epoch, nullptr, 10));
+    } else {
+        struct stat info {};
+        if (::stat(input.c_str(), &info) != 0) return "";
+        when = info.st_mtime;
+    }
+    std::tm utc{};
+    gmtime_r(&when, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+    return text;
+}
+
+// "K/N" or "slurm" (SLURM_ARRAY_TASK_ID within SLURM_ARRAY_TASK_MIN..SLURM_ARRAY_TASK_MAX).
+std::pair<int, int> parse_chunk(const std::string& text) {
+    if (text == "slurm") {
+        auto env = [](const char* name) -> long {
+            const char* v = std::getenv(name);
+            if (!v || !*v) throw InputError(std::string("--chunk slurm: ") + name + " is not set (not inside a Slurm job array?)");
+            return std::strtol(v, nullptr, 10);
+        };
+        const long id = env("SLURM_ARRAY_TASK_ID"), lo = env("SLURM_ARRAY_TASK_MIN"), hi = env("SLURM_ARRAY_TASK_MAX");
+        if (id < lo || id > hi || hi - lo > 1000000) throw InputError("--chunk slurm: task id outside the array's bounds");
+        return {int(id - lo + 1), int(hi - lo + 1)};
+    }
+    static const std::regex chunk(R"(^\s*(\d{1,7})\s*/\s*(\d{1,7})\s*$)");
+    std::smatch m;
+    if (!std::regex_match(text, m, chunk)) throw InputError("--chunk '" + text + "': expected K/N or slurm");
+    const int k = std::stoi(m[1]), n = std::stoi(m[2]);
+    if (n < 1 || k < 1 || k > n) throw InputError("--chunk '" + text + "': K must be 1.." + std::to_string(n));
+    return {k, n};
+}
+
 // A progress line rewritten in place on a terminal: frames done, frames per second, time left.
 class Progress {
   public:
@@ -335,6 +376,7 @@ class Writers {
         if (!(args.dpi > 0.0 && args.dpi <= 10000.0)) throw InputError("--dpi: must be between 0 and 10000");
         if (!(args.margin_mm >= 0.0 && args.margin_mm < 1000.0)) throw InputError("--margin: must be 0..1000 mm");
         pdf_options_.title = fs::path(mesh_name).stem().string();
+        pdf_options_.creation_date = reproducible_date(args.input);
         if (!outputs_.pdf.empty() && !outputs_.pdf_per_frame) pdf_ = std::make_unique<output::PdfDocument>(pdf_options_);
     }
 
@@ -389,6 +431,14 @@ class Writers {
 
 }  // namespace
 
+ChunkRange chunk_range(int first, int last, int k, int n) {
+    const long count = long(last) - first + 1;
+    const long base = count / n, extra = count % n;
+    const long begin = first + (k - 1) * base + std::min<long>(k - 1, extra);
+    const long size = base + (k <= extra ? 1 : 0);
+    return {int(begin), int(begin + size - 1)};
+}
+
 int run_render(const RenderArgs& args) {
     // Scene: a file, or a default turntable around a bare mesh.
     const bool from_scene = is_scene_file(args.input);
@@ -405,6 +455,17 @@ int run_render(const RenderArgs& args) {
     if (!args.size.empty()) scene.image = parse_size(args.size);
     if (args.hidden) scene.lines.hidden = true;
     const Outputs outputs = resolve_outputs(args, frames);
+    // A chunk renders its frames after replaying the earlier ones without output: stroke ids,
+    // propagated u and loop starts depend on every earlier frame.
+    FrameRange rendered = frames;
+    if (!args.chunk.empty()) {
+        const auto [k, n] = parse_chunk(args.chunk);
+        const ChunkRange c = chunk_range(frames.first, frames.last, k, n);
+        if (!outputs.pdf.empty() && !outputs.pdf_per_frame) {
+            throw InputError("--pdf '" + outputs.pdf + "': with --chunk, give a per-frame pattern such as pdf/frame_%04d.pdf");
+        }
+        rendered = {c.first, c.last};
+    }
 
     core::MeshFrames meshes(scene.mesh, frames.first);
     const size_t faces = meshes.at(frames.first).triangles.size();
@@ -422,11 +483,22 @@ int run_render(const RenderArgs& args) {
     Sequence sequence(scene, args, meshes, frames.count());
     for (const std::string& w : meshes.warnings()) sequence.warn(w);
     Writers writers(outputs, args, scene);
-    Progress progress(frames.count(), !args.quiet && !args.verbose);
+    Progress progress(std::max(rendered.count(), 0), !args.quiet && !args.verbose);
 
     const auto start = std::chrono::steady_clock::now();
     size_t strokes = 0, files = 0, failed = 0;
-    for (int frame = frames.first; frame <= frames.last; ++frame) {
+    double fast_forward_ms = 0.0;
+    for (int frame = frames.first; frame <= rendered.last; ++frame) {
+        if (frame < rendered.first) {
+            Clock clock;
+            try {
+                sequence.draw(frame);
+            } catch (const InputError& e) {
+                if (!args.keep_going) throw;
+            }
+            fast_forward_ms += clock.lap_ms();
+            continue;
+        }
         DrawnFrame result;
         try {
             result = sequence.draw(frame);
@@ -452,10 +524,14 @@ int run_render(const RenderArgs& args) {
     }
     files += writers.finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const int skipped = rendered.first - frames.first;
     if (!args.quiet) {
-        std::fprintf(stderr, "inkline: %d frame(s)%s, %zu strokes, %zu files in %.2f s (%.1f ms/frame)\n",
-                     frames.count() - int(failed), failed ? (" (" + std::to_string(failed) + " failed)").c_str() : "",
-                     strokes, files, seconds, 1000.0 * seconds / frames.count());
+        const int count = std::max(rendered.count(), 0);
+        std::fprintf(stderr, "inkline: %d frame(s)%s, %zu strokes, %zu files in %.2f s (%.1f ms/frame)", count - int(failed),
+                     failed ? (" (" + std::to_string(failed) + " failed)").c_str() : "", strokes, files, seconds,
+                     count > 0 ? 1000.0 * (seconds - fast_forward_ms / 1000.0) / count : 0.0);
+        if (skipped > 0) std::fprintf(stderr, "; fast-forward %d frame(s) at %.1f ms/frame", skipped, fast_forward_ms / skipped);
+        std::fprintf(stderr, "\n");
     }
     return failed ? 2 : 0;
 }

@@ -25,6 +25,7 @@ struct RenderArgs {
     std::string gl_backend = "auto";      // auto | egl | osmesa
     bool centerline = false;              // constant-width centerlines instead of brush outlines
     bool hidden = false;
+    std::string chunk;        // "K/N" or "slurm": render the K-th of N contiguous chunks of the frames
     bool keep_going = false;
     size_t max_faces = 50'000'000;
     bool verbose = false;
@@ -34,6 +35,14 @@ struct RenderArgs {
 // Renders every frame; returns the process exit code. Throws InputError / OutputError for
 // failures that stop the run.
 int run_render(const RenderArgs& args);
+
+// The frames of chunk `k` (1-based) of `n` contiguous chunks of [first, last]: sizes differ by at
+// most one, earlier chunks take the extra frames. Empty (first > last) when n exceeds the count.
+struct ChunkRange {
+    int first = 0;
+    int last = -1;
+};
+ChunkRange chunk_range(int first, int last, int k, int n);
 
 // Prints a mesh's topology report; returns the exit code.
 int run_info(const std::string& mesh_path);

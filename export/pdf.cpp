@@ -49,6 +49,9 @@ PdfDocument::PdfDocument(const PdfOptions& options) : impl_(std::make_unique<Imp
     impl_->surface = cairo_pdf_surface_create_for_stream(internal::append_to_string, &impl_->bytes, 100, 100);
     cairo_pdf_surface_set_metadata(impl_->surface, CAIRO_PDF_METADATA_TITLE, options.title.c_str());
     cairo_pdf_surface_set_metadata(impl_->surface, CAIRO_PDF_METADATA_CREATOR, "inkline");
+    if (!options.creation_date.empty()) {
+        cairo_pdf_surface_set_metadata(impl_->surface, CAIRO_PDF_METADATA_CREATE_DATE, options.creation_date.c_str());
+    }
     impl_->cr = cairo_create(impl_->surface);
 }
 

@@ -24,6 +24,9 @@ struct PdfOptions {
     double margin_mm = 10.0;       // with a page size: the image is fitted inside the margins
     double dpi = 96.0;             // without a page size: pixels per inch of the image
     std::string title = "inkline";
+    // ISO 8601 "YYYY-MM-DDThh:mm:ss" written as the document's creation date; empty: Cairo's
+    // clock. A fixed date makes the file depend on its input alone.
+    std::string creation_date;
 };
 
 // A PDF document built page by page in memory; finish() returns the file contents.
