@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The inkline program: parses arguments, runs a command, maps errors to exit codes:
 // 0 success, 1 internal error, 2 usage or input error, 3 output error (docs/cli.md).
+#include "cli/farm.h"
 #include "cli/render.h"
 #include "core/error.h"
 #include "export/atomic_file.h"
@@ -13,6 +14,53 @@ namespace {
 
 enum ExitCode { kOk = 0, kInternal = 1, kInputError = 2, kOutputError = 3 };
 
+// The render options, shared by `render` and the render arguments that `farm` passes on.
+void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
+    cmd->add_option("--frames", r.frames, "frame range A:B (inclusive), overrides the scene");
+    cmd->add_option("--size", r.size, "image size WxH in pixels, overrides the scene");
+    cmd->add_option("--json", r.json_pattern, "polylines JSON per frame, e.g. out/json/frame_%04d.json");
+    cmd->add_option("--svg", r.svg_pattern, "SVG per frame, e.g. out/svg/frame_%04d.svg");
+    cmd->add_option("--png", r.png_pattern, "PNG per frame (Cairo), e.g. out/png/frame_%04d.png");
+    cmd->add_option("--pdf", r.pdf_path,
+                           "PDF: a file gets one page per frame; a pattern with %04d one file per frame");
+    cmd->add_option("--page", r.page, "PDF page size: A4, A3, Letter or WxHmm (default: the image at --dpi)");
+    cmd->add_option("--margin", r.margin_mm, "PDF margin in mm with --page")->capture_default_str();
+    cmd->add_option("--dpi", r.dpi, "PDF pixels per inch without --page")->capture_default_str();
+    cmd->add_option("--background", r.background, "colour behind the lines, #rrggbb (default: transparent)");
+    cmd->add_option("-o,--out", r.out_dir, "folder for every output not given explicitly (default: out)");
+    cmd->add_option("--tracker", r.tracker, "silhouette extraction: incremental or brute")
+        ->capture_default_str();
+    cmd->add_option("--visibility", r.visibility,
+                           "occlusion test: auto (gl on hardware GL, else raycast), gl, raycast or exact")
+        ->capture_default_str();
+    cmd->add_option("--gl", r.gl_backend, "GL context: auto (EGL, then OSMesa), egl or osmesa")
+        ->capture_default_str();
+    cmd->add_flag("--centerline", r.centerline,
+                         "constant-width centerlines instead of brush outlines (pen plotters, cutters)");
+    cmd->add_flag("--hidden", r.hidden, "also output occluded lines (visible: false)");
+    cmd->add_option("--chunk", r.chunk,
+                           "render chunk K of N contiguous chunks of the frames (K/N), or 'slurm' for the job array task");
+    cmd->add_flag("--keep-going", r.keep_going, "report a frame that fails and render the rest");
+    cmd->add_option("--max-faces", r.max_faces, "refuse meshes with more faces")->capture_default_str();
+    cmd->add_flag("-v,--verbose", r.verbose, "per-frame details on stderr");
+    cmd->add_flag("-q,--quiet", r.quiet, "no summary or warnings on stderr");
+
+}
+
+// Parses the render options given to `farm` after "--".
+inkline::cli::RenderArgs parse_render_args(const std::vector<std::string>& words) {
+    CLI::App app{"render options"};
+    inkline::cli::RenderArgs r;
+    add_render_options(&app, r);
+    std::vector<std::string> reversed(words.rbegin(), words.rend());  // CLI11 takes them last first
+    try {
+        app.parse(reversed);
+    } catch (const CLI::ParseError& e) {
+        throw inkline::InputError(std::string("render options after --: ") + e.what());
+    }
+    return r;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -23,41 +71,39 @@ int main(int argc, char** argv) {
     inkline::cli::RenderArgs render;
     CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (.json) or a mesh as a turntable");
     render_cmd->add_option("input", render.input, "scene file (.json) or mesh (.obj .off .ply .stl)")->required();
-    render_cmd->add_option("--frames", render.frames, "frame range A:B (inclusive), overrides the scene");
-    render_cmd->add_option("--size", render.size, "image size WxH in pixels, overrides the scene");
-    render_cmd->add_option("--json", render.json_pattern, "polylines JSON per frame, e.g. out/json/frame_%04d.json");
-    render_cmd->add_option("--svg", render.svg_pattern, "SVG per frame, e.g. out/svg/frame_%04d.svg");
-    render_cmd->add_option("--png", render.png_pattern, "PNG per frame (Cairo), e.g. out/png/frame_%04d.png");
-    render_cmd->add_option("--pdf", render.pdf_path,
-                           "PDF: a file gets one page per frame; a pattern with %04d one file per frame");
-    render_cmd->add_option("--page", render.page, "PDF page size: A4, A3, Letter or WxHmm (default: the image at --dpi)");
-    render_cmd->add_option("--margin", render.margin_mm, "PDF margin in mm with --page")->capture_default_str();
-    render_cmd->add_option("--dpi", render.dpi, "PDF pixels per inch without --page")->capture_default_str();
-    render_cmd->add_option("--background", render.background, "colour behind the lines, #rrggbb (default: transparent)");
-    render_cmd->add_option("-o,--out", render.out_dir, "folder for every output not given explicitly (default: out)");
-    render_cmd->add_option("--tracker", render.tracker, "silhouette extraction: incremental or brute")
-        ->capture_default_str();
-    render_cmd->add_option("--visibility", render.visibility,
-                           "occlusion test: auto (gl on hardware GL, else raycast), gl, raycast or exact")
-        ->capture_default_str();
-    render_cmd->add_option("--gl", render.gl_backend, "GL context: auto (EGL, then OSMesa), egl or osmesa")
-        ->capture_default_str();
-    render_cmd->add_flag("--centerline", render.centerline,
-                         "constant-width centerlines instead of brush outlines (pen plotters, cutters)");
-    render_cmd->add_flag("--hidden", render.hidden, "also output occluded lines (visible: false)");
-    render_cmd->add_option("--chunk", render.chunk,
-                           "render chunk K of N contiguous chunks of the frames (K/N), or 'slurm' for the job array task");
-    render_cmd->add_flag("--keep-going", render.keep_going, "report a frame that fails and render the rest");
-    render_cmd->add_option("--max-faces", render.max_faces, "refuse meshes with more faces")->capture_default_str();
-    render_cmd->add_flag("-v,--verbose", render.verbose, "per-frame details on stderr");
-    render_cmd->add_flag("-q,--quiet", render.quiet, "no summary or warnings on stderr");
+    add_render_options(render_cmd, render);
+
+    inkline::cli::FarmArgs farm;
+    CLI::App* farm_cmd = app.add_subcommand("farm", "Write (and with --submit, submit) a Slurm job array for a sequence");
+    farm_cmd->add_option("scene", farm.scene, "scene file (.json) or mesh")->required();
+    farm_cmd->add_option("--chunks", farm.chunks, "number of chunks (array tasks)")->required();
+    farm_cmd->add_option("-o,--out", farm.out_dir, "output folder; the scripts go to DIR/farm/")->required();
+    farm_cmd->add_option("--partition", farm.partition, "sbatch --partition");
+    farm_cmd->add_option("--time", farm.time, "sbatch --time per chunk, e.g. 01:00:00");
+    farm_cmd->add_option("--mem", farm.mem, "sbatch --mem per chunk, e.g. 4G");
+    farm_cmd->add_option("--sbatch", farm.sbatch_args, "any other sbatch option, e.g. --sbatch=--account=lab (repeatable)");
+    farm_cmd->add_option("--assemble-pdf", farm.assemble_pdf,
+                         "multi-page PDF assembled from the per-frame PDFs (default DIR/sequence.pdf)");
+    farm_cmd->add_flag("--submit", farm.submit, "submit with sbatch after writing the scripts");
+    farm_cmd->add_flag("--summarize", farm.summarize, "check every frame's files and assemble the PDF (the summary job)");
+    farm_cmd->footer("Render options for every chunk follow a --, e.g. inkline farm scene.json --chunks 8 -o out -- --png "
+                     "'out/png/f_%04d.png'");
 
     std::string info_path;
     CLI::App* info_cmd = app.add_subcommand("info", "Print a mesh's topology report");
     info_cmd->add_option("mesh", info_path, "mesh file")->required();
 
+    // Words after the first "--" are render options that `farm` passes on to every chunk.
+    int own_words = argc;
+    for (int i = 1; i < argc; ++i) {
+        if (std::string(argv[i]) == "--") {
+            own_words = i;
+            farm.render_args.assign(argv + i + 1, argv + argc);
+            break;
+        }
+    }
     try {
-        app.parse(argc, argv);
+        app.parse(own_words, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? kOk : kInputError;
     }
@@ -65,6 +111,7 @@ int main(int argc, char** argv) {
     try {
         if (*render_cmd) return inkline::cli::run_render(render);
         if (*info_cmd) return inkline::cli::run_info(info_path);
+        if (*farm_cmd) return inkline::cli::run_farm(farm, parse_render_args(farm.render_args));
     } catch (const inkline::InputError& e) {
         std::cerr << "inkline: error: " << e.what() << "\n";
         return kInputError;

@@ -439,6 +439,17 @@ ChunkRange chunk_range(int first, int last, int k, int n) {
     return {int(begin), int(begin + size - 1)};
 }
 
+RenderPlan plan_render(const RenderArgs& args) {
+    FrameRange frames{1, 48};  // a bare mesh's default turntable
+    if (is_scene_file(args.input)) {
+        const core::Scene scene = core::load_scene(args.input);
+        frames = {scene.first_frame, scene.last_frame};
+    }
+    if (!args.frames.empty()) frames = parse_frames(args.frames);
+    const Outputs o = resolve_outputs(args, frames);
+    return {frames.first, frames.last, o.json, o.svg, o.png, o.pdf, o.pdf_per_frame};
+}
+
 int run_render(const RenderArgs& args) {
     // Scene: a file, or a default turntable around a bare mesh.
     const bool from_scene = is_scene_file(args.input);

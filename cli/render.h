@@ -44,6 +44,15 @@ struct ChunkRange {
 };
 ChunkRange chunk_range(int first, int last, int k, int n);
 
+// What a render would write: its frame range and output patterns (reads the scene's frames).
+struct RenderPlan {
+    int first = 1;
+    int last = 1;
+    std::string json, svg, png, pdf;  // patterns; pdf may be a single file
+    bool pdf_per_frame = false;
+};
+RenderPlan plan_render(const RenderArgs& args);
+
 // Prints a mesh's topology report; returns the exit code.
 int run_info(const std::string& mesh_path);
 

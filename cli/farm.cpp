@@ -1,0 +1,169 @@
+// SPDX-License-Identifier: MIT
+#include "cli/farm.h"
+
+#include "core/error.h"
+#include "core/frame_pattern.h"
+#include "export/atomic_file.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace inkline::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// One shell word, single-quoted.
+std::string quote(const std::string& word) {
+    std::string out = "'";
+    for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string self_path() {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string("inkline") : exe.string();
+}
+
+std::string absolute(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
+
+void write_script(const fs::path& path, const std::string& text) {
+    output::write_file_atomically(path, text);
+    ::chmod(path.c_str(), 0755);
+}
+
+// The per-frame files a render plan writes.
+std::vector<std::string> frame_files(const RenderPlan& plan, int frame) {
+    std::vector<std::string> files;
+    for (const std::string* pattern : {&plan.json, &plan.svg, &plan.png}) {
+        if (!pattern->empty()) files.push_back(core::format_frame(*pattern, frame));
+    }
+    if (plan.pdf_per_frame) files.push_back(core::format_frame(plan.pdf, frame));
+    return files;
+}
+
+int summarize(const FarmArgs& args, const RenderPlan& plan) {
+    std::ostringstream report;
+    const int frames = plan.last - plan.first + 1;
+    report << "inkline farm summary: frames " << plan.first << ".." << plan.last << " in " << args.chunks << " chunks\n";
+    bool complete = true;
+    for (int k = 1; k <= args.chunks; ++k) {
+        const ChunkRange c = chunk_range(plan.first, plan.last, k, args.chunks);
+        if (c.first > c.last) continue;
+        std::vector<int> missing;
+        for (int f = c.first; f <= c.last; ++f) {
+            for (const std::string& file : frame_files(plan, f)) {
+                if (!fs::exists(file)) {
+                    missing.push_back(f);
+                    break;
+                }
+            }
+        }
+        report << "chunk " << k << " (frames " << c.first << "-" << c.last << "): ";
+        if (missing.empty()) {
+            report << "ok\n";
+            continue;
+        }
+        complete = false;
+        report << "missing frame(s)";
+        for (int f : missing) report << " " << f;
+        report << "; re-run: sbatch --array=" << k << " " << (fs::path(args.out_dir) / "farm" / "render.sbatch").string()
+               << "\n";
+    }
+    if (complete && !args.assemble_pdf.empty()) {
+        // pdfunite (poppler-utils) joins the per-frame PDFs in frame order.
+        std::string command = "pdfunite";
+        for (int f = plan.first; f <= plan.last; ++f) command += " " + quote(core::format_frame(plan.pdf, f));
+        const std::string temp = output::temporary_path_for(args.assemble_pdf).string();
+        command += " " + quote(temp);
+        fs::create_directories(fs::path(args.assemble_pdf).parent_path());
+        if (std::system(command.c_str()) == 0 && std::rename(temp.c_str(), args.assemble_pdf.c_str()) == 0) {
+            report << "sequence PDF: " << args.assemble_pdf << " (" << frames << " pages)\n";
+        } else {
+            std::remove(temp.c_str());
+            report << "sequence PDF: pdfunite failed or is missing (Debian package poppler-utils)\n";
+            complete = false;
+        }
+    }
+    report << (complete ? "complete\n" : "INCOMPLETE\n");
+    output::write_file_atomically(fs::path(args.out_dir) / "farm" / "summary.txt", report.str());
+    std::fputs(report.str().c_str(), stdout);
+    return complete ? 0 : kFramesMissing;
+}
+
+}  // namespace
+
+int run_farm(const FarmArgs& args, const RenderArgs& render_in) {
+    if (args.chunks < 1 || args.chunks > 100000) throw InputError("--chunks: must be 1..100000");
+    RenderArgs render = render_in;
+    render.input = absolute(args.scene);
+    render.out_dir = absolute(args.out_dir);
+    RenderPlan plan = plan_render(render);
+    if (!plan.pdf.empty() && !plan.pdf_per_frame) {
+        throw InputError("--pdf '" + plan.pdf + "': a farm renders per-frame PDFs (a pattern such as pdf/frame_%04d.pdf); "
+                         "--assemble-pdf names the multi-page result");
+    }
+    FarmArgs farm = args;
+    farm.out_dir = render.out_dir;
+    if (farm.assemble_pdf.empty() && plan.pdf_per_frame) farm.assemble_pdf = (fs::path(farm.out_dir) / "sequence.pdf").string();
+    if (!farm.assemble_pdf.empty() && !plan.pdf_per_frame) throw InputError("--assemble-pdf: the render writes no per-frame PDFs");
+    if (!farm.assemble_pdf.empty()) farm.assemble_pdf = absolute(farm.assemble_pdf);
+    if (args.summarize) return summarize(farm, plan);
+
+    // Every path in the scripts is absolute: jobs may start in any folder on any node.
+    const fs::path dir = fs::path(farm.out_dir) / "farm";
+    const std::string exe = self_path();
+    std::string render_words;
+    for (const std::string& a : args.render_args) render_words += " " + quote(a);
+    std::string farm_words = " --chunks " + std::to_string(args.chunks) + " -o " + quote(farm.out_dir);
+    if (!farm.assemble_pdf.empty()) farm_words += " --assemble-pdf " + quote(farm.assemble_pdf);
+
+    std::ostringstream job;
+    job << "#!/bin/bash\n"
+        << "# One chunk of " << quote(render.input) << " per array task (written by inkline farm).\n"
+        << "#SBATCH --job-name=inkline-render\n"
+        << "#SBATCH --array=1-" << args.chunks << "\n"
+        << "#SBATCH --output=" << (dir / "logs" / "chunk-%a.log").string() << "\n";
+    const std::string cd_line = "cd " + quote(fs::current_path().string()) + "\n";  // relative paths in render options
+    if (!args.partition.empty()) job << "#SBATCH --partition=" << args.partition << "\n";
+    if (!args.time.empty()) job << "#SBATCH --time=" << args.time << "\n";
+    if (!args.mem.empty()) job << "#SBATCH --mem=" << args.mem << "\n";
+    for (const std::string& a : args.sbatch_args) job << "#SBATCH " << a << "\n";
+    job << cd_line << "exec " << quote(exe) << " render " << quote(render.input) << " --chunk slurm -q -o " << quote(render.out_dir)
+        << render_words << "\n";
+    write_script(dir / "render.sbatch", job.str());
+
+    std::ostringstream summary;
+    summary << "#!/bin/bash\n"
+            << "# Runs after every chunk: checks each frame, names chunks to re-run, assembles the PDF.\n"
+            << "#SBATCH --job-name=inkline-summary\n"
+            << "#SBATCH --output=" << (dir / "logs" / "summary.log").string() << "\n";
+    if (!args.partition.empty()) summary << "#SBATCH --partition=" << args.partition << "\n";
+    summary << cd_line << "exec " << quote(exe) << " farm " << quote(render.input) << farm_words << " --summarize --" << render_words
+            << "\n";
+    write_script(dir / "summary.sbatch", summary.str());
+
+    std::ostringstream submit;
+    submit << "#!/bin/bash\n# Submits the chunk array, then the summary once every chunk has ended.\nset -euo pipefail\n"
+           << "array=$(sbatch --parsable " << quote((dir / "render.sbatch").string()) << ")\n"
+           << "array=${array%%;*}\n"
+           << "summary=$(sbatch --parsable --dependency=afterany:$array " << quote((dir / "summary.sbatch").string()) << ")\n"
+           << "echo \"inkline farm: chunks job $array, summary job ${summary%%;*}\"\n";
+    write_script(dir / "submit.sh", submit.str());
+    fs::create_directories(dir / "logs");
+    std::printf("inkline farm: wrote %s (render.sbatch, summary.sbatch, submit.sh): frames %d..%d in %d chunks\n",
+                dir.c_str(), plan.first, plan.last, args.chunks);
+    if (!args.submit) return 0;
+    const std::string command = "bash " + quote((dir / "submit.sh").string());
+    if (std::system(command.c_str()) != 0) throw OutputError((dir / "submit.sh").string() + ": sbatch failed");
+    return 0;
+}
+
+}  // namespace inkline::cli
