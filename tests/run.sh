@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite: installs missing packages, builds, runs every test with CTest.
-# With CI=true (or INKLINE_SANITIZE=1) it also builds and runs the suite under
-# AddressSanitizer + UndefinedBehaviorSanitizer.
+# With CI=true it also runs the Slurm farm test (tests/farm/slurm_test.sh; INKLINE_SLURM_TEST=1
+# alone) and builds and runs the suite under AddressSanitizer + UndefinedBehaviorSanitizer
+# (INKLINE_SANITIZE=1 alone).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -11,6 +12,11 @@ jobs=$(nproc)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DINKLINE_WERROR=ON >/dev/null
 cmake --build build -j "$jobs"
 ctest --test-dir build -j "$jobs" --output-on-failure
+
+# The farm on a real single-node Slurm cluster (root only; installs slurm-wlm and munge).
+if [ "${CI:-}" = "true" ] || [ "${INKLINE_SLURM_TEST:-0}" = "1" ]; then
+  bash tests/farm/slurm_test.sh build
+fi
 
 if [ "${CI:-}" = "true" ] || [ "${INKLINE_SANITIZE:-0}" = "1" ]; then
   echo "== sanitizer build (ASan + UBSan) =="
