@@ -31,7 +31,10 @@ constexpr double kMaxCoordinate = 1e18;
 // non-manifold faces; inkline draws those too, so it keeps the soup and builds its own edge table.
 class SoupImporter final : public OpenMesh::IO::BaseImporter {
   public:
-    explicit SoupImporter(LoadedMesh& r_out) : out_(r_out) {}
+    // Every vertex and face takes at least two bytes of any file format, so a reader that
+    // produces more than max_elements of either is following a lying header: refused before
+    // memory grows past a small multiple of the file size.
+    SoupImporter(LoadedMesh& r_out, uintmax_t file_size) : out_(r_out), max_elements_(file_size / 2 + 16) {}
 
     std::optional<std::string> error;  // the first fatal problem, reported after reading
 
@@ -45,13 +48,14 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
                     (std::isfinite(largest) ? " has a coordinate beyond the limit of 1e18"
                                             : " has a non-finite coordinate");
         }
+        if (out_.mesh.positions.size() >= max_elements_) throw_too_many("vertices");
         out_.mesh.positions.emplace_back(float(p[0]), float(p[1]), float(p[2]));
         return VertexHandle(int(out_.mesh.positions.size()) - 1);
     }
     VertexHandle add_vertex() override { return add_vertex(OpenMesh::Vec3d(0, 0, 0)); }
 
     FaceHandle add_face(const VHandles& corners) override {
-        ++polygons_;
+        if (++polygons_ > max_elements_) throw_too_many("faces");
         if (corners.size() < 3) {
             ++short_faces_;
             return FaceHandle();
@@ -123,7 +127,12 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
     size_t n_edges() const override { return 0; }
 
   private:
+    [[noreturn]] void throw_too_many(const char* what) const {
+        throw InputError(std::string("declares more ") + what + " than the file's size can hold");
+    }
+
     LoadedMesh& out_;
+    uintmax_t max_elements_;
     size_t polygons_ = 0;
     size_t short_faces_ = 0;
 };
@@ -377,15 +386,15 @@ LoadedMesh load_mesh(const std::filesystem::path& path) {
 
     silence_openmesh_streams();
     LoadedMesh out;
-    SoupImporter importer(out);
+    SoupImporter importer(out, file_size);
     OpenMesh::IO::Options options;
     bool ok = false;
     try {
         ok = OpenMesh::IO::IOManager().read(name, importer, options);
     } catch (const std::bad_alloc&) {
         throw InputError(name + ": too large to load into memory");
-    } catch (const InputError&) {
-        throw;
+    } catch (const InputError& e) {
+        throw InputError(name + ": " + e.what());
     } catch (const std::exception& e) {
         throw InputError(name + ": cannot read: " + e.what());
     }
