@@ -395,6 +395,7 @@ class Writers {
             output::write_file_atomically(core::format_frame(outputs_.png, frame.frame), output::png_image(drawing));
             ++files;
         }
+        frame.stats.ms.emplace_back("png", clock.lap_ms());
         if (outputs_.pdf_per_frame) {
             output::PdfDocument page(pdf_options_);
             page.add_page(drawing);
@@ -403,7 +404,7 @@ class Writers {
         } else if (pdf_) {
             pdf_->add_page(drawing);
         }
-        frame.stats.ms.emplace_back("png_pdf", clock.lap_ms());
+        frame.stats.ms.emplace_back("pdf", clock.lap_ms());
         if (!outputs_.json.empty()) {
             output::write_file_atomically(core::format_frame(outputs_.json, frame.frame),
                                           output::polylines_json(frame, &drawn.strokes));
