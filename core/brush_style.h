@@ -6,6 +6,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <filesystem>
+
 namespace inkline::core {
 
 // Defaults are tuned for a 1024 px image of one object: a thin line on the lit side that swells
@@ -22,6 +24,7 @@ struct BrushStyle {
     double turn_angle_deg = 45.0;        // a turn sharper than this splits a stroke (an A end)
     glm::dvec3 color{0.09, 0.08, 0.07};  // sRGB in [0, 1] (#rrggbb / 255); a warm ink black
     double opacity = 1.0;                // in [0, 1]
+    std::filesystem::path tip;           // brush-tip image of the GL preview (PNG); empty: the built-in tip
 };
 
 }  // namespace inkline::core

@@ -221,9 +221,9 @@ glm::dvec3 read_color(const Reader& r, const std::string& key) {
     return color;
 }
 
-BrushStyle read_brush(const Reader& r) {
+BrushStyle read_brush(const Reader& r, const std::filesystem::path& base) {
     r.allow_only({"width_min_px", "width_max_px", "gamma", "invert", "taper_px", "min_length_px", "smooth_px",
-                  "max_deviation_px", "turn_angle_deg", "color", "opacity"});
+                  "max_deviation_px", "turn_angle_deg", "color", "opacity", "tip"});
     BrushStyle b;
     auto non_negative = [&r](const char* key, double fallback) {
         const double v = r.number_or(key, fallback);
@@ -250,6 +250,13 @@ BrushStyle read_brush(const Reader& r) {
     if (r.has("color")) b.color = read_color(r, "color");
     b.opacity = r.number_or("opacity", b.opacity);
     if (!(b.opacity >= 0.0 && b.opacity <= 1.0)) r.fail("opacity", "must be between 0 and 1");
+    if (r.has("tip")) {
+        const std::string tip = r.string("tip");
+        if (tip.empty()) r.fail("tip", "is empty");
+        b.tip = std::filesystem::path(tip).is_absolute() ? std::filesystem::path(tip) : base / tip;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(b.tip, ec)) r.fail("tip", "no such file: " + b.tip.string());
+    }
     return b;
 }
 
@@ -323,7 +330,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
             l.fail("crease_angle_deg", "must be between 0 and 180");
         scene.lines.hidden = l.boolean_or("hidden", false);
     }
-    if (r.has("brush")) scene.brush = read_brush(r.child("brush"));
+    if (r.has("brush")) scene.brush = read_brush(r.child("brush"), scene_file.parent_path());
     return scene;
 }
 

@@ -2,9 +2,12 @@
 #include "core/scene.h"
 
 #include "core/error.h"
+#include "tests/support/obj.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+
+#include <filesystem>
 
 namespace inkline {
 namespace {
@@ -157,6 +160,9 @@ TEST(Scene, BrushErrorsNameTheKey) {
         {R"("brush": {"opacity": 1.5})", "key 'brush.opacity'"},
         {R"("brush": {"turn_angle_deg": 0})", "key 'brush.turn_angle_deg'"},
         {R"("brush": 3)", "key 'brush': expected an object"},
+        {R"("brush": {"tip": "no_such_tip.png"})", "key 'brush.tip': no such file: dir/no_such_tip.png"},
+        {R"("brush": {"tip": ""})", "key 'brush.tip': is empty"},
+        {R"("brush": {"tip": 1})", "key 'brush.tip': expected a string"},
     };
     for (const auto& [brush, expected] : cases) {
         const std::string json = R"({"mesh": "m.obj", )" + camera + ", " + brush + "}";
@@ -164,6 +170,18 @@ TEST(Scene, BrushErrorsNameTheKey) {
         EXPECT_NE(error.find("dir/scene.json: "), std::string::npos) << json;
         EXPECT_NE(error.find(expected), std::string::npos) << json << "\n  gave: " << error;
     }
+}
+
+TEST(Scene, BrushTipResolvesAgainstTheSceneFolder) {
+    namespace fs = std::filesystem;
+    const fs::path dir = test::fresh_temp_dir("BrushTipResolvesAgainstTheSceneFolder");
+    test::write_text(dir / "tip.png", "not read by the scene parser");
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, "brush": {"tip": "tip.png"}})",
+        dir / "scene.json");
+    EXPECT_EQ(s.brush.tip, dir / "tip.png");
+    EXPECT_TRUE(core::parse_scene(kMinimal, "scene.json").brush.tip.empty()) << "no tip: the built-in one";
+    fs::remove_all(dir);
 }
 
 }  // namespace
