@@ -71,6 +71,27 @@ Functions load_functions(const Context& context) {
     INKLINE_GL_LOAD(DeleteRenderbuffers);
     INKLINE_GL_LOAD(BindRenderbuffer);
     INKLINE_GL_LOAD(RenderbufferStorage);
+
+    INKLINE_GL_LOAD(DrawArrays);
+    INKLINE_GL_LOAD(BlendFuncSeparate);
+    INKLINE_GL_LOAD(StencilFunc);
+    INKLINE_GL_LOAD(StencilOp);
+    INKLINE_GL_LOAD(StencilMask);
+    INKLINE_GL_LOAD(ClearBufferfi);
+    INKLINE_GL_LOAD(GenTextures);
+    INKLINE_GL_LOAD(DeleteTextures);
+    INKLINE_GL_LOAD(BindTexture);
+    INKLINE_GL_LOAD(ActiveTexture);
+    INKLINE_GL_LOAD(TexImage2D);
+    INKLINE_GL_LOAD(TexParameteri);
+    INKLINE_GL_LOAD(GenerateMipmap);
+    INKLINE_GL_LOAD(Uniform1i);
+    INKLINE_GL_LOAD(Uniform1f);
+    INKLINE_GL_LOAD(Uniform2f);
+    INKLINE_GL_LOAD(Uniform3f);
+    INKLINE_GL_LOAD(Uniform4f);
+    INKLINE_GL_LOAD(RenderbufferStorageMultisample);
+    INKLINE_GL_LOAD(BlitFramebuffer);
 #undef INKLINE_GL_LOAD
     return fn;
 }

@@ -63,6 +63,28 @@ struct Functions {
     PFNGLDELETERENDERBUFFERSPROC DeleteRenderbuffers = nullptr;
     PFNGLBINDRENDERBUFFERPROC BindRenderbuffer = nullptr;
     PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage = nullptr;
+
+    // Preview pass (gl/preview.cpp): textures, blending, stencil, multisampling.
+    PFNGLDRAWARRAYSPROC DrawArrays = nullptr;
+    PFNGLBLENDFUNCSEPARATEPROC BlendFuncSeparate = nullptr;
+    PFNGLSTENCILFUNCPROC StencilFunc = nullptr;
+    PFNGLSTENCILOPPROC StencilOp = nullptr;
+    PFNGLSTENCILMASKPROC StencilMask = nullptr;
+    PFNGLCLEARBUFFERFIPROC ClearBufferfi = nullptr;
+    PFNGLGENTEXTURESPROC GenTextures = nullptr;
+    PFNGLDELETETEXTURESPROC DeleteTextures = nullptr;
+    PFNGLBINDTEXTUREPROC BindTexture = nullptr;
+    PFNGLACTIVETEXTUREPROC ActiveTexture = nullptr;
+    PFNGLTEXIMAGE2DPROC TexImage2D = nullptr;
+    PFNGLTEXPARAMETERIPROC TexParameteri = nullptr;
+    PFNGLGENERATEMIPMAPPROC GenerateMipmap = nullptr;
+    PFNGLUNIFORM1IPROC Uniform1i = nullptr;
+    PFNGLUNIFORM1FPROC Uniform1f = nullptr;
+    PFNGLUNIFORM2FPROC Uniform2f = nullptr;
+    PFNGLUNIFORM3FPROC Uniform3f = nullptr;
+    PFNGLUNIFORM4FPROC Uniform4f = nullptr;
+    PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC RenderbufferStorageMultisample = nullptr;
+    PFNGLBLITFRAMEBUFFERPROC BlitFramebuffer = nullptr;
 };
 
 // Loads every entry point of `context`, which must be current; throws ContextError naming the

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: MIT
+// A stroke's drawn centerline as triangles for the preview: a quad strip (two points offset by
+// the half-width along the normal at every centerline sample) and half-disc fans on ends that
+// keep their width, the same shape as core::build_outline's filled outline.
+// Based on: the thesis's quad strips ("Creating Chinese brush style": perpendiculars of half the
+// line thickness at both ends of every silhouette edge, four vertices per quad).
+#pragma once
+
+#include "core/strokes.h"
+
+#include <glm/vec2.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace inkline::gl::internal {
+
+// One vertex as the preview's vertex shader reads it (7 floats, tightly packed).
+struct StripVertex {
+    glm::vec2 p_px;    // image px, origin top-left, y down
+    glm::vec2 across;  // (a, b) in strip half-widths: a from -1 (left edge) to 1 (right), b past an end (caps)
+    float s_px;        // arc length from the stroke's start along the centerline; past an end on caps
+    float u_px;        // the stroke's propagated u (continues past the ends on caps)
+    float width_px;    // brush width at the nearest centerline sample (pressure)
+};
+
+struct QuadStrip {
+    std::vector<StripVertex> vertices;
+    std::vector<uint32_t> indices;  // triangles, three indices each
+    double length_px = 0.0;         // centerline arc length (a loop's includes its closing segment)
+    bool closed = false;
+};
+
+struct QuadStripOptions {
+    // Strip half-width over half the brush width: above 1 to make room for a tip's soft margin
+    // (1 / (1 - 2 * edge_margin)).
+    double widen = 1.0;
+    int cap_segments = 12;  // triangles per half-disc cap: 15 degrees each, as the outline's joins
+};
+
+// Triangles of one stroke's drawn centerline (centerline_px, centerline_u, centerline_width).
+// An open stroke gets a cap at each end whose width exceeds a thousandth of a pixel (blunt A and
+// C ends; free S ends taper to a point and get none); a loop closes on itself. Empty when the
+// centerline has fewer than two distinct points.
+QuadStrip quad_strip(const core::Stroke& stroke, const QuadStripOptions& options);
+
+}  // namespace inkline::gl::internal

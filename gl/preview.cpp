@@ -1,0 +1,587 @@
+// SPDX-License-Identifier: MIT
+#include "gl/preview.h"
+
+#include "core/camera.h"
+#include "core/error.h"
+#include "gl/internal/functions.h"
+#include "gl/internal/quad_strip.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+namespace inkline::gl {
+namespace {
+
+// Image pixels (origin top-left, y down) to clip space with y kept downward, so that GL's
+// window row 0 is the image's top row and glReadPixels returns rows from the top.
+constexpr const char* kStrokeVertexShader = R"(#version 330 core
+layout(location = 0) in vec2 p_px;
+layout(location = 1) in vec2 across_in;
+layout(location = 2) in float s_in;
+layout(location = 3) in float u_in;
+layout(location = 4) in float width_in;
+uniform vec2 image_size;
+out vec2 across;
+out float s;
+out float u;
+out float width;
+void main() {
+    gl_Position = vec4(p_px / image_size * 2.0 - 1.0, 0.0, 1.0);
+    across = across_in;
+    s = s_in;
+    u = u_in;
+    width = width_in;
+}
+)";
+
+// The tip image as alpha. Along the stroke: its head over the first head_px, its tail over the
+// last tail_px, its middle repeated by u in between (u is carried from frame to frame, so the
+// texture stays on the paper as the stroke moves); across: v from one edge to the other, and
+// on a cap the distance from its centre, so the edge's profile runs round the cap.
+constexpr const char* kStrokeFragmentShader = R"(#version 330 core
+in vec2 across;
+in float s;
+in float u;
+in float width;
+uniform sampler2D tip;
+uniform float tip_length;     // px along the stroke of the whole image
+uniform vec3 zones;           // head, middle and tail fractions of the image width
+uniform float stroke_length;  // px
+uniform float period;         // px of one repeat of the middle
+uniform int closed;
+uniform vec3 ink;             // sRGB
+uniform float opacity;
+uniform vec3 pressure;        // width_min_px, 1 / (width_max_px - width_min_px) or 0, darkening
+layout(location = 0) out vec4 colour;
+
+// Along-coordinates of the middle (by u) and of the head and tail (by s, clamped to their zones),
+// and how much of the head and of the tail shows at s: each fades into the middle over the
+// last part of its zone next to the middle, so no seam shows where the zones meet.
+struct Along {
+    float middle, head, tail, head_weight, tail_weight;
+};
+const float kZoneBlend = 0.4;  // fraction of a zone, next to the middle, over which it fades
+
+Along along() {
+    Along a;
+    a.middle = zones.x + zones.y * fract(u / period);
+    a.head_weight = 0.0;
+    a.tail_weight = 0.0;
+    a.head = 0.0;
+    a.tail = 1.0;
+    if (closed != 0) return a;
+    float head_px = zones.x * tip_length;
+    float tail_px = zones.z * tip_length;
+    // A stroke shorter than head and tail together shows both, shortened alike.
+    float k = min(1.0, stroke_length / max(head_px + tail_px, 1e-6));
+    head_px = max(head_px * k, 1e-6);
+    tail_px = max(tail_px * k, 1e-6);
+    float sc = clamp(s, 0.0, stroke_length);
+    float to_end = stroke_length - sc;
+    a.head = zones.x * min(sc / head_px, 1.0);
+    a.tail = 1.0 - zones.z * min(to_end / tail_px, 1.0);
+    a.head_weight = 1.0 - smoothstep((1.0 - kZoneBlend) * head_px, head_px, sc);
+    a.tail_weight = 1.0 - smoothstep((1.0 - kZoneBlend) * tail_px, tail_px, to_end);
+    return a;
+}
+
+void main() {
+    float r = length(across);
+    float v = 0.5 + 0.5 * (across.x < 0.0 ? -r : r);
+    // Mip level from the continuous coordinates: the middle's wrap-around would otherwise pick
+    // the smallest level along every seam.
+    vec2 dx = vec2(dFdx(s) / tip_length, 0.5 * dFdx(r));
+    vec2 dy = vec2(dFdy(s) / tip_length, 0.5 * dFdy(r));
+    float y = clamp(v, 0.0, 1.0);
+    Along x = along();
+    float a = textureGrad(tip, vec2(x.middle, y), dx, dy).r;
+    if (x.tail_weight > 0.0) a = mix(a, textureGrad(tip, vec2(x.tail, y), dx, dy).r, x.tail_weight);
+    if (x.head_weight > 0.0) a = mix(a, textureGrad(tip, vec2(x.head, y), dx, dy).r, x.head_weight);
+    a *= opacity;
+    float p = clamp((width - pressure.x) * pressure.y, 0.0, 1.0);
+    colour = vec4(ink * (1.0 - pressure.z * p) * a, a);  // premultiplied
+}
+)";
+
+constexpr const char* kSurfaceVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 p_object;
+layout(location = 1) in vec3 n_object;
+uniform mat4 clip_from_object;
+uniform mat4 world_from_object;
+uniform mat4 normal_world_from_object;
+out vec3 p_world;
+out vec3 n_world;
+void main() {
+    gl_Position = clip_from_object * vec4(p_object, 1.0);
+    p_world = (world_from_object * vec4(p_object, 1.0)).xyz;
+    n_world = mat3(normal_world_from_object) * n_object;
+}
+)";
+
+// Lambert with the frame's light, both sides lit as the side facing the eye; toon shading
+// quantises it into three bands of paper tones.
+constexpr const char* kSurfaceFragmentShader = R"(#version 330 core
+in vec3 p_world;
+in vec3 n_world;
+uniform vec3 eye_world;
+uniform vec3 light;  // direction from the light, or a point light's position
+uniform int point_light;
+uniform int toon;
+layout(location = 0) out vec4 colour;
+const vec3 kLit = vec3(0.97, 0.96, 0.93);
+const vec3 kMid = vec3(0.85, 0.84, 0.81);
+const vec3 kShadow = vec3(0.68, 0.68, 0.68);
+void main() {
+    vec3 n = toon != 0 ? normalize(n_world) : normalize(cross(dFdx(p_world), dFdy(p_world)));
+    if (dot(n, eye_world - p_world) < 0.0) n = -n;
+    vec3 to_light = point_light != 0 ? normalize(light - p_world) : -normalize(light);
+    float i = max(dot(n, to_light), 0.0);
+    vec3 c = toon != 0 ? (i > 0.6 ? kLit : i > 0.25 ? kMid : kShadow) : mix(kShadow, kLit, i);
+    colour = vec4(c, 1.0);
+}
+)";
+
+// Stencil values tell strokes apart so that none blends over itself (one stroke per value,
+// cleared when they run out).
+constexpr int kStencilValues = 255;
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void check_gl(const internal::Functions& fn, const char* step) {
+    const GLenum error = fn.GetError();
+    if (error != GL_NO_ERROR) {
+        throw ContextError(std::string("GL error ") + std::to_string(error) + " while " + step +
+                           " (out of memory for the preview? try fewer samples or a smaller image)");
+    }
+}
+
+GLuint compile(const internal::Functions& fn, GLenum type, const char* source) {
+    const GLuint shader = fn.CreateShader(type);
+    fn.ShaderSource(shader, 1, &source, nullptr);
+    fn.CompileShader(shader);
+    GLint ok = GL_FALSE;
+    fn.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        char log[1024] = {};
+        fn.GetShaderInfoLog(shader, sizeof log, nullptr, log);
+        fn.DeleteShader(shader);
+        throw ContextError(std::string("preview shader does not compile: ") + log);
+    }
+    return shader;
+}
+
+GLuint link_program(const internal::Functions& fn, const char* vertex, const char* fragment) {
+    const GLuint vs = compile(fn, GL_VERTEX_SHADER, vertex);
+    const GLuint fs = compile(fn, GL_FRAGMENT_SHADER, fragment);
+    const GLuint program = fn.CreateProgram();
+    fn.AttachShader(program, vs);
+    fn.AttachShader(program, fs);
+    fn.LinkProgram(program);
+    fn.DeleteShader(vs);
+    fn.DeleteShader(fs);
+    GLint ok = GL_FALSE;
+    fn.GetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        char log[1024] = {};
+        fn.GetProgramInfoLog(program, sizeof log, nullptr, log);
+        fn.DeleteProgram(program);
+        throw ContextError(std::string("preview shaders do not link: ") + log);
+    }
+    return program;
+}
+
+// One stroke's range in the frame's index buffer and what its shader needs.
+struct StrokeDraw {
+    size_t first_index = 0;
+    GLsizei index_count = 0;
+    float length_px = 0.0f;
+    float period_px = 0.0f;
+    bool closed = false;
+};
+
+// Area-weighted vertex normals, object space.
+std::vector<glm::vec3> vertex_normals(const core::Mesh& mesh) {
+    std::vector<glm::dvec3> sum(mesh.positions.size(), glm::dvec3(0.0));
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::dvec3 n = core::face_normal(mesh.positions, t);
+        for (int c = 0; c < 3; ++c) sum[t[c]] += n;
+    }
+    std::vector<glm::vec3> out(sum.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+    for (size_t v = 0; v < sum.size(); ++v) {
+        const double len = glm::length(sum[v]);
+        if (len > 0.0) out[v] = glm::vec3(sum[v] / len);
+    }
+    return out;
+}
+
+}  // namespace
+
+struct PreviewRenderer::Impl {
+    internal::Functions fn;
+    core::BrushStyle style;
+    PreviewOptions options;
+    BrushTip tip_layout;  // fractions and margin; pixels live in the texture
+    double tip_length_px = 0.0;
+    int samples = 1;
+    GLint max_size = 0;
+
+    GLuint stroke_program = 0, surface_program = 0;
+    GLuint stroke_vao = 0, stroke_vertices = 0, stroke_indices = 0;
+    GLuint surface_vao = 0, surface_positions = 0, surface_normals = 0, surface_indices = 0;
+    GLuint tip_texture = 0;
+    GLuint msaa_fbo = 0, msaa_color = 0, msaa_depth_stencil = 0;
+    GLuint resolve_fbo = 0, resolve_color = 0;
+    int fb_width = 0, fb_height = 0;
+    PreviewStats stats;
+
+    struct StrokeUniforms {
+        GLint image_size, tip, tip_length, zones, stroke_length, period, closed, ink, opacity, pressure;
+    } su{};
+    struct SurfaceUniforms {
+        GLint clip_from_object, world_from_object, normal_world_from_object, eye_world, light, point_light, toon;
+    } fu{};
+
+    ~Impl() {
+        if (!fn.DeleteProgram) return;  // loading failed: nothing was created
+        fn.DeleteFramebuffers(1, &msaa_fbo);
+        fn.DeleteFramebuffers(1, &resolve_fbo);
+        const GLuint renderbuffers[] = {msaa_color, msaa_depth_stencil, resolve_color};
+        fn.DeleteRenderbuffers(3, renderbuffers);
+        fn.DeleteTextures(1, &tip_texture);
+        const GLuint buffers[] = {stroke_vertices, stroke_indices, surface_positions, surface_normals, surface_indices};
+        fn.DeleteBuffers(5, buffers);
+        const GLuint arrays[] = {stroke_vao, surface_vao};
+        fn.DeleteVertexArrays(2, arrays);
+        fn.DeleteProgram(stroke_program);
+        fn.DeleteProgram(surface_program);
+    }
+
+    void setup(const BrushTip& tip) {
+        stroke_program = link_program(fn, kStrokeVertexShader, kStrokeFragmentShader);
+        surface_program = link_program(fn, kSurfaceVertexShader, kSurfaceFragmentShader);
+        auto stroke_uniform = [&](const char* name) { return fn.GetUniformLocation(stroke_program, name); };
+        su = {stroke_uniform("image_size"), stroke_uniform("tip"),           stroke_uniform("tip_length"),
+              stroke_uniform("zones"),      stroke_uniform("stroke_length"), stroke_uniform("period"),
+              stroke_uniform("closed"),     stroke_uniform("ink"),           stroke_uniform("opacity"),
+              stroke_uniform("pressure")};
+        auto surface_uniform = [&](const char* name) { return fn.GetUniformLocation(surface_program, name); };
+        fu = {surface_uniform("clip_from_object"),
+              surface_uniform("world_from_object"),
+              surface_uniform("normal_world_from_object"),
+              surface_uniform("eye_world"),
+              surface_uniform("light"),
+              surface_uniform("point_light"),
+              surface_uniform("toon")};
+
+        // Stroke vertices: internal::StripVertex, 7 floats.
+        fn.GenVertexArrays(1, &stroke_vao);
+        fn.GenBuffers(1, &stroke_vertices);
+        fn.GenBuffers(1, &stroke_indices);
+        fn.BindVertexArray(stroke_vao);
+        fn.BindBuffer(GL_ARRAY_BUFFER, stroke_vertices);
+        const auto stride = GLsizei(sizeof(internal::StripVertex));
+        const struct {
+            GLint size;
+            size_t offset;
+        } attributes[] = {{2, offsetof(internal::StripVertex, p_px)},
+                          {2, offsetof(internal::StripVertex, across)},
+                          {1, offsetof(internal::StripVertex, s_px)},
+                          {1, offsetof(internal::StripVertex, u_px)},
+                          {1, offsetof(internal::StripVertex, width_px)}};
+        for (GLuint i = 0; i < 5; ++i) {
+            fn.EnableVertexAttribArray(i);
+            fn.VertexAttribPointer(i, attributes[i].size, GL_FLOAT, GL_FALSE, stride,
+                                   reinterpret_cast<const void*>(attributes[i].offset));
+        }
+        fn.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, stroke_indices);
+
+        // Surface: positions and normals, one vec3 each.
+        fn.GenVertexArrays(1, &surface_vao);
+        fn.GenBuffers(1, &surface_positions);
+        fn.GenBuffers(1, &surface_normals);
+        fn.GenBuffers(1, &surface_indices);
+        fn.BindVertexArray(surface_vao);
+        fn.BindBuffer(GL_ARRAY_BUFFER, surface_positions);
+        fn.EnableVertexAttribArray(0);
+        fn.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+        fn.BindBuffer(GL_ARRAY_BUFFER, surface_normals);
+        fn.EnableVertexAttribArray(1);
+        fn.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+        fn.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, surface_indices);
+        fn.BindVertexArray(0);
+
+        // The tip: one channel, mipmapped, so thin strokes average its streaks instead of
+        // aliasing them.
+        GLint max_texture = 0;
+        fn.GetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
+        if (tip.width > max_texture || tip.height > max_texture) {
+            throw InputError("brush tip of " + std::to_string(tip.width) + "x" + std::to_string(tip.height) +
+                             " px exceeds this GL's texture limit of " + std::to_string(max_texture) + " px");
+        }
+        fn.GenTextures(1, &tip_texture);
+        fn.ActiveTexture(GL_TEXTURE0);
+        fn.BindTexture(GL_TEXTURE_2D, tip_texture);
+        fn.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        fn.TexImage2D(GL_TEXTURE_2D, 0, GL_R8, tip.width, tip.height, 0, GL_RED, GL_UNSIGNED_BYTE, tip.alpha.data());
+        fn.GenerateMipmap(GL_TEXTURE_2D);
+        fn.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        fn.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        fn.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        fn.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+
+        fn.GenFramebuffers(1, &msaa_fbo);
+        fn.GenFramebuffers(1, &resolve_fbo);
+        fn.GenRenderbuffers(1, &msaa_color);
+        fn.GenRenderbuffers(1, &msaa_depth_stencil);
+        fn.GenRenderbuffers(1, &resolve_color);
+        GLint max_samples = 1, renderbuffer_size = 0, viewport_size[2] = {0, 0};
+        fn.GetIntegerv(GL_MAX_SAMPLES, &max_samples);
+        fn.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer_size);
+        fn.GetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport_size);
+        samples = std::clamp(options.samples, 1, std::max(max_samples, 1));
+        max_size = std::min({renderbuffer_size, viewport_size[0], viewport_size[1]});
+        check_gl(fn, "setting up the preview");
+    }
+
+    // (Re)allocates the multisampled and the resolve framebuffers for an image size.
+    void resize(int width, int height) {
+        if (width == fb_width && height == fb_height) return;
+        fn.BindRenderbuffer(GL_RENDERBUFFER, msaa_color);
+        fn.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+        fn.BindRenderbuffer(GL_RENDERBUFFER, msaa_depth_stencil);
+        fn.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH24_STENCIL8, width, height);
+        fn.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo);
+        fn.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color);
+        fn.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_stencil);
+        const GLenum msaa_status = fn.CheckFramebufferStatus(GL_FRAMEBUFFER);
+        fn.BindRenderbuffer(GL_RENDERBUFFER, resolve_color);
+        fn.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+        fn.BindFramebuffer(GL_FRAMEBUFFER, resolve_fbo);
+        fn.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_color);
+        check_gl(fn, "allocating the preview framebuffers");
+        if (msaa_status != GL_FRAMEBUFFER_COMPLETE ||
+            fn.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            throw ContextError("the GL context cannot render a " + std::to_string(width) + "x" +
+                               std::to_string(height) + " RGBA8 framebuffer with " + std::to_string(samples) +
+                               " samples");
+        }
+        fb_width = width;
+        fb_height = height;
+    }
+
+    // Every drawn visible stroke's strip in one vertex and one index buffer.
+    std::vector<StrokeDraw> upload_strokes(const core::FrameStrokes& strokes) {
+        const internal::QuadStripOptions strip_options{.widen = 1.0 / (1.0 - 2.0 * tip_layout.edge_margin)};
+        const double middle_px = (1.0 - tip_layout.head_fraction - tip_layout.tail_fraction) * tip_length_px;
+        std::vector<internal::StripVertex> vertices;
+        std::vector<uint32_t> indices;
+        std::vector<StrokeDraw> draws;
+        for (const core::Stroke& stroke : strokes.strokes) {
+            if (!stroke.visible || !stroke.drawn) continue;
+            internal::QuadStrip strip = internal::quad_strip(stroke, strip_options);
+            if (strip.indices.empty()) continue;
+            StrokeDraw draw;
+            draw.first_index = indices.size();
+            draw.index_count = GLsizei(strip.indices.size());
+            draw.length_px = float(strip.length_px);
+            draw.closed = strip.closed;
+            // A loop repeats the middle a whole number of times, so it has no seam.
+            const double period = std::max(middle_px, 1e-3);
+            draw.period_px =
+                float(strip.closed ? strip.length_px / std::max(1.0, std::round(strip.length_px / period)) : period);
+            const auto base = uint32_t(vertices.size());
+            for (const uint32_t i : strip.indices) indices.push_back(base + i);
+            vertices.insert(vertices.end(), strip.vertices.begin(), strip.vertices.end());
+            draws.push_back(draw);
+        }
+        fn.BindVertexArray(stroke_vao);
+        fn.BindBuffer(GL_ARRAY_BUFFER, stroke_vertices);
+        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(internal::StripVertex)), vertices.data(),
+                      GL_STREAM_DRAW);
+        fn.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(),
+                      GL_STREAM_DRAW);
+        check_gl(fn, "uploading the strokes");
+        stats.strokes = draws.size();
+        stats.triangles = indices.size() / 3;
+        return draws;
+    }
+
+    void draw_surface(const core::FrameLines& frame, const PreviewSurface& surface) {
+        const core::Mesh& mesh = *surface.mesh;
+        const std::vector<glm::vec3> normals = vertex_normals(mesh);
+        fn.BindVertexArray(surface_vao);
+        fn.BindBuffer(GL_ARRAY_BUFFER, surface_positions);
+        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data(),
+                      GL_STREAM_DRAW);
+        fn.BindBuffer(GL_ARRAY_BUFFER, surface_normals);
+        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(normals.size() * sizeof(glm::vec3)), normals.data(), GL_STREAM_DRAW);
+        fn.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)),
+                      mesh.triangles.data(), GL_STREAM_DRAW);
+        // The camera's clip space with y flipped: the framebuffer's rows run down the image.
+        const glm::dmat4 flip_y = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0, -1.0, 1.0));
+        const glm::mat4 clip_from_object(flip_y * core::clip_from_view(frame.camera, frame.image) *
+                                         core::view_from_world(frame.camera) * surface.world_from_object);
+        const glm::mat4 world_from_object(surface.world_from_object);
+        const glm::mat4 normal_world_from_object(glm::inverseTranspose(glm::dmat3(surface.world_from_object)));
+        const core::Light& light = frame.light;
+        const glm::vec3 light_vector(light.is_point ? light.position : light.direction);
+        fn.UseProgram(surface_program);
+        fn.UniformMatrix4fv(fu.clip_from_object, 1, GL_FALSE, &clip_from_object[0][0]);
+        fn.UniformMatrix4fv(fu.world_from_object, 1, GL_FALSE, &world_from_object[0][0]);
+        fn.UniformMatrix4fv(fu.normal_world_from_object, 1, GL_FALSE, &normal_world_from_object[0][0]);
+        fn.Uniform3f(fu.eye_world, float(frame.camera.eye.x), float(frame.camera.eye.y), float(frame.camera.eye.z));
+        fn.Uniform3f(fu.light, light_vector.x, light_vector.y, light_vector.z);
+        fn.Uniform1i(fu.point_light, light.is_point ? 1 : 0);
+        fn.Uniform1i(fu.toon, options.underlay == Underlay::kToon ? 1 : 0);
+        fn.Enable(GL_DEPTH_TEST);
+        fn.DepthFunc(GL_LESS);
+        fn.DepthMask(GL_TRUE);
+        fn.DrawElements(GL_TRIANGLES, GLsizei(3 * mesh.triangles.size()), GL_UNSIGNED_INT, nullptr);
+        fn.Disable(GL_DEPTH_TEST);
+    }
+
+    void draw_strokes(const std::vector<StrokeDraw>& draws, core::ImageSize image) {
+        fn.UseProgram(stroke_program);
+        fn.BindVertexArray(stroke_vao);
+        fn.ActiveTexture(GL_TEXTURE0);
+        fn.BindTexture(GL_TEXTURE_2D, tip_texture);
+        fn.Uniform1i(su.tip, 0);
+        fn.Uniform2f(su.image_size, float(image.width), float(image.height));
+        fn.Uniform1f(su.tip_length, float(tip_length_px));
+        const double middle = 1.0 - tip_layout.head_fraction - tip_layout.tail_fraction;
+        fn.Uniform3f(su.zones, float(tip_layout.head_fraction), float(middle), float(tip_layout.tail_fraction));
+        fn.Uniform3f(su.ink, float(style.color.r), float(style.color.g), float(style.color.b));
+        fn.Uniform1f(su.opacity, float(style.opacity));
+        const double range = style.width_max_px - style.width_min_px;
+        fn.Uniform3f(su.pressure, float(style.width_min_px), range > 0.0 ? float(1.0 / range) : 0.0f,
+                     float(options.pressure_darkening));
+        // Premultiplied "over": strokes layer like ink.
+        fn.Enable(GL_BLEND);
+        fn.BlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        // A sample takes each stroke once: where a strip folds over itself (tight bends, caps
+        // over the strip) the second layer fails the stencil test.
+        fn.Enable(GL_STENCIL_TEST);
+        fn.StencilMask(0xff);
+        fn.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+        int value = 0;
+        for (const StrokeDraw& d : draws) {
+            if (++value > kStencilValues) {
+                fn.ClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+                value = 1;
+            }
+            fn.StencilFunc(GL_GREATER, value, 0xff);
+            fn.Uniform1f(su.stroke_length, d.length_px);
+            fn.Uniform1f(su.period, d.period_px);
+            fn.Uniform1i(su.closed, d.closed ? 1 : 0);
+            fn.DrawElements(GL_TRIANGLES, d.index_count, GL_UNSIGNED_INT,
+                            reinterpret_cast<const void*>(d.first_index * sizeof(uint32_t)));
+        }
+        fn.Disable(GL_STENCIL_TEST);
+        fn.Disable(GL_BLEND);
+    }
+
+    PreviewImage read_back() {
+        PreviewImage out;
+        out.width = fb_width;
+        out.height = fb_height;
+        out.rgba.resize(size_t(fb_width) * size_t(fb_height) * 4);
+        fn.BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo);
+        fn.ReadBuffer(GL_COLOR_ATTACHMENT0);
+        fn.PixelStorei(GL_PACK_ALIGNMENT, 4);
+        fn.ReadPixels(0, 0, fb_width, fb_height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
+        check_gl(fn, "reading back the preview");
+        // Premultiplied to straight alpha.
+        for (size_t k = 0; k < out.rgba.size(); k += 4) {
+            const unsigned a = out.rgba[k + 3];
+            if (a == 0 || a == 255) continue;
+            for (size_t c = 0; c < 3; ++c)
+                out.rgba[k + c] = uint8_t(std::min(255u, (out.rgba[k + c] * 255u + a / 2) / a));
+        }
+        return out;
+    }
+};
+
+PreviewRenderer::PreviewRenderer(const Context& context, const core::BrushStyle& style, const BrushTip& tip,
+                                 const PreviewOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+    INKLINE_CHECK(tip.width >= 2 && tip.height >= 2);
+    INKLINE_CHECK_EQ(tip.alpha.size(), size_t(tip.width) * size_t(tip.height));
+    INKLINE_CHECK(tip.head_fraction >= 0.0 && tip.tail_fraction >= 0.0 && tip.head_fraction + tip.tail_fraction < 1.0);
+    INKLINE_CHECK(tip.edge_margin >= 0.0 && tip.edge_margin < 0.5);
+    if (!(options.tip_length_px >= 0.0 && options.pressure_darkening >= 0.0 && options.pressure_darkening <= 1.0)) {
+        throw InputError("preview: tip length must not be negative and pressure darkening must be in 0..1");
+    }
+    Impl& m = *impl_;
+    m.style = style;
+    m.options = options;
+    m.tip_layout = tip;
+    m.tip_layout.alpha.clear();
+    // Widths below a pixel would lay the tip out shorter than its streaks are wide.
+    m.tip_length_px =
+        options.tip_length_px > 0.0 ? options.tip_length_px : tip.aspect() * std::max(style.width_max_px, 1.0);
+    m.fn = internal::load_functions(context);
+    m.setup(tip);
+}
+
+PreviewRenderer::~PreviewRenderer() = default;
+
+PreviewImage PreviewRenderer::render(const core::FrameLines& frame, const core::FrameStrokes& strokes,
+                                     const PreviewSurface& surface) {
+    Impl& m = *impl_;
+    const internal::Functions& fn = m.fn;
+    const core::ImageSize image = frame.image;
+    INKLINE_CHECK(image.width > 0 && image.height > 0);
+    const bool underlay = m.options.underlay != Underlay::kNone;
+    INKLINE_CHECK(!underlay || surface.mesh != nullptr);
+    if (image.width > m.max_size || image.height > m.max_size) {
+        throw InputError("preview of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                         " px is larger than this GL's framebuffer limit of " + std::to_string(m.max_size) + " px");
+    }
+
+    auto start = std::chrono::steady_clock::now();
+    const std::vector<StrokeDraw> draws = m.upload_strokes(strokes);
+    m.stats.geometry_ms = ms_since(start);
+
+    start = std::chrono::steady_clock::now();
+    m.resize(image.width, image.height);
+    fn.BindFramebuffer(GL_FRAMEBUFFER, m.msaa_fbo);
+    const GLenum draw_buffer = GL_COLOR_ATTACHMENT0;
+    fn.DrawBuffers(1, &draw_buffer);
+    fn.Viewport(0, 0, image.width, image.height);
+    fn.Disable(GL_CULL_FACE);
+    fn.Disable(GL_DEPTH_CLAMP);
+    const glm::vec3 background(m.options.background.value_or(glm::dvec3(0.0)));
+    const GLfloat clear[4] = {background.r, background.g, background.b, m.options.background ? 1.0f : 0.0f};
+    fn.ClearBufferfv(GL_COLOR, 0, clear);
+    fn.DepthMask(GL_TRUE);
+    fn.StencilMask(0xff);
+    fn.ClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+    if (underlay) m.draw_surface(frame, surface);
+    m.draw_strokes(draws, image);
+    // Resolve the samples into the single-sampled buffer that is read back.
+    fn.BindFramebuffer(GL_READ_FRAMEBUFFER, m.msaa_fbo);
+    fn.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m.resolve_fbo);
+    fn.BlitFramebuffer(0, 0, image.width, image.height, 0, 0, image.width, image.height, GL_COLOR_BUFFER_BIT,
+                       GL_NEAREST);
+    fn.Finish();
+    check_gl(fn, "rendering the preview");
+    m.stats.render_ms = ms_since(start);
+    m.stats.samples = m.samples;
+
+    start = std::chrono::steady_clock::now();
+    PreviewImage out = m.read_back();
+    m.stats.readback_ms = ms_since(start);
+    return out;
+}
+
+const PreviewStats& PreviewRenderer::last_render() const { return impl_->stats; }
+
+}  // namespace inkline::gl

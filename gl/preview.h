@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+// The GL preview (`--preview`): a frame's brush strokes drawn as quad strips textured with a
+// brush-tip image used as alpha, offscreen and multisampled, read back as RGBA pixels. It is fed
+// by the same strokes as the SVG/PDF (centerline, width, u), so it shows what they show, with
+// ink texture on top; export/png.h's png_from_rgba() writes the pixels out.
+// Based on: the thesis's Chinese brush rendering ("Creating Chinese brush style": silhouettes
+// as polygonal quad strips, a grayscale stroke-tip image as the alpha of the line shader).
+#pragma once
+
+#include "core/brush_style.h"
+#include "core/frame_lines.h"
+#include "core/mesh.h"
+#include "core/strokes.h"
+#include "gl/brush_tip.h"
+#include "gl/context.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace inkline::gl {
+
+// The mesh under the strokes, shaded with the frame's light.
+enum class Underlay : uint8_t {
+    kNone,  // strokes only
+    kFlat,  // one shade per face, Lambert
+    kToon,  // smooth normals, three flat bands (lit, mid, shadow)
+};
+
+struct PreviewOptions {
+    // Samples per pixel; lowered to what the context allows (llvmpipe: 8). The coverage of thin
+    // strokes needs several: with 1 they break up into dashes.
+    int samples = 8;
+    std::optional<glm::dvec3> background;  // sRGB in [0, 1], filled first; none: transparent
+    Underlay underlay = Underlay::kNone;
+    // Ink at full pressure (width_max_px) is this much darker than at width_min_px: colour times
+    // (1 - pressure_darkening * pressure).
+    double pressure_darkening = 0.35;
+    // Length along the stroke of the whole tip image, px; 0: the image's aspect ratio times the
+    // style's width_max_px, so the image keeps its proportions on the widest strokes.
+    double tip_length_px = 0.0;
+};
+
+// The mesh drawn under the strokes with PreviewOptions::underlay: the frame's mesh (not owned;
+// alive during render()) and its object motion. The camera and light come from the frame.
+struct PreviewSurface {
+    const core::Mesh* mesh = nullptr;
+    glm::dmat4 world_from_object{1.0};
+};
+
+// Straight-alpha RGBA pixels, sRGB, rows from the top: what png_from_rgba() takes.
+struct PreviewImage {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba;  // #width*height*4
+
+    const uint8_t* pixel(int x, int y) const { return &rgba[(size_t(y) * size_t(width) + size_t(x)) * 4]; }
+};
+
+// Sizes and timings of the last render().
+struct PreviewStats {
+    size_t strokes = 0;        // drawn
+    size_t triangles = 0;      // strips and caps
+    int samples = 0;           // per pixel, as used
+    double geometry_ms = 0.0;  // strips built and uploaded
+    double render_ms = 0.0;    // clear, underlay, strokes, resolve, finish
+    double readback_ms = 0.0;  // pixels copied to the CPU and un-premultiplied
+};
+
+// Renders frames with one style and tip; holds the GL objects between frames.
+class PreviewRenderer {
+  public:
+    // `context` must be current on this thread and outlive this object. Throws ContextError when
+    // the context cannot run the pass, InputError when the tip exceeds GL's texture size.
+    PreviewRenderer(const Context& context, const core::BrushStyle& style, const BrushTip& tip,
+                    const PreviewOptions& options = {});
+    ~PreviewRenderer();
+    PreviewRenderer(const PreviewRenderer&) = delete;
+    PreviewRenderer& operator=(const PreviewRenderer&) = delete;
+
+    // Draws the visible, drawn strokes of one frame (hidden lines are left out) at frame.image,
+    // over the underlay when the options ask for one (then `surface.mesh` is required).
+    // Strokes overlap like layers of ink; a stroke never darkens itself where it folds over.
+    // Throws InputError when the image exceeds GL's framebuffer size limit.
+    PreviewImage render(const core::FrameLines& frame, const core::FrameStrokes& strokes,
+                        const PreviewSurface& surface = {});
+
+    const PreviewStats& last_render() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace inkline::gl
