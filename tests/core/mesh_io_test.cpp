@@ -138,12 +138,17 @@ TEST_F(MeshIo, BinaryGarbageIsAnError) {
 TEST_F(MeshIo, HeaderCountsBeyondTheFileSizeAreRefused_fuzz_huge_counts) {
     test::write_text(dir / "huge.off", "OFF\n99999999 99999999 0\n0 0 0\n");
     EXPECT_NE(error_of(dir / "huge.off").find("more than the file's"), std::string::npos);
-    // The fuzzer's variant: separators on the keyword line, counts on the next.
-    test::write_text(dir / "sep.off", "OFF\x1c\x1c\x1c\n99999999 9-\0\0\0ex 1\nproperty 0 0\nt ");
-    EXPECT_NE(error_of(dir / "sep.off").find("more than the file's"), std::string::npos) << error_of(dir / "sep.off");
+    // The fuzzer's variants: separators on the keyword line, and a face claiming 2e9 corners.
+    test::write_text(dir / "sep.off", "OFF\x1c\x1c\x1c\n99999999 9-\nproperty 0 0\nt ");
+    EXPECT_NE(error_of(dir / "sep.off").find("sep.off:1: not an OFF file"), std::string::npos) << error_of(dir / "sep.off");
+    test::write_text(dir / "counts.off", "OFF\n99999999 9\n0 0 0\n");
+    EXPECT_NE(error_of(dir / "counts.off").find("counts.off:2: declares 99999999 vertices"), std::string::npos)
+        << error_of(dir / "counts.off");
     test::write_text(dir / "corners.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n");
-    EXPECT_NE(error_of(dir / "corners.off").find("a face declares 2000000000 corners"), std::string::npos)
+    EXPECT_NE(error_of(dir / "corners.off").find("corners.off:6: expected a face's corner count"), std::string::npos)
         << error_of(dir / "corners.off");
+    test::write_text(dir / "binary.off", "OFF BINARY\n");
+    EXPECT_NE(error_of(dir / "binary.off").find("binary OFF is not supported"), std::string::npos);
     test::write_text(dir / "huge.ply",
                      "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\n"
                      "property float y\nproperty float z\nend_header\n");

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+#include "core/internal/mesh_checks.h"
+
+#include "core/error.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace inkline::core::internal {
+namespace {
+
+// Each element needs at least this many bytes: an ASCII vertex "0 0 0\n", face "3 0 1 2\n";
+// a binary vertex three floats, a face a count byte and three indices.
+constexpr uintmax_t kMinTextVertexBytes = 6;
+constexpr uintmax_t kMinTextFaceBytes = 8;
+constexpr uintmax_t kMinBinaryVertexBytes = 12;
+constexpr uintmax_t kMinBinaryFaceBytes = 13;
+
+struct PlyCounts {
+    uintmax_t vertices = 0;
+    uintmax_t faces = 0;
+    bool binary = false;
+};
+
+// OpenMesh's PLY reader reserves memory for the declared counts before reading any element.
+void check_counts(const std::filesystem::path& path, const PlyCounts& c, uintmax_t file_size) {
+    const uintmax_t needed = c.binary ? c.vertices * kMinBinaryVertexBytes + c.faces * kMinBinaryFaceBytes
+                                      : c.vertices * kMinTextVertexBytes + c.faces * kMinTextFaceBytes;
+    if (c.vertices > file_size || c.faces > file_size || needed > file_size) {
+        throw InputError(path.string() + ": header declares " + std::to_string(c.vertices) + " vertices and " +
+                         std::to_string(c.faces) + " faces, more than the file's " + std::to_string(file_size) +
+                         " bytes can hold");
+    }
+}
+
+}  // namespace
+
+// Reads one coordinate with strtod, which also accepts "nan" and "inf", so they can be named.
+double scan_coordinate(const std::string& where, const char*& r_cursor) {
+    char* end = nullptr;
+    const double value = std::strtod(r_cursor, &end);
+    if (end == r_cursor) throw InputError(where + ": vertex needs three numbers");
+    if (!std::isfinite(value)) throw InputError(where + ": vertex has a non-finite coordinate");
+    if (std::abs(value) > kMaxCoordinate) {
+        throw InputError(where + ": coordinate " + std::to_string(value) + " exceeds the limit of 1e18");
+    }
+    r_cursor = end;
+    return value;
+}
+
+// OpenMesh's OBJ reader silently skips a vertex line it cannot parse ("v nan 0 0", or a value
+// beyond float range), which shifts every later index, and drops faces of fewer than 3 corners
+// unreported. This pass names such vertex lines and counts those faces.
+size_t check_obj(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    size_t number = 0, short_faces = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t')) continue;
+        if (line[0] == 'f') {
+            std::istringstream corners(line.substr(2));
+            std::string corner;
+            int count = 0;
+            while (corners >> corner) ++count;
+            short_faces += count < 3;
+        }
+        if (line[0] != 'v') continue;
+        const char* cursor = line.c_str() + 2;
+        const std::string where = path.string() + ":" + std::to_string(number);
+        for (int axis = 0; axis < 3; ++axis) scan_coordinate(where, cursor);
+    }
+    return short_faces;
+}
+
+// OpenMesh's PLY reader trusts the header's structure (a property before any element crashes
+// it), so the header is checked line by line first: "ply", one "format", then "element NAME N",
+// "property TYPE NAME", "property list TYPE TYPE NAME", "comment" and "obj_info" lines, up to
+// "end_header".
+void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
+    static const std::set<std::string> kTypes = {"char",  "uchar",  "short",  "ushort",  "int",    "uint",
+                                                 "float", "double", "int8",   "uint8",   "int16",  "uint16",
+                                                 "int32", "uint32", "float32", "float64"};
+    constexpr int kMaxHeaderLines = 1000;
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    PlyCounts counts;
+    bool have_format = false, in_element = false;
+    for (int number = 1; number <= kMaxHeaderLines && std::getline(in, line); ++number) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        auto fail = [&](const std::string& problem) {
+            throw InputError(path.string() + ":" + std::to_string(number) + ": malformed PLY header: " + problem);
+        };
+        std::istringstream words(line);
+        std::string keyword;
+        words >> keyword;
+        if (number == 1) {
+            if (keyword != "ply") fail("the file must start with 'ply'");
+            continue;
+        }
+        if (keyword == "end_header") {
+            if (!have_format) fail("no format line");
+            check_counts(path, counts, file_size);
+            return;
+        }
+        if (keyword == "comment" || keyword == "obj_info" || keyword.empty()) continue;
+        if (keyword == "format") {
+            std::string format, version;
+            if (!(words >> format >> version) ||
+                (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")) {
+                fail("unknown format");
+            }
+            have_format = true;
+            counts.binary = format != "ascii";
+        } else if (keyword == "element") {
+            std::string name, count_text, extra;
+            if (!(words >> name >> count_text) || (words >> extra) ||
+                count_text.find_first_not_of("0123456789") != std::string::npos || count_text.size() > 12) {
+                fail("expected 'element NAME COUNT'");
+            }
+            const uintmax_t count = std::stoull(count_text);
+            if (name == "vertex") counts.vertices = count;
+            if (name == "face") counts.faces = count;
+            in_element = true;
+        } else if (keyword == "property") {
+            if (!in_element) fail("a property before any element");
+            std::string type, name, extra;
+            if (!(words >> type)) fail("expected a property type");
+            if (type == "list") {
+                std::string count_type, item_type;
+                if (!(words >> count_type >> item_type >> name) || !kTypes.count(count_type) || !kTypes.count(item_type))
+                    fail("expected 'property list TYPE TYPE NAME'");
+            } else if (!kTypes.count(type) || !(words >> name)) {
+                fail("expected 'property TYPE NAME'");
+            }
+            if (words >> extra) fail("unexpected words after the property name");
+        } else {
+            fail("unknown keyword '" + keyword + "'");
+        }
+    }
+    throw InputError(path.string() + ": malformed PLY header: no end_header in the first " +
+                     std::to_string(kMaxHeaderLines) + " lines");
+}
+
+}  // namespace inkline::core::internal

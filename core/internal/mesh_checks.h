@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: MIT
+// Checks that run before OpenMesh's readers, which trust their input: vertex lines that would be
+// skipped, element counts the file cannot hold, malformed PLY headers. Found by fuzzing
+// (tests/fuzz/); each check names the file and line.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace inkline::core::internal {
+
+// Coordinates beyond this magnitude are refused: their squares still fit a double comfortably,
+// and no real scene needs them (float meshes lose all precision long before).
+inline constexpr double kMaxCoordinate = 1e18;
+
+// Reads one coordinate at r_cursor with strtod (which also accepts "nan" and "inf", so they can
+// be named), advancing the cursor. Throws InputError prefixed with `where` ("file:line").
+double scan_coordinate(const std::string& where, const char*& r_cursor);
+
+// OBJ: names vertex lines OpenMesh would skip; returns the number of faces with < 3 corners.
+size_t check_obj(const std::filesystem::path& path);
+
+// PLY: the header's structure, and element counts the file's size can hold.
+void check_ply(const std::filesystem::path& path, uintmax_t file_size);
+
+}  // namespace inkline::core::internal

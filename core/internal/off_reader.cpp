@@ -1,0 +1,114 @@
+// SPDX-License-Identifier: MIT
+#include "core/internal/off_reader.h"
+
+#include "core/error.h"
+#include "core/internal/mesh_checks.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+namespace inkline::core::internal {
+namespace {
+
+// The most corners one polygon may have; far beyond any real file, small enough to allocate.
+constexpr long kMaxCorners = 1'000'000;
+
+class OffLines {
+  public:
+    explicit OffLines(const std::filesystem::path& path) : path_(path), in_(path, std::ios::binary) {}
+
+    // The next line with content, comments ('#' to the end) removed; false at the end.
+    bool next(std::string& r_line) {
+        while (std::getline(in_, r_line)) {
+            ++number_;
+            const size_t hash = r_line.find('#');
+            if (hash != std::string::npos) r_line.resize(hash);
+            if (r_line.find_first_not_of(" \t\r\f\v") != std::string::npos) return true;
+        }
+        return false;
+    }
+
+    std::string where() const { return path_.string() + ":" + std::to_string(number_); }
+    [[noreturn]] void fail(const std::string& problem) const { throw InputError(where() + ": " + problem); }
+
+  private:
+    const std::filesystem::path& path_;
+    std::ifstream in_;
+    size_t number_ = 0;
+};
+
+// Reads a non-negative integer at r_cursor, advancing it; false when there is none.
+bool scan_count(const char*& r_cursor, long long& r_value) {
+    char* end = nullptr;
+    r_value = std::strtoll(r_cursor, &end, 10);
+    if (end == r_cursor) return false;
+    r_cursor = end;
+    return true;
+}
+
+}  // namespace
+
+OffContents read_off(const std::filesystem::path& path, uintmax_t file_size) {
+    OffLines lines(path);
+    std::string line;
+    if (!lines.next(line)) throw InputError(path.string() + ": not an OFF file (no header)");
+
+    // Header: [ST][C][N]OFF, optionally followed by the counts on the same line.
+    const size_t start = line.find_first_not_of(" \t\r");
+    const size_t keyword_end = line.find_first_of(" \t\r", start);
+    const std::string keyword = line.substr(start, keyword_end - start);
+    if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0 ||
+        keyword.find_first_not_of("STCNOF") != std::string::npos) {
+        lines.fail("not an OFF file (expected OFF, COFF, NOFF, STOFF, ... first)");
+    }
+    std::string counts_text = keyword_end == std::string::npos ? "" : line.substr(keyword_end);
+    if (counts_text.find("BINARY") != std::string::npos) {
+        lines.fail("binary OFF is not supported; convert the mesh to PLY, STL or OBJ");
+    }
+    if (counts_text.find_first_not_of(" \t\r") == std::string::npos) {
+        if (!lines.next(counts_text)) lines.fail("the file ends before the element counts");
+    }
+    const char* cursor = counts_text.c_str();
+    long long vertices = 0, faces = 0;
+    if (!scan_count(cursor, vertices) || !scan_count(cursor, faces)) lines.fail("expected 'vertices faces edges' counts");
+    // Every vertex and face line takes at least two bytes.
+    if (vertices < 0 || faces < 0 || uintmax_t(vertices) > file_size / 2 || uintmax_t(faces) > file_size / 2) {
+        lines.fail("declares " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
+                   " faces, more than the file's " + std::to_string(file_size) + " bytes can hold");
+    }
+
+    OffContents out;
+    out.mesh.positions.reserve(size_t(vertices));
+    for (long long v = 0; v < vertices; ++v) {
+        if (!lines.next(line)) lines.fail("the file ends after " + std::to_string(v) + " of " + std::to_string(vertices) + " vertices");
+        cursor = line.c_str();
+        const std::string where = lines.where();
+        const double x = scan_coordinate(where, cursor), y = scan_coordinate(where, cursor), z = scan_coordinate(where, cursor);
+        out.mesh.positions.emplace_back(float(x), float(y), float(z));
+    }
+    std::vector<uint32_t> corners;
+    for (long long f = 0; f < faces; ++f) {
+        if (!lines.next(line)) lines.fail("the file ends after " + std::to_string(f) + " of " + std::to_string(faces) + " faces");
+        cursor = line.c_str();
+        long long count = 0;
+        if (!scan_count(cursor, count) || count < 0 || count > kMaxCorners) lines.fail("expected a face's corner count");
+        corners.clear();
+        for (long long c = 0; c < count; ++c) {
+            long long index = 0;
+            if (!scan_count(cursor, index)) lines.fail("the face has fewer indices than its count " + std::to_string(count));
+            if (index < 0 || index >= vertices) {
+                lines.fail("face references vertex " + std::to_string(index) + "; valid: 0.." + std::to_string(vertices - 1));
+            }
+            corners.push_back(uint32_t(index));
+        }
+        if (count < 3) {
+            ++out.short_faces;
+            continue;
+        }
+        for (size_t i = 1; i + 1 < corners.size(); ++i) out.mesh.triangles.emplace_back(corners[0], corners[i], corners[i + 1]);
+    }
+    return out;
+}
+
+}  // namespace inkline::core::internal
