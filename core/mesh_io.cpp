@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "core/internal/mesh_checks.h"
+#include "core/internal/obj_reader.h"
 #include "core/internal/off_reader.h"
 
 #include <OpenMesh/Core/IO/IOManager.hh>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <optional>
 
 namespace inkline::core {
@@ -167,6 +169,17 @@ LoadedMesh load_mesh(const std::filesystem::path& path) {
         LoadedMesh out{std::move(off.mesh), {}};
         finish(name, off.short_faces, out);
         return out;
+    }
+    if (extension == ".obj") {
+        // Plain OBJ text, the usual form of big meshes, is read in one pass; anything else goes
+        // through check_obj and OpenMesh below, which also report what is wrong with it.
+        std::string text(file_size, '\0');
+        std::ifstream(path, std::ios::binary).read(text.data(), std::streamsize(file_size));
+        if (std::optional<internal::ObjContents> obj = internal::read_plain_obj(text)) {
+            LoadedMesh out{std::move(obj->mesh), {}};
+            finish(name, obj->short_faces, out);
+            return out;
+        }
     }
     size_t short_faces = 0;
     if (extension == ".ply") internal::check_ply(path, file_size);
