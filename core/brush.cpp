@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "core/brush.h"
 
+#include "core/error.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -24,6 +27,44 @@ std::vector<glm::dvec3> vertex_normals(const Mesh& mesh) {
     return normals;
 }
 
+std::vector<glm::dvec3> vertex_normals_at(const Mesh& mesh, const EdgeTable& table, std::span<const uint32_t> vertices) {
+    // Degenerate faces are missing from the edge table, but vertex_normals counts those of
+    // three distinct corners (their normals are tiny, not zero): listed here to be added back.
+    std::vector<std::pair<size_t, uint32_t>> degenerate;  // (index in vertices, face)
+    for (const uint8_t* p = table.face_valid.data(), *end = p + table.face_valid.size();
+         (p = static_cast<const uint8_t*>(std::memchr(p, 0, size_t(end - p)))) != nullptr; ++p) {
+        const uint32_t f = uint32_t(p - table.face_valid.data());
+        const glm::uvec3 tri = mesh.triangles[f];
+        if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x) continue;
+        for (int c = 0; c < 3; ++c) {
+            const auto it = std::lower_bound(vertices.begin(), vertices.end(), tri[c]);
+            if (it != vertices.end() && *it == tri[c]) degenerate.emplace_back(size_t(it - vertices.begin()), f);
+        }
+    }
+    std::sort(degenerate.begin(), degenerate.end());
+
+    // The faces around each vertex, ascending, summed in that order as vertex_normals sums them.
+    std::vector<glm::dvec3> normals(vertices.size(), glm::dvec3(0.0));
+    std::vector<uint32_t> faces;
+    auto next_degenerate = degenerate.begin();
+    for (size_t i = 0; i < vertices.size(); ++i) {
+        faces.clear();
+        for (uint32_t e : table.edges_around(vertices[i])) {
+            for (uint32_t f : table.faces_of(e)) faces.push_back(f);
+        }
+        for (; next_degenerate != degenerate.end() && next_degenerate->first == i; ++next_degenerate) {
+            faces.push_back(next_degenerate->second);
+        }
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+        glm::dvec3 sum(0.0);
+        for (uint32_t f : faces) sum += face_normal(mesh.positions, mesh.triangles[f]);
+        const double len = glm::length(sum);
+        normals[i] = len > 0.0 ? sum / len : glm::dvec3(0.0);
+    }
+    return normals;
+}
+
 StrokeLighting::StrokeLighting(const Mesh& mesh, const EdgeTable& table, const glm::dmat4& world_from_object,
                                const Light& light)
     : mesh_(mesh),
@@ -32,6 +73,30 @@ StrokeLighting::StrokeLighting(const Mesh& mesh, const EdgeTable& table, const g
       object_from_world_(glm::inverse(world_from_object)),
       world_from_object_normal_(glm::transpose(glm::inverse(glm::dmat3(world_from_object)))),
       light_(light) {}
+
+StrokeLighting::StrokeLighting(const Mesh& mesh, const EdgeTable& table, const glm::dmat4& world_from_object,
+                               const Light& light, std::span<const uint32_t> edges)
+    : mesh_(mesh),
+      table_(table),
+      restricted_(true),
+      object_from_world_(glm::inverse(world_from_object)),
+      world_from_object_normal_(glm::transpose(glm::inverse(glm::dmat3(world_from_object)))),
+      light_(light) {
+    for (uint32_t e : edges) {
+        normal_vertices_.push_back(table.edge_vertices[e].x);
+        normal_vertices_.push_back(table.edge_vertices[e].y);
+    }
+    std::sort(normal_vertices_.begin(), normal_vertices_.end());
+    normal_vertices_.erase(std::unique(normal_vertices_.begin(), normal_vertices_.end()), normal_vertices_.end());
+    normals_ = vertex_normals_at(mesh, table, normal_vertices_);
+}
+
+const glm::dvec3& StrokeLighting::normal_of(uint32_t vertex) const {
+    if (!restricted_) return normals_[vertex];
+    const auto it = std::lower_bound(normal_vertices_.begin(), normal_vertices_.end(), vertex);
+    INKLINE_CHECK(it != normal_vertices_.end() && *it == vertex);
+    return normals_[size_t(it - normal_vertices_.begin())];
+}
 
 std::vector<double> StrokeLighting::facing(std::span<const glm::dvec3> points_world,
                                            std::span<const uint32_t> edges) const {
@@ -46,7 +111,7 @@ std::vector<double> StrokeLighting::facing(std::span<const glm::dvec3> points_wo
         const glm::dvec3 ab = b - a;
         const double len2 = glm::dot(ab, ab);
         const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-        glm::dvec3 n = world_from_object_normal_ * (normals_[v.x] * (1.0 - t) + normals_[v.y] * t);
+        glm::dvec3 n = world_from_object_normal_ * (normal_of(v.x) * (1.0 - t) + normal_of(v.y) * t);
         const double n_len = glm::length(n);
         if (!(n_len > 0.0)) continue;
         n /= n_len;

@@ -26,10 +26,17 @@ namespace inkline::core {
 // Area-weighted vertex normals, object space, unit length (zero where a vertex has no valid face).
 std::vector<glm::dvec3> vertex_normals(const Mesh& mesh);
 
+// vertex_normals(mesh)[v] for each v of `vertices` (ascending, distinct), bit for bit, reading
+// only the faces around them: a frame's strokes touch a few thousand of a million vertices.
+std::vector<glm::dvec3> vertex_normals_at(const Mesh& mesh, const EdgeTable& table, std::span<const uint32_t> vertices);
+
 // The light as one frame's strokes see it: mesh normals in world space and the light direction.
 class StrokeLighting {
   public:
     StrokeLighting(const Mesh& mesh, const EdgeTable& table, const glm::dmat4& world_from_object, const Light& light);
+    // Normals at the vertices of `edges` only; facing() may then only be asked about those edges.
+    StrokeLighting(const Mesh& mesh, const EdgeTable& table, const glm::dmat4& world_from_object, const Light& light,
+                   std::span<const uint32_t> edges);
 
     // dot(N, -l) at each point, not clamped: N interpolated from the normals of the vertices of
     // the point's edge (edges[i] for point i, the last point uses the last edge), l the light
@@ -38,8 +45,12 @@ class StrokeLighting {
 
   private:
     const Mesh& mesh_;
+    const glm::dvec3& normal_of(uint32_t vertex) const;
+
     const EdgeTable& table_;
-    std::vector<glm::dvec3> normals_;  // object space
+    bool restricted_ = false;                // normals_ at normal_vertices_ only, else at every vertex
+    std::vector<uint32_t> normal_vertices_;  // ascending
+    std::vector<glm::dvec3> normals_;        // object space
     glm::dmat4 object_from_world_;
     glm::dmat3 world_from_object_normal_;
     Light light_;

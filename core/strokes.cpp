@@ -225,7 +225,11 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     }
     const std::vector<StrokeMatch> matches = r_coherence.match(candidates);
 
-    const StrokeLighting lighting(mesh, table, projection.world_from_object(), frame.light);
+    // Normals only where the frame's lines run: a full pass over a million vertices would cost
+    // more than the rest of this stage.
+    std::vector<uint32_t> line_edges;
+    for (const Polyline& line : frame.strokes) line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
+    const StrokeLighting lighting(mesh, table, projection.world_from_object(), frame.light, line_edges);
     const glm::dmat4 object_from_world = glm::inverse(projection.world_from_object());
     uint32_t next_id = r_coherence.next_id();
     std::vector<StrokeTrace> traces;

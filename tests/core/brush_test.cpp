@@ -116,6 +116,28 @@ TEST(Brush, VertexNormalsAreUnitAndOutward) {
     }
 }
 
+TEST(Brush, NormalsAtSomeVerticesEqualTheFullPassBitForBit) {
+    // A sphere plus faces the edge table drops: a repeated corner, and a sliver of three
+    // distinct corners whose tiny normal (area ratio 2.5e-14) vertex_normals still adds.
+    core::Mesh mesh = test::uv_sphere(24, 12, 2.0);
+    const uint32_t n = uint32_t(mesh.positions.size());
+    mesh.positions.push_back({0.0f, 0.0f, 1.0f});
+    mesh.positions.push_back({0.0f, 0.0f, 2.0f});
+    mesh.positions.push_back({1e-13f, 0.0f, 3.0f});
+    mesh.triangles.push_back({3, 3, 7});
+    mesh.triangles.push_back({n, n + 1, n + 2});
+    mesh.triangles.push_back({n, 0, 1});
+    const core::EdgeTable table = core::build_edge_table(mesh);
+    ASSERT_EQ(std::count(table.face_valid.begin(), table.face_valid.end(), 0), 2);
+    ASSERT_NE(core::vertex_normals(mesh)[n + 2], glm::dvec3(0.0));
+    std::vector<uint32_t> every(mesh.positions.size());
+    for (uint32_t v = 0; v < every.size(); ++v) every[v] = v;
+    const std::vector<glm::dvec3> full = core::vertex_normals(mesh);
+    const std::vector<glm::dvec3> some = core::vertex_normals_at(mesh, table, every);
+    ASSERT_EQ(full.size(), some.size());
+    for (size_t v = 0; v < full.size(); ++v) EXPECT_EQ(full[v], some[v]) << "vertex " << v;
+}
+
 TEST(Brush, ColorHex) {
     EXPECT_EQ(core::color_hex({0.0, 0.5, 1.0}), "#0080ff");
     EXPECT_EQ(core::color_hex(core::BrushStyle{}.color), "#171412");
