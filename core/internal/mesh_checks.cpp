@@ -113,13 +113,17 @@ void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
                 (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")) {
                 fail("unknown format");
             }
+            // OpenMesh reads the version with >> and, should that fail, loops on its header forever.
+            if (version != "1.0") fail("unsupported version '" + version + "' (expected 1.0)");
             have_format = true;
             counts.binary = format != "ascii";
         } else if (keyword == "element") {
             std::string name, count_text, extra;
             if (!(words >> name >> count_text) || (words >> extra) ||
-                count_text.find_first_not_of("0123456789") != std::string::npos || count_text.size() > 12) {
-                fail("expected 'element NAME COUNT'");
+                count_text.find_first_not_of("0123456789") != std::string::npos || count_text.size() > 10 ||
+                std::stoull(count_text) > 0xffffffffull) {
+                // A count beyond 32 bits fails OpenMesh's unsigned read, with the same endless loop.
+                fail("expected 'element NAME COUNT' with a count below 2^32");
             }
             const uintmax_t count = std::stoull(count_text);
             if (name == "vertex") counts.vertices = count;

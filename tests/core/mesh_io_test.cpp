@@ -165,6 +165,16 @@ TEST_F(MeshIo, MalformedPlyHeaderIsRefused_fuzz_crash_2c8c58c8) {
               std::string::npos);
 }
 
+// Found by tests/fuzz/run.sh: OpenMesh's PLY header loop never ends once a numeric token fails.
+TEST_F(MeshIo, PlyHeaderWithABadVersionIsRefused_fuzz_hang) {
+    test::write_text(dir / "v.ply", std::string("ply\nformat ascii \x01\x01") + "0\nelement vertex 3\nproperty float x\n"
+                                    "end_header\n0\n1\n2\n");
+    EXPECT_NE(error_of(dir / "v.ply").find("v.ply:2: malformed PLY header: unsupported version"), std::string::npos)
+        << error_of(dir / "v.ply");
+    test::write_text(dir / "c.ply", "ply\nformat ascii 1.0\nelement vertex 9999999999\nproperty float x\nend_header\n");
+    EXPECT_NE(error_of(dir / "c.ply").find("c.ply:3: malformed PLY header"), std::string::npos) << error_of(dir / "c.ply");
+}
+
 TEST_F(MeshIo, UnknownExtensionIsAnError) {
     test::write_text(dir / "mesh.xyz", "garbage");
     EXPECT_NE(error_of(dir / "mesh.xyz").find("cannot read"), std::string::npos);

@@ -22,7 +22,8 @@ for target in scene mesh; do
   echo "== fuzzing $target for ${seconds}s =="
   work=$(mktemp -d)
   # New interesting inputs go to a scratch folder; the minimised set is merged into the corpus.
-  if ! ./build-fuzz/tests/fuzz/inkline_${target}_fuzz -max_total_time="$seconds" -max_len=4096 \
+  # -timeout: an input that takes 10 s is a hang, saved like a crash.
+  if ! ./build-fuzz/tests/fuzz/inkline_${target}_fuzz -max_total_time="$seconds" -max_len=4096 -timeout=10 \
       -artifact_prefix="tests/fuzz/corpus/$target/" -print_final_stats=1 "$work" "tests/fuzz/corpus/$target"; then
     status=1
   fi
