@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -33,6 +34,10 @@ void main() {
     plane = vec4(q, dFdx(q), dFdy(q), float(gl_PrimitiveID + 1));
 }
 )";
+
+// Largest depth map supersampling may make: 2^26 texels are 1 GiB of RGBA32F plus 256 MiB of
+// depth, already 8192x8192 at 1 texel per pixel. Larger images get fewer texels per pixel.
+constexpr double kMaxTexels = double(1 << 26);
 
 // Texels beyond the bilinear footprint, on every side, whose faces are candidates at a depth
 // discontinuity: a 6x6 window. On the bench's meshes at 2x supersampling, a 4x4 window loses
@@ -375,7 +380,10 @@ void DepthOcclusion::prepare(const core::Mesh& mesh, const core::EdgeTable& tabl
                          " is larger than this GL's framebuffer limit of " + std::to_string(m.max_size) +
                          " px; use a smaller --size or --visibility exact");
     }
-    const int supersampling = std::min(m.options.supersampling, m.max_size / side);
+    // The factor asked for, lowered to fit GL's size limit and the texel budget (at least 1).
+    const double pixels = double(image.width) * double(image.height);
+    const int budget = std::max(1, int(std::sqrt(double(kMaxTexels) / pixels)));
+    const int supersampling = std::min({m.options.supersampling, m.max_size / side, budget});
 
     auto start = std::chrono::steady_clock::now();
     m.upload(mesh, change);

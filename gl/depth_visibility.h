@@ -41,7 +41,7 @@ enum class MeshChange {
 struct DepthPassStats {
     int width = 0;          // depth map, texels
     int height = 0;         // depth map, texels
-    int supersampling = 0;  // the factor used: the option, lowered if GL's size limit requires
+    int supersampling = 0;  // the factor used: the option, lowered for GL's size limit or 2^26 texels
     double upload_ms = 0.0;    // mesh buffers sent to GL
     double render_ms = 0.0;    // clear, draw and finish
     double readback_ms = 0.0;  // depth map copied to the CPU

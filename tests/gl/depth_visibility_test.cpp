@@ -254,6 +254,17 @@ TEST(DepthVisibility, SupersamplingSetsTheDepthMapSize) {
     EXPECT_EQ(depth.last_pass().width, 900);
     EXPECT_EQ(depth.last_pass().height, 900);
     EXPECT_THROW(gl::DepthOcclusion(*context, {.supersampling = 0}), InputError);
+
+    // 6000 x 6000 at 2x would be 144M texels: over the 2^26 budget, so 1x.
+    gl::DepthOcclusion big(*context, {.supersampling = 2});
+    core::Mesh tri;
+    tri.positions = {{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+    tri.triangles = {{0, 1, 2}};
+    const core::EdgeTable table = core::build_edge_table(tri);
+    big.prepare(tri, table, core::Projection(test::camera_for({}, tri), {6000, 6000}, glm::dmat4(1.0)),
+                gl::MeshChange::kTopology);
+    EXPECT_EQ(big.last_pass().supersampling, 1);
+    EXPECT_EQ(big.last_pass().width, 6000);
 }
 
 TEST(DepthVisibility, ADifferentMeshWithoutKTopologyIsABug) {
