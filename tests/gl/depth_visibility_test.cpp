@@ -5,6 +5,8 @@
 #include "core/error.h"
 #include "core/exact_visibility.h"
 #include "core/features.h"
+#include "core/mesh_frames.h"
+#include "core/scene.h"
 #include "core/topology.h"
 #include "tests/gl/context_or_skip.h"
 #include "tests/support/agreement.h"
@@ -142,6 +144,39 @@ TEST(DepthVisibility, DenseMeshContoursAgreeWithExact) {
         } else {
             EXPECT_LT(direct.agreement(), 0.99) << "if the depth map alone sufficed, the ray test would be waste";
         }
+    }
+}
+
+TEST(DepthVisibility, SampleTorusSceneAgreesWithExact) {
+    // samples/torus/scene.json as `inkline render` draws it: the object turns, the mesh stays in
+    // object space, the motion travels in the projection (MeshChange::kNone after the first).
+    const auto context = context_or_skip(gl::Backend::kAuto);
+    gl::DepthOcclusion depth(*context);
+    const core::Scene scene = core::load_scene(INKLINE_SAMPLES "/torus/scene.json");
+    core::MeshFrames meshes(scene.mesh, scene.first_frame);
+    const core::Mesh& mesh = meshes.at(scene.first_frame);
+    const core::EdgeTable& table = meshes.edges();
+    const core::ExactOcclusion exact(mesh, table);
+    const core::VisibilityOptions options{.keep_hidden = true};
+    for (int frame = scene.first_frame; frame <= scene.last_frame; frame += 6) {
+        SCOPED_TRACE(frame);
+        const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
+        core::Bounds world_bounds;
+        const core::Bounds b = core::bounds_of(mesh.positions);
+        for (int i = 0; i < 8; ++i) {
+            const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
+            world_bounds.add(glm::dvec3(world_from_object * glm::dvec4(corner, 1.0)));
+        }
+        const core::Projection projection(core::camera_at(scene, frame, world_bounds), scene.image, world_from_object);
+        const std::vector<core::Chain> chains = core::chain_feature_edges(
+            core::extract_feature_edges(mesh, table, projection.eye_object(), scene.lines), table);
+        depth.prepare(mesh, table, projection, frame == scene.first_frame ? gl::MeshChange::kTopology : gl::MeshChange::kNone);
+        const auto reference = core::split_by_visibility(chains, mesh, projection, exact, options);
+        const auto lines = core::split_by_visibility(chains, mesh, projection, depth, options);
+        const test::VisibilityAgreement a = test::compare_visibility(chains, mesh, projection, reference, lines);
+        EXPECT_GE(a.agreement(), kMinAgreement);
+        EXPECT_LE(a.longest_disagreement_px, kMaxDisagreementPx);
+        EXPECT_GT(a.reference_visible_px, 1000.0);
     }
 }
 
