@@ -163,7 +163,7 @@ struct Args {
     size_t min_faces = 0;
     size_t max_faces = 1100000;
     std::string backend = "auto";
-    std::vector<int> supersampling{2};
+    std::vector<int> supersampling{gl::DepthVisibilityOptions{}.supersampling};
     std::vector<bool> ray_test{true};
     std::vector<std::string> meshes;
 };
