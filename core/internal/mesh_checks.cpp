@@ -8,6 +8,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 namespace inkline::core::internal {
 namespace {
@@ -34,6 +35,24 @@ void check_counts(const std::filesystem::path& path, const PlyCounts& c, uintmax
                          std::to_string(c.faces) + " faces, more than the file's " + std::to_string(file_size) +
                          " bytes can hold");
     }
+}
+
+// A signed decimal integer of at most 10 digits.
+bool is_index(std::string_view s) {
+    if (!s.empty() && s[0] == '-') s.remove_prefix(1);
+    return !s.empty() && s.size() <= 10 && s.find_first_not_of("0123456789") == std::string_view::npos;
+}
+
+// An OBJ face corner: v, v/vt, v//vn or v/vt/vn.
+bool is_obj_corner(std::string_view corner) {
+    const size_t first = corner.find('/');
+    if (first == std::string_view::npos) return is_index(corner);
+    if (!is_index(corner.substr(0, first))) return false;
+    const std::string_view rest = corner.substr(first + 1);
+    const size_t second = rest.find('/');
+    if (second == std::string_view::npos) return is_index(rest);
+    const std::string_view texture = rest.substr(0, second);
+    return (texture.empty() || is_index(texture)) && is_index(rest.substr(second + 1));
 }
 
 }  // namespace
@@ -65,7 +84,14 @@ size_t check_obj(const std::filesystem::path& path) {
             std::istringstream corners(line.substr(2));
             std::string corner;
             int count = 0;
-            while (corners >> corner) ++count;
+            while (corners >> corner) {
+                ++count;
+                // OpenMesh's reader asserts (aborts) on a corner that is not an index.
+                if (!is_obj_corner(corner)) {
+                    throw InputError(path.string() + ":" + std::to_string(number) + ": face corner '" + corner +
+                                     "' is not an index (expected v, v/vt, v//vn or v/vt/vn)");
+                }
+            }
             short_faces += count < 3;
         }
         if (line[0] != 'v') continue;
