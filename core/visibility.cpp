@@ -160,13 +160,24 @@ class Splitter {
         for (const Run& run : runs) push(geom, chain, run, false, out);
     }
 
+    // Pixel length of a run along the chain (through its vertices: a zig-zag run can end near
+    // where it began and still be long).
+    double run_length_px(const ChainGeometry& geom, const Run& run) const {
+        double length = 0.0, at = run.begin;
+        for (double v = std::floor(run.begin) + 1.0; v < run.end; v += 1.0) {
+            length += pixel_distance(geom, at, v);
+            at = v;
+        }
+        return length + pixel_distance(geom, at, run.end);
+    }
+
     // A run shorter than twice the bisection precision is below what the bisection resolves:
     // typically a hidden edge ending exactly on a visible silhouette vertex. It joins the run
     // before it (the one after it, for the first run).
     void merge_short_runs(const ChainGeometry& geom, std::vector<Run>& runs) const {
         const double min_px = 2.0 * options_.bisection_px;
         for (size_t i = 0; i < runs.size() && runs.size() > 1;) {
-            if (pixel_distance(geom, runs[i].begin, runs[i].end) >= min_px) {
+            if (run_length_px(geom, runs[i]) >= min_px) {
                 ++i;
                 continue;
             }
