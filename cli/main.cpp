@@ -5,6 +5,7 @@
 #include "cli/render.h"
 #include "core/error.h"
 #include "export/atomic_file.h"
+#include "gl/context.h"
 
 #include <CLI/CLI.hpp>
 
@@ -118,6 +119,10 @@ int main(int argc, char** argv) {
     } catch (const inkline::OutputError& e) {
         std::cerr << "inkline: error: " << e.what() << "\n";
         return kOutputError;
+    } catch (const inkline::gl::ContextError& e) {
+        std::cerr << "inkline: error: no usable OpenGL context: " << e.what()
+                  << " (try --gl osmesa, or --visibility raycast or exact)\n";
+        return kInputError;
     } catch (const std::exception& e) {
         std::cerr << "inkline: internal error: " << e.what() << "\n";
         return kInternal;
