@@ -28,7 +28,7 @@ constexpr double kTailFraction = 0.3;
 constexpr double kEdgeMargin = 0.125;
 
 constexpr int kStreaks = 16;  // bristle streaks along the stroke
-constexpr int kLanes = 22;    // bands across the stroke that dry out independently in the tail
+constexpr int kLanes = 26;    // bands across the stroke that dry out independently in the tail
 // No streak takes more than this much ink, so the body stays above one half everywhere and the
 // ink coverage (alpha > 1/2) of a stroke is its outline.
 constexpr double kMinBodyAlpha = 0.62;
@@ -110,7 +110,7 @@ BrushTip default_brush_tip() {
         const double centre = acc - 0.5 * widths[size_t(l)] / y;
         const double to_border = std::min(centre, 1.0 - centre) * 2.0;  // 0 at the border, 1 in the middle
         lane.dry_at = random.uniform(0.25, 1.05) * (0.55 + 0.45 * to_border);
-        lane.noise_knots.resize(64);
+        lane.noise_knots.resize(96);
         for (double& k : lane.noise_knots) k = random.uniform(0.0, 1.0);
     }
 
@@ -145,8 +145,8 @@ BrushTip default_brush_tip() {
             // each lane's own noise along the stroke, passes their threshold.
             const double t = std::clamp((x - (1.0 - kTailFraction)) / kTailFraction, 0.0, 1.0);
             if (t > 0.0) {
-                const double dryness = 1.1 * std::pow(t, 1.3);
-                const double wobble = 0.3 * (value_noise(lane->noise_knots, x * 40.0) - 0.5);
+                const double dryness = 1.1 * std::pow(t, 1.6);
+                const double wobble = 0.6 * (value_noise(lane->noise_knots, x * 64.0) - 0.5);
                 const double gap = smoothstep(lane->dry_at - 0.05, lane->dry_at + 0.05, dryness + wobble);
                 a *= (1.0 - 0.92 * gap) * (1.0 - 0.25 * t * t * t);
             }

@@ -16,12 +16,13 @@ namespace inkline::gl {
 inline constexpr int kMaxBrushTipSide = 4096;
 
 // How a tip image is laid along a stroke, in fractions of the image width. A stroke shows the
-// head at its start and the tail at its end; the middle repeats in between, so the image keeps
-// its proportions on long strokes; head and tail fade into the middle where they meet it. A loop
-// shows the middle only.
+// head at a free (S) start and the tail at a free end, where the brush is set down and lifted;
+// the middle repeats everywhere else, so the image keeps its proportions on long strokes and
+// runs on through blunt ends that meet other strokes. Head and tail fade into the middle where
+// they meet it. A loop shows the middle only.
 //
 //   image x:  0 ---- head ----|------------ middle ------------|---- tail ---- 1
-//   stroke:   start  [head]  [middle][middle][middle] ... [middle]  [tail]  end
+//   stroke:   S start  [head]  [middle][middle] ... [middle]  [tail]  S end
 struct BrushTip {
     int width = 0;               // texels along the stroke
     int height = 0;              // texels across the stroke

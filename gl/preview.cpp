@@ -40,10 +40,12 @@ void main() {
 }
 )";
 
-// The tip image as alpha. Along the stroke: its head over the first head_px, its tail over the
-// last tail_px, its middle repeated by u in between (u is carried from frame to frame, so the
-// texture stays on the paper as the stroke moves); across: v from one edge to the other, and
-// on a cap the distance from its centre, so the edge's profile runs round the cap.
+// The tip image as alpha. Along the stroke: its head over the first head_px and its tail over
+// the last tail_px where those ends are free (S: the brush is set down and lifted there; a
+// blunt A or C end runs into another stroke, so the line carries on through it), its middle
+// repeated by u elsewhere (u is carried from frame to frame, so the texture stays on the paper
+// as the stroke moves); across: v from one edge to the other, and on a cap the distance from
+// its centre, so the edge's profile runs round the cap.
 constexpr const char* kStrokeFragmentShader = R"(#version 330 core
 in vec2 across;
 in float s;
@@ -54,7 +56,7 @@ uniform float tip_length;     // px along the stroke of the whole image
 uniform vec3 zones;           // head, middle and tail fractions of the image width
 uniform float stroke_length;  // px
 uniform float period;         // px of one repeat of the middle
-uniform int closed;
+uniform vec2 free_ends;       // 1 where the start, the end is free: it shows the head, the tail
 uniform vec3 ink;             // sRGB
 uniform float opacity;
 uniform vec3 pressure;        // width_min_px, 1 / (width_max_px - width_min_px) or 0, darkening
@@ -75,9 +77,9 @@ Along along() {
     a.tail_weight = 0.0;
     a.head = 0.0;
     a.tail = 1.0;
-    if (closed != 0) return a;
-    float head_px = zones.x * tip_length;
-    float tail_px = zones.z * tip_length;
+    float head_px = free_ends.x * zones.x * tip_length;
+    float tail_px = free_ends.y * zones.z * tip_length;
+    if (head_px + tail_px == 0.0) return a;
     // A stroke shorter than head and tail together shows both, shortened alike.
     float k = min(1.0, stroke_length / max(head_px + tail_px, 1e-6));
     head_px = max(head_px * k, 1e-6);
@@ -86,8 +88,8 @@ Along along() {
     float to_end = stroke_length - sc;
     a.head = zones.x * min(sc / head_px, 1.0);
     a.tail = 1.0 - zones.z * min(to_end / tail_px, 1.0);
-    a.head_weight = 1.0 - smoothstep((1.0 - kZoneBlend) * head_px, head_px, sc);
-    a.tail_weight = 1.0 - smoothstep((1.0 - kZoneBlend) * tail_px, tail_px, to_end);
+    a.head_weight = free_ends.x * (1.0 - smoothstep((1.0 - kZoneBlend) * head_px, head_px, sc));
+    a.tail_weight = free_ends.y * (1.0 - smoothstep((1.0 - kZoneBlend) * tail_px, tail_px, to_end));
     return a;
 }
 
@@ -204,6 +206,8 @@ struct StrokeDraw {
     GLsizei index_count = 0;
     float length_px = 0.0f;
     float period_px = 0.0f;
+    bool free_start = false;  // an S end: shows the tip's head
+    bool free_end = false;    // an S end: shows the tip's tail
     bool closed = false;
 };
 
@@ -243,7 +247,7 @@ struct PreviewRenderer::Impl {
     PreviewStats stats;
 
     struct StrokeUniforms {
-        GLint image_size, tip, tip_length, zones, stroke_length, period, closed, ink, opacity, pressure;
+        GLint image_size, tip, tip_length, zones, stroke_length, period, free_ends, ink, opacity, pressure;
     } su{};
     struct SurfaceUniforms {
         GLint clip_from_object, world_from_object, normal_world_from_object, eye_world, light, point_light, toon;
@@ -270,7 +274,7 @@ struct PreviewRenderer::Impl {
         auto stroke_uniform = [&](const char* name) { return fn.GetUniformLocation(stroke_program, name); };
         su = {stroke_uniform("image_size"), stroke_uniform("tip"),           stroke_uniform("tip_length"),
               stroke_uniform("zones"),      stroke_uniform("stroke_length"), stroke_uniform("period"),
-              stroke_uniform("closed"),     stroke_uniform("ink"),           stroke_uniform("opacity"),
+              stroke_uniform("free_ends"),  stroke_uniform("ink"),           stroke_uniform("opacity"),
               stroke_uniform("pressure")};
         auto surface_uniform = [&](const char* name) { return fn.GetUniformLocation(surface_program, name); };
         fu = {surface_uniform("clip_from_object"),
@@ -393,6 +397,8 @@ struct PreviewRenderer::Impl {
             draw.index_count = GLsizei(strip.indices.size());
             draw.length_px = float(strip.length_px);
             draw.closed = strip.closed;
+            draw.free_start = !strip.closed && stroke.ends[0] == core::StrokeEnd::kFree;
+            draw.free_end = !strip.closed && stroke.ends[1] == core::StrokeEnd::kFree;
             // A loop repeats the middle a whole number of times, so it has no seam.
             const double period = std::max(middle_px, 1e-3);
             draw.period_px =
@@ -480,7 +486,7 @@ struct PreviewRenderer::Impl {
             fn.StencilFunc(GL_GREATER, value, 0xff);
             fn.Uniform1f(su.stroke_length, d.length_px);
             fn.Uniform1f(su.period, d.period_px);
-            fn.Uniform1i(su.closed, d.closed ? 1 : 0);
+            fn.Uniform2f(su.free_ends, d.free_start ? 1.0f : 0.0f, d.free_end ? 1.0f : 0.0f);
             fn.DrawElements(GL_TRIANGLES, d.index_count, GL_UNSIGNED_INT,
                             reinterpret_cast<const void*>(d.first_index * sizeof(uint32_t)));
         }

@@ -219,6 +219,28 @@ TEST(Preview, CapsFollowTheEndTypes) {
     EXPECT_EQ(image.pixel(49, 24)[3], 0) << "no cap on the pointed end";
 }
 
+TEST(Preview, DryBrushTailsOnlyAtFreeEnds) {
+    // The same stroke twice, 12 px wide to its ends: once with free (S) ends, where the tip's
+    // tail dries out, once with blunt (C) ends that run on into other strokes.
+    Frame f;
+    f.lines.image = {96, 48};
+    f.strokes.strokes.push_back(straight_stroke(1, {{8, 12}, {80, 12}}, 12.0, core::StrokeEnd::kFree));
+    f.strokes.strokes.push_back(straight_stroke(2, {{8, 36}, {80, 36}}, 12.0, core::StrokeEnd::kJunction));
+    const gl::PreviewImage image = preview(gl::Backend::kAuto, f, gl::default_brush_tip());
+    auto mean_alpha = [&](int y0, int x0, int x1) {
+        double sum = 0.0;
+        for (int y = y0 - 3; y <= y0 + 3; ++y) {
+            for (int x = x0; x < x1; ++x) sum += image.pixel(x, y)[3] / 255.0;
+        }
+        return sum / (7.0 * (x1 - x0));
+    };
+    const double free_tail = mean_alpha(12, 74, 80), blunt_end = mean_alpha(36, 74, 80);
+    const double free_middle = mean_alpha(12, 40, 46);
+    EXPECT_LT(free_tail, blunt_end - 0.15) << "the free end breaks up";
+    EXPECT_GT(blunt_end, 0.8);
+    EXPECT_GT(free_middle, 0.8);
+}
+
 TEST(Preview, PressureDarkensTheInk) {
     Frame f;
     f.lines.image = {64, 32};
