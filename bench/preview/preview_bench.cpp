@@ -1,0 +1,234 @@
+// SPDX-License-Identifier: MIT
+// Time per frame of the GL preview on a scene, next to Cairo's PNG of the same strokes, and the
+// files docs/preview.md shows. Runs the pipeline as `inkline render` does (brute extraction,
+// exact visibility, brush strokes), then for every frame: the preview (strips, render, read
+// back), its PNG encoding, and Cairo's PNG. Prints a markdown table of medians and how well the
+// two PNGs' ink coverage (alpha > 1/2) agrees (intersection over union).
+//
+//   inkline_preview_bench [--scene samples/torus/scene.json] [--frames A:B] [--gl auto|egl|osmesa]
+//                         [--samples N] [--underlay none|flat|toon] [--out DIR]
+//
+// With --out, writes DIR/preview_%04d.png, DIR/cairo_%04d.png, DIR/frame_%04d.svg and the brush
+// tip as DIR/tip.png.
+
+#include "core/chaining.h"
+#include "core/exact_visibility.h"
+#include "core/features.h"
+#include "core/frame_lines.h"
+#include "core/frame_pattern.h"
+#include "core/mesh_frames.h"
+#include "core/scene.h"
+#include "core/strokes.h"
+#include "core/visibility.h"
+#include "export/drawing.h"
+#include "export/png.h"
+#include "export/svg.h"
+#include "gl/brush_tip.h"
+#include "gl/context.h"
+#include "gl/preview.h"
+
+#include <cairo.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace core = inkline::core;
+namespace gl = inkline::gl;
+namespace output = inkline::output;
+namespace fs = std::filesystem;
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// Ink coverage (alpha above one half) of an encoded PNG, decoded by Cairo.
+std::vector<uint8_t> coverage(const std::string& png) {
+    struct Reader {
+        const std::string& bytes;
+        size_t at = 0;
+    } reader{png};
+    auto read = [](void* closure, unsigned char* data, unsigned int length) {
+        auto* r = static_cast<Reader*>(closure);
+        if (r->at + length > r->bytes.size()) return CAIRO_STATUS_READ_ERROR;
+        std::copy_n(r->bytes.data() + r->at, length, data);
+        r->at += length;
+        return CAIRO_STATUS_SUCCESS;
+    };
+    cairo_surface_t* s = cairo_image_surface_create_from_png_stream(read, &reader);
+    const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    std::vector<uint8_t> ink(size_t(w) * size_t(h));
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            uint32_t p = 0;
+            std::copy_n(data + size_t(y) * size_t(stride) + 4 * size_t(x), 4, reinterpret_cast<unsigned char*>(&p));
+            ink[size_t(y) * size_t(w) + size_t(x)] = (p >> 24) > 127;
+        }
+    }
+    cairo_surface_destroy(s);
+    return ink;
+}
+
+double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+    size_t both = 0, either = 0;
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+        both += a[i] && b[i];
+        either += a[i] || b[i];
+    }
+    return either ? double(both) / double(either) : 1.0;
+}
+
+void write(const fs::path& path, const std::string& bytes) {
+    std::ofstream out(path, std::ios::binary);
+    out << bytes;
+    if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+struct Args {
+    std::string scene = "samples/torus/scene.json";
+    std::string frames;
+    std::string backend = "auto";
+    int samples = 8;
+    std::string underlay = "none";
+    std::string out;
+};
+
+Args parse(int argc, char** argv) {
+    Args a;
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string key = argv[i], value = argv[i + 1];
+        if (key == "--scene") {
+            a.scene = value;
+        } else if (key == "--frames") {
+            a.frames = value;
+        } else if (key == "--gl") {
+            a.backend = value;
+        } else if (key == "--samples") {
+            a.samples = std::atoi(value.c_str());
+        } else if (key == "--underlay") {
+            a.underlay = value;
+        } else if (key == "--out") {
+            a.out = value;
+        } else {
+            throw std::runtime_error("unknown option " + key);
+        }
+    }
+    return a;
+}
+
+int run(const Args& args) {
+    core::Scene scene = core::load_scene(args.scene);
+    int first = scene.first_frame, last = scene.last_frame;
+    if (!args.frames.empty()) {
+        const auto colon = args.frames.find(':');
+        first = std::stoi(args.frames.substr(0, colon));
+        last = colon == std::string::npos ? first : std::stoi(args.frames.substr(colon + 1));
+    }
+    core::MeshFrames meshes(scene.mesh, first);
+    const core::EdgeTable& table = meshes.edges();
+
+    const auto context = gl::create_context(gl::parse_backend(args.backend));
+    gl::PreviewOptions options;
+    options.samples = args.samples;
+    if (args.underlay == "flat") options.underlay = gl::Underlay::kFlat;
+    if (args.underlay == "toon") options.underlay = gl::Underlay::kToon;
+    const gl::BrushTip tip = scene.brush.tip.empty() ? gl::default_brush_tip() : gl::load_brush_tip(scene.brush.tip);
+    gl::PreviewRenderer renderer(*context, scene.brush, tip, options);
+    if (!args.out.empty()) {
+        fs::create_directories(args.out);
+        // The tip itself, as ink on a transparent background.
+        std::vector<uint8_t> rgba;
+        for (const uint8_t a : tip.alpha) rgba.insert(rgba.end(), {0, 0, 0, a});
+        write(fs::path(args.out) / "tip.png", output::png_from_rgba(tip.width, tip.height, rgba));
+    }
+
+    output::DrawStyle style;
+    style.color = output::hex_color(scene.brush.color);
+    style.opacity = scene.brush.opacity;
+    core::StrokeCoherence coherence;
+    std::vector<double> geometry, render, readback, encode, preview_total, cairo_total, overlap;
+    size_t triangles = 0;
+    for (int frame = first; frame <= last; ++frame) {
+        const core::Mesh& mesh = meshes.at(frame);
+        core::FrameLines lines;
+        lines.frame = frame;
+        lines.image = scene.image;
+        lines.light = scene.light;
+        const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
+        core::Bounds world;
+        for (const glm::vec3& p : mesh.positions)
+            world.add(glm::dvec3(world_from_object * glm::dvec4(glm::dvec3(p), 1.0)));
+        lines.camera = core::camera_at(scene, frame, world);
+        const core::Projection projection(lines.camera, scene.image, world_from_object);
+        const core::FeatureEdges features =
+            core::extract_feature_edges(mesh, table, projection.eye_object(), scene.lines);
+        const std::vector<core::Chain> chains = core::chain_feature_edges(features, table);
+        const core::ExactOcclusion occlusion(mesh, table);
+        lines.strokes = core::split_by_visibility(chains, mesh, projection, occlusion, {});
+        const core::FrameStrokes strokes = core::build_strokes(lines, mesh, table, projection, scene.brush, coherence);
+
+        auto start = std::chrono::steady_clock::now();
+        const gl::PreviewImage image =
+            renderer.render(lines, strokes, {.mesh = &mesh, .world_from_object = world_from_object});
+        const std::string png = output::png_from_rgba(image.width, image.height, image.rgba);
+        preview_total.push_back(ms_since(start));
+        const gl::PreviewStats& stats = renderer.last_render();
+        geometry.push_back(stats.geometry_ms);
+        render.push_back(stats.render_ms);
+        readback.push_back(stats.readback_ms);
+        encode.push_back(preview_total.back() - stats.geometry_ms - stats.render_ms - stats.readback_ms);
+        triangles = std::max(triangles, stats.triangles);
+
+        start = std::chrono::steady_clock::now();
+        const output::Drawing drawing = output::brush_drawing(lines, strokes, style, false);
+        const std::string cairo = output::png_image(drawing);
+        cairo_total.push_back(ms_since(start));
+        overlap.push_back(iou(coverage(png), coverage(cairo)));
+
+        if (!args.out.empty()) {
+            write(fs::path(args.out) / core::format_frame("preview_%04d.png", frame), png);
+            write(fs::path(args.out) / core::format_frame("cairo_%04d.png", frame), cairo);
+            write(fs::path(args.out) / core::format_frame("frame_%04d.svg", frame), output::svg_document(drawing, {}));
+        }
+    }
+    std::printf("%s, %s, %dx%d, frames %d-%d, %d samples, underlay %s, up to %zu triangles\n\n",
+                context->backend_name(), context->renderer().c_str(), scene.image.width, scene.image.height, first,
+                last, renderer.last_render().samples, args.underlay.c_str(), triangles);
+    std::printf("| stage (median ms per frame) | ms |\n| --- | --- |\n");
+    std::printf("| strips built and uploaded | %.2f |\n", median(geometry));
+    std::printf("| render (clear, draw, resolve, finish) | %.2f |\n", median(render));
+    std::printf("| read back and un-premultiply | %.2f |\n", median(readback));
+    std::printf("| PNG encoding | %.2f |\n", median(encode));
+    std::printf("| **preview total** | **%.2f** |\n", median(preview_total));
+    std::printf("| Cairo PNG of the outlines, for comparison | %.2f |\n", median(cairo_total));
+    std::printf("\nink coverage IoU with the Cairo PNG: median %.4f, lowest %.4f\n", median(overlap),
+                *std::min_element(overlap.begin(), overlap.end()));
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(parse(argc, argv));
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "inkline_preview_bench: %s\n", e.what());
+        return 1;
+    }
+}
