@@ -79,25 +79,31 @@ size_t check_obj(const std::filesystem::path& path) {
     size_t number = 0, short_faces = 0;
     while (std::getline(in, line)) {
         ++number;
-        if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t')) continue;
-        if (line[0] == 'f') {
-            std::istringstream corners(line.substr(2));
+        const std::string where = path.string() + ":" + std::to_string(number);
+        // Split the keyword as OpenMesh does: stream extraction, so any leading whitespace.
+        std::istringstream words(line);
+        std::string keyword;
+        if (!(words >> keyword)) continue;
+        if (keyword == "f") {
             std::string corner;
             int count = 0;
-            while (corners >> corner) {
+            while (words >> corner) {
                 ++count;
                 // OpenMesh's reader asserts (aborts) on a corner that is not an index.
                 if (!is_obj_corner(corner)) {
-                    throw InputError(path.string() + ":" + std::to_string(number) + ": face corner '" + corner +
+                    throw InputError(where + ": face corner '" + corner +
                                      "' is not an index (expected v, v/vt, v//vn or v/vt/vn)");
                 }
             }
+            // ... and on a face without corners.
+            if (count == 0) throw InputError(where + ": face without corners");
             short_faces += count < 3;
+        } else if (keyword == "v") {
+            std::string rest;
+            std::getline(words, rest);
+            const char* cursor = rest.c_str();
+            for (int axis = 0; axis < 3; ++axis) scan_coordinate(where, cursor);
         }
-        if (line[0] != 'v') continue;
-        const char* cursor = line.c_str() + 2;
-        const std::string where = path.string() + ":" + std::to_string(number);
-        for (int axis = 0; axis < 3; ++axis) scan_coordinate(where, cursor);
     }
     return short_faces;
 }
