@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "core/topology.h"
 
+#include "core/internal/parallel.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -12,6 +14,9 @@ namespace {
 // A face whose doubled area is below this fraction of its longest edge squared is treated as
 // zero-area: its normal would be numerically meaningless for the facing test.
 constexpr double kDegenerateAreaRatio = 1e-12;
+
+// Meshes with fewer faces are checked for degenerate faces on one thread.
+constexpr size_t kMinParallelFaces = 100000;
 
 bool is_degenerate(const Mesh& mesh, const glm::uvec3& t) {
     if (t.x == t.y || t.y == t.z || t.z == t.x) return true;
@@ -37,40 +42,68 @@ EdgeTable build_edge_table(const Mesh& mesh) {
     const size_t n_vertices = mesh.positions.size();
     t.face_valid.resize(n_faces);
     t.face_edges.assign(n_faces, glm::uvec3(kNoIndex));
-
-    // Sort the directed corners by undirected vertex pair; equal keys are one edge.
-    struct Corner {
-        uint64_t key;
-        uint32_t face;
-        uint32_t slot;
-    };
-    std::vector<Corner> corners;
-    corners.reserve(3 * n_faces);
-    for (size_t f = 0; f < n_faces; ++f) {
-        const glm::uvec3 tri = mesh.triangles[f];
-        t.face_valid[f] = is_degenerate(mesh, tri) ? 0 : 1;
-        if (!t.face_valid[f]) continue;
-        for (uint32_t s = 0; s < 3; ++s) {
-            const uint32_t a = tri[int(s)], b = tri[int((s + 1) % 3)];
-            const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-            corners.push_back({key, uint32_t(f), s});
-        }
-    }
-    std::sort(corners.begin(), corners.end(), [](const Corner& l, const Corner& r) {
-        return l.key != r.key ? l.key < r.key : l.face < r.face;
+    internal::parallel_for(n_faces, kMinParallelFaces, [&](size_t begin, size_t end) {
+        for (size_t f = begin; f < end; ++f) t.face_valid[f] = is_degenerate(mesh, mesh.triangles[f]) ? 0 : 1;
     });
 
-    t.edge_face_offsets.push_back(0);
-    for (size_t i = 0; i < corners.size();) {
-        const uint64_t key = corners[i].key;
-        const uint32_t edge = uint32_t(t.edge_vertices.size());
-        t.edge_vertices.emplace_back(uint32_t(key >> 32), uint32_t(key & 0xffffffffu));
-        for (; i < corners.size() && corners[i].key == key; ++i) {
-            t.edge_faces.push_back(corners[i].face);
-            t.face_edges[corners[i].face][int(corners[i].slot)] = edge;
-        }
-        t.edge_face_offsets.push_back(uint32_t(t.edge_faces.size()));
+    // Every corner side (a, b) of a valid face, bucketed by its smaller vertex (a counting sort),
+    // in face order within a bucket. Edges are then the distinct larger vertices of each bucket,
+    // bucket after bucket: the lexicographic order of (smaller, larger), without sorting all
+    // 3F sides at once.
+    struct Side {
+        uint32_t other;  // the larger vertex
+        uint32_t face;
+        uint32_t slot;   // side c_slot c_slot+1 of the face
+    };
+    std::vector<uint32_t> bucket_offsets(n_vertices + 1, 0);
+    for (size_t f = 0; f < n_faces; ++f) {
+        if (!t.face_valid[f]) continue;
+        const glm::uvec3 tri = mesh.triangles[f];
+        for (int s = 0; s < 3; ++s) ++bucket_offsets[std::min(tri[s], tri[(s + 1) % 3]) + 1];
     }
+    std::partial_sum(bucket_offsets.begin(), bucket_offsets.end(), bucket_offsets.begin());
+    std::vector<Side> sides(bucket_offsets.back());
+    {
+        std::vector<uint32_t> fill(bucket_offsets.begin(), bucket_offsets.end() - 1);
+        for (uint32_t f = 0; f < n_faces; ++f) {
+            if (!t.face_valid[f]) continue;
+            const glm::uvec3 tri = mesh.triangles[f];
+            for (uint32_t s = 0; s < 3; ++s) {
+                const uint32_t a = tri[int(s)], b = tri[int((s + 1) % 3)];
+                sides[fill[std::min(a, b)]++] = {std::max(a, b), f, s};
+            }
+        }
+    }
+    // Within a bucket: by the larger vertex, faces stay ascending (stable; buckets are small).
+    size_t n_edges = 0;
+    for (size_t v = 0; v < n_vertices; ++v) {
+        const auto first = sides.begin() + bucket_offsets[v], last = sides.begin() + bucket_offsets[v + 1];
+        for (auto i = first + 1; i < last; ++i) {  // insertion sort
+            const Side side = *i;
+            auto j = i;
+            for (; j > first && (j - 1)->other > side.other; --j) *j = *(j - 1);
+            *j = side;
+        }
+        for (auto i = first; i < last; ++i) n_edges += i == first || i->other != (i - 1)->other;
+    }
+
+    t.edge_vertices.reserve(n_edges);
+    t.edge_face_offsets.reserve(n_edges + 1);
+    t.edge_faces.reserve(sides.size());
+    t.edge_face_offsets.push_back(0);
+    for (uint32_t v = 0; v < n_vertices; ++v) {
+        for (uint32_t i = bucket_offsets[v]; i < bucket_offsets[v + 1];) {
+            const uint32_t other = sides[i].other;
+            const uint32_t edge = uint32_t(t.edge_vertices.size());
+            t.edge_vertices.emplace_back(v, other);
+            for (; i < bucket_offsets[v + 1] && sides[i].other == other; ++i) {
+                t.edge_faces.push_back(sides[i].face);
+                t.face_edges[sides[i].face][int(sides[i].slot)] = edge;
+            }
+            t.edge_face_offsets.push_back(uint32_t(t.edge_faces.size()));
+        }
+    }
+    sides = std::vector<Side>();  // (not "= {}": that assigns an empty list and keeps the memory)
 
     // Vertex -> edges, ascending because edges are visited in ascending order.
     t.vertex_edge_offsets.assign(n_vertices + 1, 0);
