@@ -2,6 +2,7 @@
 #include "core/internal/cone_tree.h"
 
 #include "core/error.h"
+#include "core/internal/parallel.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -9,6 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
+#include <utility>
+#include <vector>
 
 namespace inkline::core::internal {
 namespace {
@@ -37,45 +41,78 @@ constexpr double kPositionWeight = 1.0;
 
 double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
+// Below these sizes the build's loops run on the calling thread.
+constexpr size_t kMinParallelItems = 50000;
+constexpr size_t kMinParallelNodes = 4096;
+
+// The number of nodes in the subtree of a node of n faces: median splits (n / 2 and the rest)
+// down to leaves of at most leaf_faces. Remembers the few distinct sizes a tree has.
+class SubtreeSizes {
+  public:
+    explicit SubtreeSizes(uint32_t leaf_faces) : leaf_faces_(leaf_faces) {}
+    uint32_t operator()(uint32_t n) {
+        if (n <= leaf_faces_) return 1;
+        for (const auto& [faces, count] : known_) {
+            if (faces == n) return count;
+        }
+        const uint32_t count = 1 + (*this)(n / 2) + (*this)(n - n / 2);
+        known_.emplace_back(n, count);
+        return count;
+    }
+
+  private:
+    uint32_t leaf_faces_;
+    std::vector<std::pair<uint32_t, uint32_t>> known_;
+};
+
 }  // namespace
 
 ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces) {
     INKLINE_CHECK(leaf_faces >= 1);
     const size_t n_faces = mesh.triangles.size();
-    struct Item {
-        FaceCone cone;
-        uint32_t face;
-    };
-    std::vector<Item> items;
     for (uint32_t f = 0; f < n_faces; ++f) {
-        if (table.face_valid[f]) items.push_back({face_cone(mesh, f), f});
+        if (table.face_valid[f]) faces.push_back(f);
     }
     face_position.assign(n_faces, kNoIndex);
-    if (items.empty()) return;
+    if (faces.empty()) return;
+    // The cones are built in face order and then reordered by the splits; each carries its face.
+    cones_.resize(faces.size());
+    parallel_for(faces.size(), kMinParallelItems, [&](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) cones_[k] = face_cone(mesh, faces[k]);
+    });
 
-    // Top-down median splits, depth first so that a traversal reads the nodes in order.
+    // Top-down median splits, depth first so that a traversal reads the nodes in order. A node
+    // of n faces heads subtree_nodes(n) nodes, so every node's index is known before its
+    // subtree is built and the subtrees below the top levels are built in parallel, each exactly
+    // as the sequential recursion would.
     Bounds all;
-    for (const Item& item : items) all.add(item.cone.centroid);
+    for (const FaceCone& cone : cones_) all.add(cone.centroid);
     const double diagonal = std::max(2.0 * all.radius(), std::numeric_limits<double>::min());
     std::vector<uint32_t> face_leaf(n_faces, kNoIndex);
-    std::vector<uint32_t> parent, depth;
-    auto split = [&](auto& self, uint32_t begin, uint32_t end, uint32_t up) -> uint32_t {
-        const uint32_t index = uint32_t(nodes.size());
-        nodes.push_back({.face_begin = begin, .face_end = end});
-        parent.push_back(up);
-        depth.push_back(up == kNoIndex ? 0 : depth[up] + 1);
-        if (end - begin <= leaf_faces) {
-            for (uint32_t k = begin; k < end; ++k) face_leaf[items[k].face] = index;
-            return index;
+    SubtreeSizes sizes(leaf_faces);
+    nodes.resize(sizes(uint32_t(faces.size())));
+    std::vector<uint32_t> parent(nodes.size()), depth(nodes.size());
+    struct Task {
+        uint32_t index, begin, end, up;
+    };
+    // Returns the split point of [begin, end), or end for a leaf.
+    auto split_one = [&](const Task& t, SubtreeSizes& local_sizes) -> uint32_t {
+        nodes[t.index].face_begin = t.begin;
+        nodes[t.index].face_end = t.end;
+        parent[t.index] = t.up;
+        depth[t.index] = t.up == kNoIndex ? 0 : depth[t.up] + 1;
+        if (t.end - t.begin <= leaf_faces) {
+            for (uint32_t k = t.begin; k < t.end; ++k) face_leaf[cones_[k].face] = t.index;
+            return t.end;
         }
         // Split along the widest of three centroid axes and three normal components.
         glm::dvec3 p_min(std::numeric_limits<double>::max()), p_max(-std::numeric_limits<double>::max());
         glm::dvec3 n_min(2.0), n_max(-2.0);
-        for (uint32_t k = begin; k < end; ++k) {
-            p_min = glm::min(p_min, items[k].cone.centroid);
-            p_max = glm::max(p_max, items[k].cone.centroid);
-            n_min = glm::min(n_min, items[k].cone.normal);
-            n_max = glm::max(n_max, items[k].cone.normal);
+        for (uint32_t k = t.begin; k < t.end; ++k) {
+            p_min = glm::min(p_min, cones_[k].centroid);
+            p_max = glm::max(p_max, cones_[k].centroid);
+            n_min = glm::min(n_min, cones_[k].normal);
+            n_max = glm::max(n_max, cones_[k].normal);
         }
         const glm::dvec3 p_spread = kPositionWeight * (p_max - p_min) / diagonal;
         const glm::dvec3 n_spread = n_max - n_min;
@@ -85,44 +122,70 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
             const double spread = k < 3 ? p_spread[k] : n_spread[k - 3];
             if (spread > widest) widest = spread, key = k;
         }
-        auto value = [key](const Item& item) {
-            return key < 3 ? item.cone.centroid[key] : item.cone.normal[key - 3];
-        };
-        const uint32_t mid = begin + (end - begin) / 2;
-        std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
-                         [&](const Item& a, const Item& b) { return value(a) < value(b); });
-        self(self, begin, mid, index);
-        const uint32_t second = self(self, mid, end, index);
-        nodes[index].second_child = second;
-        return index;
+        auto value = [key](const FaceCone& cone) { return key < 3 ? cone.centroid[key] : cone.normal[key - 3]; };
+        const uint32_t mid = t.begin + (t.end - t.begin) / 2;
+        std::nth_element(cones_.begin() + t.begin, cones_.begin() + mid, cones_.begin() + t.end,
+                         [&](const FaceCone& a, const FaceCone& b) { return value(a) < value(b); });
+        nodes[t.index].second_child = t.index + 1 + local_sizes(mid - t.begin);
+        return mid;
     };
-    split(split, 0, uint32_t(items.size()), kNoIndex);
-    faces.resize(items.size());
-    cones_.resize(items.size());
-    for (uint32_t k = 0; k < items.size(); ++k) {
-        faces[k] = items[k].face;
-        cones_[k] = items[k].cone;
+    auto build = [&](auto& self, const Task& t, SubtreeSizes& local_sizes) -> void {
+        const uint32_t mid = split_one(t, local_sizes);
+        if (mid == t.end) return;
+        self(self, {t.index + 1, t.begin, mid, t.index}, local_sizes);
+        self(self, {t.index + 1 + local_sizes(mid - t.begin), mid, t.end, t.index}, local_sizes);
+    };
+    // The top levels on this thread, until there is a subtree per thread.
+    std::vector<Task> tasks{{0, 0, uint32_t(faces.size()), kNoIndex}};
+    const size_t threads = faces.size() < kMinParallelItems ? 1 : std::max(1u, std::thread::hardware_concurrency());
+    while (tasks.size() < threads) {
+        std::vector<Task> next;
+        for (const Task& t : tasks) {
+            const uint32_t mid = split_one(t, sizes);
+            if (mid == t.end) continue;
+            next.push_back({t.index + 1, t.begin, mid, t.index});
+            next.push_back({nodes[t.index].second_child, mid, t.end, t.index});
+        }
+        if (next.empty()) break;
+        tasks = std::move(next);
+    }
+    if (tasks.size() == 1 && tasks[0].index == 0) {
+        build(build, tasks[0], sizes);
+    } else {
+        parallel_for(tasks.size(), 2, [&](size_t begin, size_t end) {
+            SubtreeSizes local_sizes(leaf_faces);
+            for (size_t i = begin; i < end; ++i) build(build, tasks[i], local_sizes);
+        });
+    }
+    for (uint32_t k = 0; k < faces.size(); ++k) {
+        faces[k] = cones_[k].face;
         face_position[faces[k]] = k;
     }
-    items = {};
-    for (ConeNode& node : nodes) fit_node(node);
+    parallel_for(nodes.size(), kMinParallelNodes, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) fit_node(nodes[i]);
+    });
 
     // Each interior edge goes to the deepest node holding both its faces (counting sort).
     std::vector<uint32_t> edge_node(table.edge_count(), kNoIndex);
-    std::vector<uint32_t> offsets(nodes.size() + 1, 0);
-    for (uint32_t e = 0; e < table.edge_count(); ++e) {
-        if (!table.is_interior(e)) continue;
-        const auto pair = table.faces_of(e);
-        uint32_t a = face_leaf[pair[0]], b = face_leaf[pair[1]];
-        while (a != b) {
-            if (depth[a] >= depth[b]) {
-                a = parent[a];
-            } else {
-                b = parent[b];
+    parallel_for(table.edge_count(), kMinParallelItems, [&](size_t begin, size_t end) {
+        for (size_t e = begin; e < end; ++e) {
+            if (!table.is_interior(uint32_t(e))) continue;
+            const auto pair = table.faces_of(uint32_t(e));
+            uint32_t a = face_leaf[pair[0]], b = face_leaf[pair[1]];
+            while (a != b) {
+                if (depth[a] >= depth[b]) {
+                    a = parent[a];
+                } else {
+                    b = parent[b];
+                }
             }
+            edge_node[e] = a;
         }
-        edge_node[e] = a;
-        ++offsets[a + 1];
+    });
+    face_leaf = std::vector<uint32_t>();
+    std::vector<uint32_t> offsets(nodes.size() + 1, 0);
+    for (uint32_t node : edge_node) {
+        if (node != kNoIndex) ++offsets[node + 1];
     }
     for (size_t i = 0; i < nodes.size(); ++i) offsets[i + 1] += offsets[i];
     edges.resize(offsets.back());
@@ -136,24 +199,35 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
         if (face_position[f0] > face_position[f1]) std::swap(f0, f1);
         edges[offsets[edge_node[e]]++] = {e, {f0, f1}, {face_position[f0], face_position[f1]}};
     }
+    edge_node = std::vector<uint32_t>();
+    uint32_t span_count = 0;
     for (ConeNode& node : nodes) {
-        if (!node.is_leaf()) {
-            std::sort(edges.begin() + node.edge_begin, edges.begin() + node.edge_end,
-                      [](const ListedEdge& a, const ListedEdge& b) { return a.position[0] < b.position[0]; });
-        }
-        node.span_begin = uint32_t(spans.size());
-        for (uint32_t k = node.edge_begin; k < node.edge_end; k += kSpanEdges) {
-            EdgeSpan span{kNoIndex, 0, kNoIndex, 0};
-            for (uint32_t i = k; i < std::min(k + kSpanEdges, node.edge_end); ++i) {
-                span.first_min = std::min(span.first_min, edges[i].position[0]);
-                span.first_max = std::max(span.first_max, edges[i].position[0]);
-                span.second_min = std::min(span.second_min, edges[i].position[1]);
-                span.second_max = std::max(span.second_max, edges[i].position[1]);
-            }
-            spans.push_back(span);
-        }
+        node.span_begin = span_count;
+        span_count += (node.edge_end - node.edge_begin + kSpanEdges - 1) / kSpanEdges;
     }
-    cones_ = {};  // a static mesh never needs them again; refit recomputes them
+    spans.resize(span_count);
+    parallel_for(nodes.size(), kMinParallelNodes, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            const ConeNode& node = nodes[i];
+            if (!node.is_leaf()) {
+                std::sort(edges.begin() + node.edge_begin, edges.begin() + node.edge_end,
+                          [](const ListedEdge& a, const ListedEdge& b) { return a.position[0] < b.position[0]; });
+            }
+            for (uint32_t k = node.edge_begin, j = node.span_begin; k < node.edge_end; k += kSpanEdges, ++j) {
+                EdgeSpan span{kNoIndex, 0, kNoIndex, 0};
+                for (uint32_t l = k; l < std::min(k + kSpanEdges, node.edge_end); ++l) {
+                    span.first_min = std::min(span.first_min, edges[l].position[0]);
+                    span.first_max = std::max(span.first_max, edges[l].position[0]);
+                    span.second_min = std::min(span.second_min, edges[l].position[1]);
+                    span.second_max = std::max(span.second_max, edges[l].position[1]);
+                }
+                spans[j] = span;
+            }
+        }
+    });
+    // A static mesh never needs the cones again; refit recomputes them. (Not "cones_ = {}",
+    // which assigns an empty list and keeps the memory.)
+    cones_ = std::vector<FaceCone>();
 }
 
 ConeTree::FaceCone ConeTree::face_cone(const Mesh& mesh, uint32_t face) {
@@ -162,7 +236,7 @@ ConeTree::FaceCone ConeTree::face_cone(const Mesh& mesh, uint32_t face) {
     const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
     const glm::dvec3 n = glm::cross(b - a, c - a);
     const double len = glm::length(n);
-    FaceCone fc{.centroid = (a + b + c) / 3.0, .normal = glm::dvec3(0.0, 0.0, 1.0), .error = 1.0};
+    FaceCone fc{.centroid = (a + b + c) / 3.0, .normal = glm::dvec3(0.0, 0.0, 1.0), .error = 1.0, .face = face};
     if (!(len > 0.0)) return fc;
     fc.normal = n / len;
     // Relative error of facing_value's normal against this one, were they rounded differently

@@ -89,12 +89,13 @@ class ConeTree {
         glm::dvec3 centroid;
         glm::dvec3 normal;  // unit
         double error;
+        uint32_t face;      // the mesh face
     };
     static FaceCone face_cone(const Mesh& mesh, uint32_t face);
     void fit_node(ConeNode& node) const;
     static void set_spread(ConeNode& node, double spread);
 
-    std::vector<FaceCone> cones_;  // parallel to faces: build scratch, then kept by refit for maybe_crease
+    std::vector<FaceCone> cones_;  // parallel to faces: split in place by the build, then kept by refit for maybe_crease
 };
 
 }  // namespace inkline::core::internal
