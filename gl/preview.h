@@ -32,8 +32,8 @@ enum class Underlay : uint8_t {
 };
 
 struct PreviewOptions {
-    // Samples per pixel; lowered to what the context allows (llvmpipe: 8). The coverage of thin
-    // strokes needs several: with 1 they break up into dashes.
+    // Samples per pixel, lowered to what the context allows (Mesa's llvmpipe: 4): antialiased
+    // edges, as Cairo's, for the thin strokes of the lit side.
     int samples = 8;
     std::optional<glm::dvec3> background;  // sRGB in [0, 1], filled first; none: transparent
     Underlay underlay = Underlay::kNone;

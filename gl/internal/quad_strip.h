@@ -24,6 +24,8 @@ struct StripVertex {
     float width_px;    // brush width at the nearest centerline sample (pressure)
 };
 
+static_assert(sizeof(StripVertex) == 7 * sizeof(float), "the vertex layout gl/preview.cpp declares");
+
 struct QuadStrip {
     std::vector<StripVertex> vertices;
     std::vector<uint32_t> indices;  // triangles, three indices each
