@@ -72,8 +72,9 @@ class Splitter {
             states[c][i] = hidden[q] ? State::kOccluded : State::kVisible;
         }
 
+        const std::vector<std::vector<double>> cuts = locate_changes(chains, params, states);
         std::vector<Polyline> out;
-        for (size_t c = 0; c < chains.size(); ++c) emit_chain(chains[c], params[c], states[c], out);
+        for (size_t c = 0; c < chains.size(); ++c) emit_chain(chains[c], params[c], states[c], cuts[c], out);
         for (size_t i = 0; i < out.size(); ++i) out[i].id = uint32_t(i);
         return out;
     }
@@ -84,13 +85,62 @@ class Splitter {
         return !projection_.in_front(clip) || !projection_.inside_image(projection_.pixel_from_clip(clip));
     }
 
-    State state_at(const ChainGeometry& geom, double g) const {
-        const glm::dvec3 p = geom.point(g);
-        if (outside(p)) return State::kOutside;
-        const OcclusionQuery q{p, geom.edge_at(g)};
-        uint8_t hidden = 0;
-        occlusion_.occluded(projection_.eye_object(), {&q, 1}, {&hidden, 1});
-        return hidden ? State::kOccluded : State::kVisible;
+    // Where the state changes between neighbouring samples, located to options_.bisection_px:
+    // per chain, one cut per change, in order. Every change is bisected at once, one batch of
+    // occlusion queries per halving, so that a batch runs in parallel; each change's halvings
+    // depend on its own answers only, exactly as when bisected one change at a time.
+    std::vector<std::vector<double>> locate_changes(const std::vector<Chain>& chains,
+                                                    const std::vector<std::vector<double>>& params,
+                                                    const std::vector<std::vector<State>>& states) const {
+        struct Bracket {
+            size_t chain;
+            double g0, g1;  // the change lies between; g0 has state s0
+            State s0;
+            int halvings = 0;
+        };
+        std::vector<Bracket> brackets;
+        std::vector<std::vector<double>> cuts(chains.size());
+        for (size_t c = 0; c < chains.size(); ++c) {
+            for (size_t i = 0; i + 1 < params[c].size(); ++i) {
+                if (states[c][i + 1] != states[c][i]) brackets.push_back({c, params[c][i], params[c][i + 1], states[c][i]});
+            }
+        }
+        auto halve = [](Bracket& b, double mid, State state) {
+            (state == b.s0 ? b.g0 : b.g1) = mid;
+            ++b.halvings;
+        };
+        std::vector<size_t> active(brackets.size()), still_active, asked;
+        for (size_t k = 0; k < brackets.size(); ++k) active[k] = k;
+        std::vector<OcclusionQuery> queries;
+        std::vector<uint8_t> hidden;
+        while (!active.empty()) {
+            still_active.clear();
+            asked.clear();
+            queries.clear();
+            for (size_t k : active) {
+                Bracket& b = brackets[k];
+                const ChainGeometry geom(chains[b.chain], mesh_);
+                if (b.halvings >= kMaxBisections || !(pixel_distance(geom, b.g0, b.g1) > options_.bisection_px)) continue;
+                still_active.push_back(k);
+                const double mid = 0.5 * (b.g0 + b.g1);
+                const glm::dvec3 p = geom.point(mid);
+                if (outside(p)) {
+                    halve(b, mid, State::kOutside);
+                } else {
+                    queries.push_back({p, geom.edge_at(mid)});
+                    asked.push_back(k);
+                }
+            }
+            hidden.assign(queries.size(), 0);
+            occlusion_.occluded(projection_.eye_object(), queries, hidden);
+            for (size_t q = 0; q < queries.size(); ++q) {
+                Bracket& b = brackets[asked[q]];
+                halve(b, 0.5 * (b.g0 + b.g1), hidden[q] ? State::kOccluded : State::kVisible);
+            }
+            active.swap(still_active);
+        }
+        for (const Bracket& b : brackets) cuts[b.chain].push_back(0.5 * (b.g0 + b.g1));
+        return cuts;
     }
 
     // Pixel distance between two chain points; infinite when either is behind the camera.
@@ -115,33 +165,20 @@ class Splitter {
         return g;
     }
 
-    // Locates the change between g0 (state s0) and g1 to options_.bisection_px.
-    double bisect(const ChainGeometry& geom, double g0, State s0, double g1) const {
-        for (int i = 0; i < kMaxBisections && pixel_distance(geom, g0, g1) > options_.bisection_px; ++i) {
-            const double mid = 0.5 * (g0 + g1);
-            if (state_at(geom, mid) == s0) {
-                g0 = mid;
-            } else {
-                g1 = mid;
-            }
-        }
-        return 0.5 * (g0 + g1);
-    }
-
     struct Run {
         double begin, end;  // chain parameters; end < begin wraps around a closed chain
         State state;
     };
 
     void emit_chain(const Chain& chain, const std::vector<double>& g, const std::vector<State>& s,
-                    std::vector<Polyline>& out) const {
+                    const std::vector<double>& cuts, std::vector<Polyline>& out) const {
         const ChainGeometry geom(chain, mesh_);
         const double g_end = double(geom.segments());
         std::vector<Run> runs;
         double begin = 0.0;
-        for (size_t i = 0; i + 1 < g.size(); ++i) {
+        for (size_t i = 0, change = 0; i + 1 < g.size(); ++i) {
             if (s[i + 1] == s[i]) continue;
-            const double cut = bisect(geom, g[i], s[i], g[i + 1]);
+            const double cut = cuts[change++];
             runs.push_back({begin, cut, s[i]});
             begin = cut;
         }
