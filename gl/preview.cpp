@@ -563,8 +563,10 @@ PreviewImage PreviewRenderer::render(const core::FrameLines& frame, const core::
     const GLenum draw_buffer = GL_COLOR_ATTACHMENT0;
     fn.DrawBuffers(1, &draw_buffer);
     fn.Viewport(0, 0, image.width, image.height);
-    fn.Disable(GL_CULL_FACE);
-    fn.Disable(GL_DEPTH_CLAMP);
+    // The depth pass may share the context: set every switch this pass relies on.
+    for (const GLenum capability : {GL_CULL_FACE, GL_DEPTH_CLAMP, GL_DEPTH_TEST, GL_STENCIL_TEST, GL_BLEND}) {
+        fn.Disable(capability);
+    }
     const glm::vec3 background(m.options.background.value_or(glm::dvec3(0.0)));
     const GLfloat clear[4] = {background.r, background.g, background.b, m.options.background ? 1.0f : 0.0f};
     fn.ClearBufferfv(GL_COLOR, 0, clear);

@@ -2,11 +2,15 @@
 // The GL preview against the Cairo PNG of the filled outlines (ink coverage), on both back-ends.
 #include "gl/preview.h"
 
+#include "core/chaining.h"
 #include "core/error.h"
+#include "core/features.h"
 #include "core/strokes.h"
 #include "core/topology.h"
+#include "core/visibility.h"
 #include "export/drawing.h"
 #include "export/png.h"
+#include "gl/depth_visibility.h"
 #include "tests/gl/context_or_skip.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/shapes.h"
@@ -294,6 +298,35 @@ TEST(Preview, RendersFrameAfterFrame) {
     EXPECT_EQ(a.rgba, c.rgba) << "deterministic, nothing left over from the previous frame";
     EXPECT_GT(renderer.last_render().strokes, 0u);
     EXPECT_GE(renderer.last_render().samples, 1);
+}
+
+TEST(Preview, SharesTheContextWithTheDepthPass) {
+    // `--visibility gl --preview`: the depth pass and the preview take turns on one context;
+    // neither may leave state that changes the other's result.
+    const Frame frame = torus_frame();
+    const core::EdgeTable table = core::build_edge_table(frame.mesh);
+    const core::Projection projection(frame.lines.camera, frame.lines.image, glm::dmat4(1.0));
+    const std::vector<core::Chain> chains =
+        core::chain_feature_edges(core::extract_feature_edges(frame.mesh, table, projection.eye_object(), {}), table);
+    auto visible_points = [&](const gl::DepthOcclusion& depth) {
+        size_t n = 0;
+        for (const core::Polyline& p : core::split_by_visibility(chains, frame.mesh, projection, depth, {})) {
+            n += p.points_px.size();
+        }
+        return n;
+    };
+    const gl::PreviewImage alone = preview(gl::Backend::kAuto, frame, gl::default_brush_tip());
+
+    const auto context = context_or_skip(gl::Backend::kAuto);
+    gl::DepthOcclusion depth(*context);
+    gl::PreviewRenderer renderer(*context, {}, gl::default_brush_tip());
+    depth.prepare(frame.mesh, table, projection, gl::MeshChange::kTopology);
+    const size_t before = visible_points(depth);
+    const gl::PreviewImage shared = renderer.render(frame.lines, frame.strokes);
+    depth.prepare(frame.mesh, table, projection, gl::MeshChange::kNone);
+    EXPECT_EQ(visible_points(depth), before);
+    EXPECT_EQ(renderer.render(frame.lines, frame.strokes).rgba, shared.rgba);
+    EXPECT_EQ(shared.rgba, alone.rgba);
 }
 
 TEST(Preview, PngFromRgbaRoundTrips) {
