@@ -27,7 +27,7 @@ namespace {
 constexpr float kEndGap = 1e-6f;
 
 // Below this many queries a call runs on the calling thread; starting threads costs more.
-constexpr size_t kMinParallelQueries = 256;
+constexpr size_t kMinParallelQueries = 4096;
 
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "Mesh positions are copied as packed float3");
 

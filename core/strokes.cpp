@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/brush.h"
+#include "core/internal/parallel.h"
 #include "core/stroke_path.h"
 
 namespace inkline::core {
@@ -15,6 +16,9 @@ namespace {
 
 // A loop start this close (px) to an exact point starts there instead of splitting a segment.
 constexpr double kOnPointPx = 1e-6;
+
+// Frames with fewer strokes build them on the calling thread; starting another costs more.
+constexpr size_t kMinParallelStrokes = 16;
 
 StrokePathOptions path_options(const BrushStyle& style) {
     StrokePathOptions options;
@@ -216,13 +220,17 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     out.stats.corners = pure.corners;
     out.stats.links = pure.links;
 
-    // Ids, direction and u from the previous frame.
-    std::vector<StrokePath> paths;
-    std::vector<StrokeCandidate> candidates;
-    for (const StrokeGeometry& g : pure.strokes) {
-        paths.push_back(build_stroke_path(g.points_px, g.closed, path_options(style)));
-        candidates.push_back(candidate_of(g, paths.back()));
-    }
+    // Ids, direction and u from the previous frame. Each stroke's centerline, and below its
+    // styling, depends on that stroke alone: built in parallel, gathered in stroke order.
+    const size_t n = pure.strokes.size();
+    std::vector<StrokePath> paths(n);
+    std::vector<StrokeCandidate> candidates(n);
+    internal::parallel_for(n, kMinParallelStrokes, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            paths[i] = build_stroke_path(pure.strokes[i].points_px, pure.strokes[i].closed, path_options(style));
+            candidates[i] = candidate_of(pure.strokes[i], paths[i]);
+        }
+    });
     const std::vector<StrokeMatch> matches = r_coherence.match(candidates);
 
     // Normals only where the frame's lines run: a full pass over a million vertices would cost
@@ -231,20 +239,28 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     for (const Polyline& line : frame.strokes) line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
     const StrokeLighting lighting(mesh, table, projection.world_from_object(), frame.light, line_edges);
     const glm::dmat4 object_from_world = glm::inverse(projection.world_from_object());
-    uint32_t next_id = r_coherence.next_id();
-    std::vector<StrokeTrace> traces;
-    for (size_t i = 0; i < pure.strokes.size(); ++i) {
-        StrokeGeometry& g = pure.strokes[i];
-        const StrokeMatch& m = matches[i];
-        // The centerline is built again only where the stroke was turned round or restarted.
-        std::optional<StrokePath> path = std::move(paths[i]);
-        if (m.reverse) reverse(g), path.reset();
-        bool anchored = false;
-        if (g.closed && g.points_px.size() > 2) {
-            anchored = choose_loop_start(g, m, lighting, projection, object_from_world);
-            path.reset();
+    std::vector<Stroke> styled(n);
+    std::vector<StrokeTrace> traces(n);
+    internal::parallel_for(n, kMinParallelStrokes, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            StrokeGeometry& g = pure.strokes[i];
+            const StrokeMatch& m = matches[i];
+            // The centerline is built again only where the stroke was turned round or restarted.
+            std::optional<StrokePath> path = std::move(paths[i]);
+            if (m.reverse) reverse(g), path.reset();
+            bool anchored = false;
+            if (g.closed && g.points_px.size() > 2) {
+                anchored = choose_loop_start(g, m, lighting, projection, object_from_world);
+                path.reset();
+            }
+            styled[i] = style_stroke(std::move(g), std::move(path), m.id, m.u_offset, lighting, style);
+            traces[i] = trace_of(styled[i], anchored);
         }
-        Stroke stroke = style_stroke(std::move(g), std::move(path), m.id, m.u_offset, lighting, style);
+    });
+    uint32_t next_id = r_coherence.next_id();
+    for (size_t i = 0; i < n; ++i) {
+        Stroke& stroke = styled[i];
+        const StrokeMatch& m = matches[i];
         next_id = std::max(next_id, m.id + 1);
 
         StrokeStats& s = out.stats;
@@ -259,7 +275,6 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
             s.max_deviation_px = std::max(s.max_deviation_px, stroke.deviation_px);
             s.max_removed_px = std::max(s.max_removed_px, stroke.removed_px);
         }
-        traces.push_back(trace_of(stroke, anchored));
         out.strokes.push_back(std::move(stroke));
     }
     r_coherence.remember(std::move(traces), next_id);
