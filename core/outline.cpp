@@ -218,12 +218,16 @@ Ring simplify_ring(const Ring& ring, double tolerance) {
         const glm::dvec2 ab = b - a;
         const double len2 = glm::dot(ab, ab);
         size_t worst = 0;
-        double worst_d = -1.0;
+        double worst_d = -1.0, worst_d2 = -1.0;
         for (size_t i = lo + 1; i < hi; ++i) {
             const glm::dvec2 p = point(i);
             const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-            const double d = glm::length(p - (a + ab * t));
-            if (d > worst_d) worst_d = d, worst = i;
+            const glm::dvec2 off = p - (a + ab * t);
+            // sqrt is monotone: a squared distance no larger than the worst's cannot beat it.
+            const double d2 = glm::dot(off, off);
+            if (d2 <= worst_d2) continue;
+            const double d = std::sqrt(d2);
+            if (d > worst_d) worst_d = d, worst_d2 = d2, worst = i;
         }
         if (worst_d > tolerance) {
             keep[worst % n] = 1;

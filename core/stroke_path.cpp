@@ -296,7 +296,8 @@ std::vector<double> smooth_samples(std::span<const double> values, double step_p
             for (std::ptrdiff_t k = 1; k <= radius; ++k) {
                 for (const std::ptrdiff_t j : {i - k, i + k}) {
                     if (!closed && (j < 0 || j >= n)) continue;
-                    sum += values[size_t(((j % n) + n) % n)] * weight[size_t(k)];
+                    // j lies within n of [0, n): one wrap at most (cheaper than %).
+                    sum += values[size_t(j < 0 ? j + n : j >= n ? j - n : j)] * weight[size_t(k)];
                     total += weight[size_t(k)];
                 }
             }
