@@ -77,6 +77,7 @@ EdgeTable build_edge_table(const Mesh& mesh) {
     // Within a bucket: by the larger vertex, faces stay ascending (stable; buckets are small).
     size_t n_edges = 0;
     for (size_t v = 0; v < n_vertices; ++v) {
+        if (bucket_offsets[v] == bucket_offsets[v + 1]) continue;  // first + 1 would pass the end
         const auto first = sides.begin() + bucket_offsets[v], last = sides.begin() + bucket_offsets[v + 1];
         for (auto i = first + 1; i < last; ++i) {  // insertion sort
             const Side side = *i;
