@@ -67,7 +67,7 @@ void check_device(RTCDevice device, const char* what) {
 struct OwnFacesContext {
     RTCIntersectContext base;
     std::span<const uint32_t> own_faces;  // mesh faces of the query's edge
-    const uint32_t* face_of;              // Embree primitive -> mesh face
+    const uint32_t* face_of;              // Embree primitive -> mesh face; null: the same number
 };
 static_assert(std::is_standard_layout_v<OwnFacesContext> && offsetof(OwnFacesContext, base) == 0);
 
@@ -75,7 +75,8 @@ void reject_own_faces(const RTCFilterFunctionNArguments* args) {
     const auto* context = reinterpret_cast<const OwnFacesContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
-        const uint32_t face = context->face_of[RTCHitN_primID(args->hit, args->N, i)];
+        const uint32_t primitive = RTCHitN_primID(args->hit, args->N, i);
+        const uint32_t face = context->face_of ? context->face_of[primitive] : primitive;
         const auto& own = context->own_faces;
         if (std::find(own.begin(), own.end(), face) != own.end()) args->valid[i] = 0;
     }
@@ -87,7 +88,8 @@ bool raycast_available() { return true; }
 
 struct RaycastOcclusion::Impl {
     const EdgeTable& table;
-    std::vector<uint32_t> face_of;  // Embree primitive -> mesh face (valid faces only)
+    std::vector<uint32_t> face_of;  // Embree primitive -> mesh face (valid faces only); empty when all are
+    size_t primitives = 0;
     size_t vertex_count = 0;
     bool refittable = false;        // built in the two-level mode that update_positions refits
     DevicePtr device;
@@ -116,11 +118,15 @@ struct RaycastOcclusion::Impl {
             rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT);
         }
         face_of.clear();
-        for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
-            if (table.face_valid[f]) face_of.push_back(f);
+        primitives = size_t(std::count(table.face_valid.begin(), table.face_valid.end(), uint8_t(1)));
+        if (primitives < mesh.triangles.size()) {
+            face_of.reserve(primitives);
+            for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+                if (table.face_valid[f]) face_of.push_back(f);
+            }
         }
         vertex_count = mesh.positions.size();
-        if (!face_of.empty()) {
+        if (primitives > 0) {
             geometry.reset(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE));
             check_device(device.get(), "creating the triangle geometry");
             RTCGeometry g = geometry.get();
@@ -128,10 +134,10 @@ struct RaycastOcclusion::Impl {
             void* vertices = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                      sizeof(glm::vec3), vertex_count);
             auto* indices = static_cast<glm::uvec3*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(glm::uvec3), face_of.size()));
+                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(glm::uvec3), primitives));
             check_device(device.get(), "allocating the mesh buffers");
             std::memcpy(vertices, mesh.positions.data(), vertex_count * sizeof(glm::vec3));
-            for (size_t i = 0; i < face_of.size(); ++i) indices[i] = mesh.triangles[face_of[i]];
+            for (size_t i = 0; i < primitives; ++i) indices[i] = mesh.triangles[face_of.empty() ? i : face_of[i]];
             rtcSetGeometryOccludedFilterFunction(g, reject_own_faces);
             rtcAttachGeometry(scene.get(), g);
         }
@@ -190,7 +196,7 @@ void RaycastOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Oc
     internal::parallel_for(queries.size(), kMinParallelQueries, [&](size_t begin, size_t end) {
         OwnFacesContext context;
         rtcInitIntersectContext(&context.base);
-        context.face_of = impl.face_of.data();
+        context.face_of = impl.face_of.empty() ? nullptr : impl.face_of.data();
         for (size_t i = begin; i < end; ++i) {
             const OcclusionQuery& q = queries[i];
             context.own_faces = impl.table.faces_of(q.edge);

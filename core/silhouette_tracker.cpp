@@ -91,12 +91,10 @@ void SilhouetteTracker::begin_frame() {
     stats_ = {};
 }
 
-bool SilhouetteTracker::is_front(uint32_t face) { return is_front(tree_->face_position[face], face); }
-
-bool SilhouetteTracker::is_front(uint32_t position, uint32_t face) {
+bool SilhouetteTracker::is_front(uint32_t position) {
     if (face_stamp_[position] != frame_) {
         face_stamp_[position] = frame_;
-        face_front_[position] = facing_value(*mesh_, face, eye_) > 0.0 ? 1 : 0;
+        face_front_[position] = facing_value(*mesh_, tree_->faces[position], eye_) > 0.0 ? 1 : 0;
         ++faces_tested_;
     }
     return face_front_[position] != 0;
@@ -105,8 +103,7 @@ bool SilhouetteTracker::is_front(uint32_t position, uint32_t face) {
 SilhouetteTracker::Visit SilhouetteTracker::visit_edge(uint32_t edge) {
     if (!table_->is_interior(edge)) return Visit::kSeen;
     const auto faces = table_->faces_of(edge);
-    const internal::ListedEdge le{
-        edge, {faces[0], faces[1]}, {tree_->face_position[faces[0]], tree_->face_position[faces[1]]}};
+    const internal::ListedEdge le{edge, {tree_->face_position[faces[0]], tree_->face_position[faces[1]]}};
     return visit_interior_edge(le);
 }
 
@@ -116,7 +113,7 @@ SilhouetteTracker::Visit SilhouetteTracker::visit_interior_edge(const internal::
         edge_stamp_[le.edge] = frame_;
     }
     ++edges_tested_;
-    if (is_front(le.position[0], le.face[0]) == is_front(le.position[1], le.face[1])) return Visit::kPlain;
+    if (is_front(le.position[0]) == is_front(le.position[1])) return Visit::kPlain;
     found_.push_back(le.edge);
     return Visit::kSilhouette;
 }
@@ -125,7 +122,7 @@ void SilhouetteTracker::full_pass(const LineOptions& lines, double cos_crease) {
     const EdgeTable& table = *table_;
     if (lines.silhouette) {
         for (uint32_t f = 0; f < face_count_; ++f) {
-            if (table.face_valid[f]) is_front(f);
+            if (table.face_valid[f]) is_front(tree_->face_position[f]);
         }
         for (uint32_t e = 0; e < table.edge_count(); ++e) visit_edge(e);
     }
@@ -184,14 +181,15 @@ void SilhouetteTracker::extend_from_found() {
 void SilhouetteTracker::walk_from_stopped(uint32_t edge) {
     // Both faces of the edge now share one facing: the silhouette moved away through faces that
     // took it, so follow those until the sign changes.
-    const bool side = is_front(table_->faces_of(edge)[0]);
+    const bool side = is_front(tree_->face_position[table_->faces_of(edge)[0]]);
     ring_.assign(1, edge);
     for (int r = 0; r < kStoppedWalkRings && !ring_.empty(); ++r) {
         next_ring_.clear();
         for (uint32_t e : ring_) {
             for (uint32_t vertex : {table_->edge_vertices[e].x, table_->edge_vertices[e].y}) {
                 for (uint32_t n : table_->edges_around(vertex)) {
-                    if (visit_edge(n) == Visit::kPlain && is_front(table_->faces_of(n)[0]) == side) {
+                    if (visit_edge(n) == Visit::kPlain &&
+                        is_front(tree_->face_position[table_->faces_of(n)[0]]) == side) {
                         next_ring_.push_back(n);
                     }
                 }
@@ -274,7 +272,8 @@ void SilhouetteTracker::collect_creases(uint32_t index, double crease_angle_rad,
             edge_stamp_[le.edge] = frame_;
             ++edges_tested_;
         }
-        if (tree_->maybe_crease(le, cos_crease) && is_crease(*mesh_, le.face[0], le.face[1], cos_crease)) {
+        if (tree_->maybe_crease(le, cos_crease) &&
+            is_crease(*mesh_, tree_->faces[le.position[0]], tree_->faces[le.position[1]], cos_crease)) {
             r_creases.push_back(le.edge);
         }
     }

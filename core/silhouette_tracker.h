@@ -75,8 +75,7 @@ class SilhouetteTracker {
     enum class Visit : uint8_t { kSeen, kPlain, kSilhouette };
 
     void begin_frame();
-    bool is_front(uint32_t face);
-    bool is_front(uint32_t position, uint32_t face);  // position: the face's in ConeTree::faces
+    bool is_front(uint32_t position);  // of the face at this position in ConeTree::faces
     Visit visit_edge(uint32_t edge);
     Visit visit_interior_edge(const internal::ListedEdge& edge);
     void full_pass(const LineOptions& lines, double cos_crease);

@@ -164,6 +164,9 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
     parallel_for(nodes.size(), kMinParallelNodes, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) fit_node(nodes[i]);
     });
+    // A static mesh never needs the cones again (refit recomputes them): released before the
+    // edge lists grow. Not "cones_ = {}", which assigns an empty list and keeps the memory.
+    cones_ = std::vector<FaceCone>();
 
     // Each interior edge goes to the deepest node holding both its faces (counting sort).
     std::vector<uint32_t> edge_node(table.edge_count(), kNoIndex);
@@ -197,7 +200,7 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
         if (edge_node[e] == kNoIndex) continue;
         uint32_t f0 = table.faces_of(e)[0], f1 = table.faces_of(e)[1];
         if (face_position[f0] > face_position[f1]) std::swap(f0, f1);
-        edges[offsets[edge_node[e]]++] = {e, {f0, f1}, {face_position[f0], face_position[f1]}};
+        edges[offsets[edge_node[e]]++] = {e, {face_position[f0], face_position[f1]}};
     }
     edge_node = std::vector<uint32_t>();
     uint32_t span_count = 0;
@@ -225,9 +228,6 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
             }
         }
     });
-    // A static mesh never needs the cones again; refit recomputes them. (Not "cones_ = {}",
-    // which assigns an empty list and keeps the memory.)
-    cones_ = std::vector<FaceCone>();
 }
 
 ConeTree::FaceCone ConeTree::face_cone(const Mesh& mesh, uint32_t face) {

@@ -36,10 +36,10 @@ struct ConeNode {
     bool is_leaf() const { return second_child == kNoIndex; }
 };
 
-// An interior edge with its two faces and their indices in ConeTree::faces, the lower first.
+// An interior edge by the indices of its two faces in ConeTree::faces, the lower first (the
+// faces themselves are faces[position[k]]; 12 bytes an edge, 18 MB at 1.5M edges).
 struct ListedEdge {
     uint32_t edge;
-    uint32_t face[2];
     uint32_t position[2];
 };
 

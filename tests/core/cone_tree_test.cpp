@@ -73,7 +73,8 @@ TEST(ConeTree, RefitKeepsProofsValidAfterDeformation) {
         for (const core::internal::ListedEdge& le : tree.edges) {
             if (tree.maybe_crease(le, cos_crease)) continue;
             ++ruled_out;
-            EXPECT_FALSE(core::is_crease(sphere, le.face[0], le.face[1], cos_crease)) << "edge " << le.edge;
+            EXPECT_FALSE(core::is_crease(sphere, tree.faces[le.position[0]], tree.faces[le.position[1]], cos_crease))
+                << "edge " << le.edge;
         }
         if (degrees > 10.0) {
             EXPECT_GT(ruled_out, 0u);

@@ -321,6 +321,28 @@ TEST(RaycastVisibility, AFaceInFrontOccludes) {
     for (size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(hidden[i], 0) << i << ": the small triangle covers none of the big one's edges";
 }
 
+TEST(RaycastVisibility, DegenerateFacesDoNotShiftFaceNumbers) {
+    SKIP_WITHOUT_EMBREE();
+    // Two parallel triangles after a zero-area face the BVH leaves out: hits must still map to
+    // the right mesh faces, or the front triangle's own face would hide its edges.
+    core::Mesh mesh;
+    mesh.positions = {{-1.0f, -1.0f, 0.0f}, {1.0f, -1.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
+                      {-2.0f, -2.0f, 1.0f}, {2.0f, -2.0f, 1.0f}, {0.0f, 2.0f, 1.0f}, {6.0f, -2.0f, 1.0f}};
+    mesh.triangles = {{3, 4, 6}, {0, 1, 2}, {3, 4, 5}};  // face 0: collinear corners
+    const core::EdgeTable table = core::build_edge_table(mesh);
+    ASSERT_EQ(table.face_valid[0], 0);
+    const core::RaycastOcclusion raycast(mesh, table);
+    std::vector<core::OcclusionQuery> queries;
+    for (uint32_t e = 0; e < table.edge_count(); ++e) {
+        if (table.faces_of(e).empty()) continue;
+        const glm::dvec3 a(mesh.positions[table.edge_vertices[e].x]), b(mesh.positions[table.edge_vertices[e].y]);
+        queries.push_back({0.5 * (a + b), e});
+    }
+    std::vector<uint8_t> hidden(queries.size());
+    raycast.occluded({0.0, 0.0, 5.0}, queries, hidden);
+    for (size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(hidden[i], queries[i].p_object.z < 0.5 ? 1 : 0) << i;
+}
+
 TEST(RaycastVisibility, MeshWithoutValidFacesOccludesNothing) {
     SKIP_WITHOUT_EMBREE();
     core::Mesh mesh;
