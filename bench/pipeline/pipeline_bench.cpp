@@ -11,20 +11,6 @@
 // this work alone where wall time also measures the neighbours. --repeat renders the frames
 // N times over (after the first pass) for steadier medians.
 
-#include "core/chaining.h"
-#include "core/features.h"
-#include "core/frame_lines.h"
-#include "core/mesh_frames.h"
-#include "core/raycast_visibility.h"
-#include "core/scene.h"
-#include "core/silhouette_tracker.h"
-#include "core/strokes.h"
-#include "core/topology.h"
-#include "core/visibility.h"
-#include "export/atomic_file.h"
-#include "export/drawing.h"
-#include "export/svg.h"
-
 #include <sys/resource.h>
 #include <time.h>
 
@@ -38,6 +24,20 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/chaining.h"
+#include "core/features.h"
+#include "core/frame_lines.h"
+#include "core/mesh_frames.h"
+#include "core/raycast_visibility.h"
+#include "core/scene.h"
+#include "core/silhouette_tracker.h"
+#include "core/strokes.h"
+#include "core/topology.h"
+#include "core/visibility.h"
+#include "export/atomic_file.h"
+#include "export/drawing.h"
+#include "export/svg.h"
 
 namespace {
 
@@ -83,8 +83,10 @@ double peak_rss_mb() {
 }
 
 [[noreturn]] void usage_error(const std::string& what) {
-    std::fprintf(stderr, "inkline_pipeline_bench: %s\nusage: inkline_pipeline_bench SCENE.json [--frames A:B] "
-                         "[--svg DIR] [--repeat N]\n", what.c_str());
+    std::fprintf(stderr,
+                 "inkline_pipeline_bench: %s\nusage: inkline_pipeline_bench SCENE.json [--frames A:B] "
+                 "[--svg DIR] [--repeat N]\n",
+                 what.c_str());
     std::exit(2);
 }
 
@@ -112,7 +114,8 @@ int run(int argc, char** argv) {
         const std::string value = argv[++i];
         if (arg == "--frames") {
             const size_t colon = value.find(':');
-            frames = {std::atoi(value.c_str()), std::atoi(value.c_str() + (colon == std::string::npos ? 0 : colon + 1))};
+            frames = {std::atoi(value.c_str()),
+                      std::atoi(value.c_str() + (colon == std::string::npos ? 0 : colon + 1))};
         } else if (arg == "--svg") {
             svg_dir = value;
         } else if (arg == "--repeat") {
@@ -150,7 +153,8 @@ int run(int argc, char** argv) {
             lines.image = scene.image;
             lines.light = scene.light;
             const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
-            lines.camera = core::camera_at(scene, frame, transform_bounds(core::bounds_of(mesh.positions), world_from_object));
+            lines.camera =
+                core::camera_at(scene, frame, transform_bounds(core::bounds_of(mesh.positions), world_from_object));
             const core::Projection projection(lines.camera, scene.image, world_from_object);
             std::map<std::string, Laps::Lap> stage;
 
@@ -171,11 +175,12 @@ int run(int argc, char** argv) {
             } else if (meshes.is_sequence() && frame != first) {
                 occlusion->update_positions(mesh);
             }
-            lines.strokes = core::split_by_visibility(chains, mesh, projection, *occlusion,
-                                                      {.keep_hidden = scene.lines.hidden});
+            lines.strokes =
+                core::split_by_visibility(chains, mesh, projection, *occlusion, {.keep_hidden = scene.lines.hidden});
             stage["visibility"] = laps.lap();
             core::tally_visible_length(lines);
-            const core::FrameStrokes drawn = core::build_strokes(lines, mesh, table, projection, scene.brush, coherence);
+            const core::FrameStrokes drawn =
+                core::build_strokes(lines, mesh, table, projection, scene.brush, coherence);
             stage["strokes"] = laps.lap();
             const output::Drawing drawing = output::brush_drawing(lines, drawn, style, false);
             char name[32];
@@ -198,14 +203,17 @@ int run(int argc, char** argv) {
 
     double total_wall = 0.0, total_cpu = 0.0;
     std::printf("%s: %zu faces, %zu edges; frames %d..%d, %zu rendered, %zu strokes; peak RSS %.0f MB\n\n",
-                scene_path.string().c_str(), faces, table.edge_count(), first, last, frames_done, strokes, peak_rss_mb());
-    std::printf("| stage | ms/frame wall (median) | ms/frame CPU (median) | frame %d wall | frame %d CPU |\n", first, first);
+                scene_path.string().c_str(), faces, table.edge_count(), first, last, frames_done, strokes,
+                peak_rss_mb());
+    std::printf("| stage | ms/frame wall (median) | ms/frame CPU (median) | frame %d wall | frame %d CPU |\n", first,
+                first);
     std::printf("|---|---:|---:|---:|---:|\n");
     for (const char* key : kStages) {
         const double w = median(wall[key]), c = median(cpu[key]);
         total_wall += w;
         total_cpu += c;
-        std::printf("| %s | %.2f | %.2f | %.1f | %.1f |\n", key, w, c, first_frame[key].wall_ms, first_frame[key].cpu_ms);
+        std::printf("| %s | %.2f | %.2f | %.1f | %.1f |\n", key, w, c, first_frame[key].wall_ms,
+                    first_frame[key].cpu_ms);
     }
     std::printf("| **per frame** | **%.2f** | **%.2f** | | |\n\n", total_wall, total_cpu);
     std::printf("| one-time | wall ms | CPU ms |\n|---|---:|---:|\n");

@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "core/internal/obj_reader.h"
 
-#include "core/internal/mesh_checks.h"
-#include "core/internal/parallel.h"
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -11,6 +8,9 @@
 #include <cstring>
 #include <thread>
 #include <vector>
+
+#include "core/internal/mesh_checks.h"
+#include "core/internal/parallel.h"
 
 namespace inkline::core::internal {
 namespace {
@@ -177,7 +177,8 @@ std::optional<ObjContents> read_plain_obj(std::string_view text) {
     const bool has_carriage_returns = std::memchr(text.data(), '\r', text.size()) != nullptr;
 
     // Pieces of whole lines, one per thread, read in parallel and joined in order.
-    const size_t pieces_wanted = text.size() < kMinParallelBytes ? 1 : std::max(1u, std::thread::hardware_concurrency());
+    const size_t pieces_wanted =
+        text.size() < kMinParallelBytes ? 1 : std::max(1u, std::thread::hardware_concurrency());
     std::vector<Piece> pieces;
     for (size_t begin = 0, k = 0; begin < text.size(); ++k) {
         size_t end = std::max(begin, text.size() * (k + 1) / pieces_wanted);

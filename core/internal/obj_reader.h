@@ -5,11 +5,11 @@
 // which reads the file through check_obj and OpenMesh as before.
 #pragma once
 
-#include "core/mesh.h"
-
 #include <cstddef>
 #include <optional>
 #include <string_view>
+
+#include "core/mesh.h"
 
 namespace inkline::core::internal {
 

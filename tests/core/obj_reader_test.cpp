@@ -1,11 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "core/internal/obj_reader.h"
 
-#include "core/error.h"
-#include "core/mesh_io.h"
-#include "tests/support/obj.h"
-#include "tests/support/shapes.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +9,11 @@
 #include <iterator>
 #include <random>
 #include <string>
+
+#include "core/error.h"
+#include "core/mesh_io.h"
+#include "tests/support/obj.h"
+#include "tests/support/shapes.h"
 
 namespace inkline {
 namespace {
@@ -61,7 +61,8 @@ class ObjReader : public ::testing::Test {
             EXPECT_EQ(differing, 0u);
         }
         const std::string expected_warning =
-            fast->short_faces ? ": skipped " + std::to_string(fast->short_faces) + " face(s) with fewer than 3 vertices" : "";
+            fast->short_faces ? ": skipped " + std::to_string(fast->short_faces) + " face(s) with fewer than 3 vertices"
+                              : "";
         const std::string warning = general->warnings.empty() ? "" : general->warnings[0];
         EXPECT_EQ(warning.empty(), expected_warning.empty()) << warning;
         if (!expected_warning.empty()) {
@@ -72,8 +73,8 @@ class ObjReader : public ::testing::Test {
 };
 
 TEST_F(ObjReader, GeneratedMeshesReadAsTheGeneralReaderReadsThem) {
-    for (const auto& [name, mesh] : {std::pair{"torus", test::torus(1.0, 0.3, 24, 12)},
-                                     std::pair{"sphere", test::uv_sphere(16, 8, 1.0)}}) {
+    for (const auto& [name, mesh] :
+         {std::pair{"torus", test::torus(1.0, 0.3, 24, 12)}, std::pair{"sphere", test::uv_sphere(16, 8, 1.0)}}) {
         const fs::path file = dir / "m.obj";
         test::write_obj(file, mesh);
         EXPECT_TRUE(agrees(test::read_text(file), name)) << name << ": declined";
@@ -99,7 +100,8 @@ TEST_F(ObjReader, NumbersRoundAsTheGeneralReaderRoundsThem) {
 TEST_F(ObjReader, FaceFormsMatchTheGeneralReader) {
     const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n";
     const std::pair<const char*, std::string> cases[] = {
-        {"slashes", vertices + "vt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\nf 1/1 2/2 3/3\nf 1/1/1 3/3/1 4/2/1\nf 1//1 2//1 5//1\n"},
+        {"slashes",
+         vertices + "vt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\nf 1/1 2/2 3/3\nf 1/1/1 3/3/1 4/2/1\nf 1//1 2//1 5//1\n"},
         {"negative", vertices + "f -5 -4 -3\nv 2 2 2\nf -1 -2 -3 -4\n"},
         {"polygons", vertices + "f 1 2 3 4 5\n"},
         {"repeated corners", vertices + "f 1 2 2 3\nf 1 1 2\nf 4 4 4\n"},
