@@ -18,6 +18,10 @@ constexpr double kDegenerateAreaRatio = 1e-12;
 // Meshes with fewer faces are checked for degenerate faces on one thread.
 constexpr size_t kMinParallelFaces = 100000;
 
+// Vertex buckets of more sides than this are sorted with std::sort rather than by insertion,
+// whose cost grows with the square of the bucket.
+constexpr std::ptrdiff_t kMaxInsertionSort = 32;
+
 bool is_degenerate(const Mesh& mesh, const glm::uvec3& t) {
     if (t.x == t.y || t.y == t.z || t.z == t.x) return true;
     const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
@@ -74,16 +78,23 @@ EdgeTable build_edge_table(const Mesh& mesh) {
             }
         }
     }
-    // Within a bucket: by the larger vertex, faces stay ascending (stable; buckets are small).
+    // Within a bucket: by the larger vertex, then the face (already ascending as filled). Most
+    // buckets hold a few sides; a vertex shared by very many faces (a fan's apex) gets a real sort.
     size_t n_edges = 0;
     for (size_t v = 0; v < n_vertices; ++v) {
         if (bucket_offsets[v] == bucket_offsets[v + 1]) continue;  // first + 1 would pass the end
         const auto first = sides.begin() + bucket_offsets[v], last = sides.begin() + bucket_offsets[v + 1];
-        for (auto i = first + 1; i < last; ++i) {  // insertion sort
-            const Side side = *i;
-            auto j = i;
-            for (; j > first && (j - 1)->other > side.other; --j) *j = *(j - 1);
-            *j = side;
+        if (last - first > kMaxInsertionSort) {
+            std::sort(first, last, [](const Side& a, const Side& b) {
+                return a.other != b.other ? a.other < b.other : a.face < b.face;
+            });
+        } else {
+            for (auto i = first + 1; i < last; ++i) {  // insertion sort, stable
+                const Side side = *i;
+                auto j = i;
+                for (; j > first && (j - 1)->other > side.other; --j) *j = *(j - 1);
+                *j = side;
+            }
         }
         for (auto i = first; i < last; ++i) n_edges += i == first || i->other != (i - 1)->other;
     }

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace inkline {
 namespace {
 
@@ -38,6 +40,26 @@ TEST(Topology, EdgesAreSortedAndAdjacencyIsConsistent) {
             const auto around = t.edges_around(v);
             EXPECT_NE(std::find(around.begin(), around.end(), e), around.end());
         }
+    }
+}
+
+TEST(Topology, FanOfManyFacesAroundOneVertex_quadratic_bucket_sort) {
+    // Every side at the apex lands in the apex's bucket; sorting that bucket by insertion takes
+    // minutes when its sides arrive in descending order.
+    constexpr uint32_t kSpokes = 100000;
+    core::Mesh fan;
+    fan.positions.push_back({0.0f, 0.0f, 0.0f});
+    for (uint32_t i = 0; i < kSpokes; ++i) {
+        const double a = 6.283185307179586 * double(i) / kSpokes;
+        fan.positions.push_back({float(std::cos(a)), float(std::sin(a)), 1.0f});
+    }
+    // Listed clockwise from the last spoke, so that the apex's sides arrive in descending order.
+    for (uint32_t i = kSpokes; i-- > 0;) fan.triangles.push_back({0, 1 + i, 1 + (i + 1) % kSpokes});
+    const core::EdgeTable table = core::build_edge_table(fan);
+    ASSERT_EQ(table.edge_count(), 2u * kSpokes);
+    for (uint32_t e = 0; e < kSpokes; ++e) {  // the spokes (0, v) come first, each between two faces
+        ASSERT_EQ(table.edge_vertices[e], glm::uvec2(0, e + 1));
+        ASSERT_EQ(table.faces_of(e).size(), 2u);
     }
 }
 
