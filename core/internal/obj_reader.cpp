@@ -18,6 +18,9 @@ namespace {
 // Face indices longer than this are left to the general reader (OpenMesh reads an int).
 constexpr size_t kMaxIndexDigits = 9;
 
+// Faces of more corners than this drop repeated corners by sorting instead of pairwise.
+constexpr size_t kMaxPairwiseCorners = 64;
+
 // Texts shorter than this are read on one thread; starting another costs more.
 constexpr size_t kMinParallelBytes = size_t(1) << 20;
 
@@ -80,6 +83,34 @@ bool parse_corner(std::string_view token, int64_t& r_vertex) {
     return (texcoord.empty() || parse_index(texcoord, unused)) && parse_index(normal, unused);
 }
 
+// OpenMesh drops repeated corners of a face, keeping the first of each, in order. Pairwise for
+// the usual few corners; by sorting for a polygon of very many, where pairwise is quadratic.
+void drop_repeated_corners(std::vector<uint32_t>& r_corners, std::vector<std::pair<uint32_t, uint32_t>>& r_scratch) {
+    if (r_corners.size() <= kMaxPairwiseCorners) {
+        size_t kept = 0;
+        for (size_t i = 0; i < r_corners.size(); ++i) {
+            if (std::find(r_corners.begin(), r_corners.begin() + std::ptrdiff_t(kept), r_corners[i]) ==
+                r_corners.begin() + std::ptrdiff_t(kept)) {
+                r_corners[kept++] = r_corners[i];
+            }
+        }
+        r_corners.resize(kept);
+        return;
+    }
+    r_scratch.clear();
+    for (uint32_t i = 0; i < r_corners.size(); ++i) r_scratch.emplace_back(r_corners[i], i);
+    std::sort(r_scratch.begin(), r_scratch.end());  // by vertex, then by place: the first comes first
+    std::vector<uint8_t> keep(r_corners.size(), 0);
+    for (size_t k = 0; k < r_scratch.size(); ++k) {
+        if (k == 0 || r_scratch[k].first != r_scratch[k - 1].first) keep[r_scratch[k].second] = 1;
+    }
+    size_t kept = 0;
+    for (size_t i = 0; i < r_corners.size(); ++i) {
+        if (keep[i]) r_corners[kept++] = r_corners[i];
+    }
+    r_corners.resize(kept);
+}
+
 // One piece of the text, whole lines, read on its own: vertices_before is the number of vertex
 // lines before it, which negative face indices count back from.
 struct Piece {
@@ -112,6 +143,7 @@ void read_piece(Piece& r_piece, bool has_carriage_returns) {
     mesh.positions.reserve(r_piece.vertex_lines);
     mesh.triangles.reserve(r_piece.face_lines);
     std::vector<uint32_t> corners;
+    std::vector<std::pair<uint32_t, uint32_t>> scratch;
     const char* p = r_piece.text.data();
     const char* const text_end = p + r_piece.text.size();
     auto decline = [&r_piece] { r_piece.plain = false; };
@@ -150,13 +182,11 @@ void read_piece(Piece& r_piece, bool has_carriage_returns) {
                 if (index < 0) index += int64_t(r_piece.vertices_before + mesh.positions.size()) + 1;
                 if (index <= 0) return decline();
                 r_piece.largest_index = std::max(r_piece.largest_index, index - 1);
-                // OpenMesh drops repeated corners of a face (keeping the first of each).
-                if (std::find(corners.begin(), corners.end(), uint32_t(index - 1)) == corners.end()) {
-                    corners.push_back(uint32_t(index - 1));
-                }
+                corners.push_back(uint32_t(index - 1));
                 ++count;
             }
             if (count == 0) return decline();
+            drop_repeated_corners(corners, scratch);
             r_piece.contents.short_faces += count < 3;
             for (size_t i = 1; i + 1 < corners.size(); ++i) {
                 mesh.triangles.emplace_back(corners[0], corners[i], corners[i + 1]);

@@ -116,6 +116,21 @@ TEST_F(ObjReader, FaceFormsMatchTheGeneralReader) {
     for (const auto& [name, text] : cases) EXPECT_TRUE(agrees(text, name)) << name << ": declined";
 }
 
+TEST_F(ObjReader, LongPolygonsDropRepeatedCornersAsTheGeneralReaderDoes) {
+    // Over 64 corners the repeats are found by sorting: same corners kept, same order.
+    std::string text;
+    for (int i = 0; i < 300; ++i) {
+        const double a = 6.283185307179586 * i / 300.0;
+        text += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+    }
+    text += "f";
+    for (int i = 0; i < 1000; ++i) text += " " + std::to_string(1 + (i * 7) % 300);
+    text += "\nf";
+    for (int i = 0; i < 200; ++i) text += " " + std::to_string(i % 3 == 0 ? 1 : 2 + i);
+    text += "\n";
+    EXPECT_TRUE(agrees(text, "long polygons"));
+}
+
 TEST_F(ObjReader, DeclinesWhatItCannotReadExactly) {
     const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\n";
     const std::pair<const char*, std::string> cases[] = {
