@@ -3,7 +3,7 @@
 # inkline against Blender's Line Art (+ grease-pencil SVG export) and Freestyle (+ its SVG
 # exporter) on the same scene: per-frame times and peak memory, side by side.
 #
-#   bench/blender/compare.py [--inkline build/cli/inkline] [--work DIR] [--runs 5]
+#   bench/blender/compare.py [--inkline build/cli/inkline] [--pipeline-bench PATH] [--work DIR] [--runs 5]
 #       [--levels 4] [--frames 24] [--size 1024] [--freestyle-frames 4] [--no-freestyle]
 #       [--reuse] [--per-frame] [-- EXTRA INKLINE RENDER ARGS]
 #
@@ -26,6 +26,11 @@
 #   Freestyle, frame by frame (one run each, fewer frames: it is slow).
 # - Peak memory: the maximum resident set size of each process, from wait4() (what
 #   /usr/bin/time -v reports), largest over runs.
+# - CPU time per frame (all threads), which the load of a shared machine disturbs far less than
+#   wall time: Blender's from time.process_time() around each frame; inkline's from
+#   inkline_pipeline_bench (bench/pipeline/, built with -DINKLINE_BUILD_BENCH=ON), which runs the
+#   same stages as `render --svg` and times each frame in process CPU time. Found next to the
+#   inkline binary's build folder, or given with --pipeline-bench; skipped when missing.
 
 import argparse
 import json
@@ -84,6 +89,7 @@ def summary(per_frame):
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--inkline", default=str(REPO / "build" / "cli" / "inkline"))
+    ap.add_argument("--pipeline-bench", default=None, help="inkline_pipeline_bench (default: next to --inkline)")
     ap.add_argument("--work", default=os.path.join(tempfile.gettempdir(), "inkline-bench-blender"))
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--levels", type=int, default=4)
@@ -137,14 +143,31 @@ def main():
             cmd += ["--frames", "%d:%d" % frames]
         wall, cpu, rss, _ = run(cmd, work / "logs" / ("%s_%d.log" % (mode, r)))
         data = json.loads(result.read_text())
-        return {"frames": {f["frame"]: f["ms"] for f in data["frames"]}, "wall": wall, "cpu": cpu, "rss": rss}
+        return {"frames": {f["frame"]: f["ms"] for f in data["frames"]},
+                "cpu_frames": {f["frame"]: f.get("cpu_ms", 0.0) for f in data["frames"]}, "wall": wall, "cpu": cpu,
+                "rss": rss}
 
-    ink_runs, la_runs = [], []
+    pipeline_bench = Path(args.pipeline_bench) if args.pipeline_bench else \
+        inkline.parent.parent / "bench" / "pipeline" / "inkline_pipeline_bench"
+
+    def inkline_cpu_per_frame(r):
+        """Median process CPU ms per frame (frames 2..) from inkline_pipeline_bench, or None."""
+        if not pipeline_bench.is_file():
+            return None
+        _, _, _, text = run([str(pipeline_bench), str(scene_dir / "scene.json"), "--svg", str(work / "inkline_bench")],
+                            work / "logs" / ("pipeline_bench_%d.log" % r))
+        m = re.search(r"\*\*per frame\*\* \| \*\*([0-9.]+)\*\* \| \*\*([0-9.]+)\*\*", text)
+        return float(m.group(2)) if m else None
+
+    ink_runs, la_runs, ink_cpu = [], [], []
     for r in range(args.runs):
         order = ("inkline", "lineart") if r % 2 == 0 else ("lineart", "inkline")
         for side in order:
             if side == "inkline":
                 ink_runs.append(time_inkline(r))
+                cpu_ms = inkline_cpu_per_frame(r)
+                if cpu_ms is not None:
+                    ink_cpu.append(cpu_ms)
             elif blender:
                 la_runs.append(time_blender("lineart", r))
         print("compare.py: run %d/%d done" % (r + 1, args.runs), file=sys.stderr)
@@ -155,8 +178,9 @@ def main():
         render_only = time_blender("render", 0, span)
         with_lines = time_blender("freestyle", 0, span)
         lines = {f: with_lines["frames"][f] - render_only["frames"][f] for f in with_lines["frames"]}
-        fs_line = {"frames": lines, "rss": with_lines["rss"], "render_rss": render_only["rss"],
-                   "render_median": statistics.median(render_only["frames"].values())}
+        cpu_lines = {f: with_lines["cpu_frames"][f] - render_only["cpu_frames"][f] for f in with_lines["frames"]}
+        fs_line = {"frames": lines, "cpu": statistics.median(cpu_lines.values()), "rss": with_lines["rss"],
+                   "render_rss": render_only["rss"], "render_median": statistics.median(render_only["frames"].values())}
     base_rss = time_blender("baseline", 0, (1, 1))["rss"] if blender else None
     load_after = os.getloadavg()
 
@@ -165,24 +189,29 @@ def main():
     print("\n%d triangles, %d frames at %dx%d, %d alternating runs; load average %.1f before, %.1f after "
           "(%d CPUs)\n" % (faces, args.frames, args.size, args.size, args.runs, load_before[0], load_after[0],
                            os.cpu_count()))
+    ink_cpu_ms = statistics.median(ink_cpu) if ink_cpu else None
     print("| renderer | ms/frame (median) | min - max | first frame ms | mean ms/frame | vs inkline | "
-          "peak RSS MB | run medians ms |")
-    print("|---|---:|---:|---:|---:|---:|---:|---|")
+          "CPU ms/frame | vs inkline (CPU) | peak RSS MB | run medians ms |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
 
-    def row(name, s, rss, medians):
+    def row(name, s, cpu_ms, rss, medians):
+        is_inkline = name.startswith("inkline")
         ratio = s["median"] / ink["median"]
-        print("| %s | %.1f | %.1f - %.1f | %.1f | %.1f | %s | %s | %s |" % (
+        cpu_ratio = "-" if cpu_ms is None or ink_cpu_ms is None else \
+            "1x" if is_inkline else "%.1fx" % (cpu_ms / ink_cpu_ms)
+        print("| %s | %.1f | %.1f - %.1f | %.1f | %.1f | %s | %s | %s | %s | %s |" % (
             name, s["median"], s["min"], s["max"], s["first"], s["mean"],
-            "1x" if name.startswith("inkline") else "%.1fx slower" % ratio,
+            "1x" if is_inkline else "%.1fx slower" % ratio, "-" if cpu_ms is None else "%.1f" % cpu_ms, cpu_ratio,
             "%.0f" % rss if rss is not None else "-", ", ".join("%.0f" % m for m in medians)))
 
-    row("inkline (brush outlines + SVG)", ink, max(x["rss"] for x in ink_runs), run_medians)
+    row("inkline (brush outlines + SVG)", ink, ink_cpu_ms, max(x["rss"] for x in ink_runs), run_medians)
     if la_runs:
         la = summary(median_per_frame([x["frames"] for x in la_runs]))
-        row("Blender Line Art + gpencil SVG export", la, max(x["rss"] for x in la_runs),
+        la_cpu = statistics.median(median_per_frame([x["cpu_frames"] for x in la_runs]).values())
+        row("Blender Line Art + gpencil SVG export", la, la_cpu, max(x["rss"] for x in la_runs),
             [statistics.median(x["frames"].values()) for x in la_runs])
     if fs_line:
-        row("Blender Freestyle + SVG add-on, minus render", summary(fs_line["frames"]), fs_line["rss"], [])
+        row("Blender Freestyle + SVG add-on, minus render", summary(fs_line["frames"]), fs_line["cpu"], fs_line["rss"], [])
     print()
     print("inkline whole runs: %s s wall (mesh loading and first-frame builds included), %s s CPU" % (
         ", ".join("%.2f" % x["wall"] for x in ink_runs), ", ".join("%.2f" % x["cpu"] for x in ink_runs)))

@@ -15,7 +15,8 @@
 #   render     the same render without Freestyle: subtract it from "freestyle".
 #
 # Start-up (Blender itself, loading the .blend, building the modifier) happens before the first
-# timed frame and is not counted. RESULT.json gets {"mode", "frames": [{"frame", "ms", ...}]}.
+# timed frame and is not counted. RESULT.json gets {"mode", "frames": [{"frame", "ms", "cpu_ms",
+# ...}]}: wall-clock and process CPU time (all threads) per frame.
 
 import json
 import math
@@ -145,6 +146,7 @@ def main():
     frames = []
     for frame in range(first, last + 1):
         record = {"frame": frame}
+        c0 = time.process_time()  # CPU time of the whole process, all threads
         t0 = time.perf_counter()
         scene.frame_set(frame)
         if mode in ("lineart", "baseline"):
@@ -160,6 +162,7 @@ def main():
         else:
             bpy.ops.render.render(write_still=False)
         record["ms"] = 1000.0 * (time.perf_counter() - t0)
+        record["cpu_ms"] = 1000.0 * (time.process_time() - c0)
         frames.append(record)
         print("time_blender: %s frame %d: %.1f ms" % (mode, frame, record["ms"]), flush=True)
 
