@@ -556,8 +556,8 @@ int run_info(const std::string& mesh_path) {
     std::printf("file: %s\n", mesh_path.c_str());
     std::printf("vertices: %zu\nfaces: %zu\nedges: %zu\nboundary edges: %zu\nnon-manifold edges: %zu\n", r.vertices,
                 r.faces, r.edges, r.boundary_edges, r.non_manifold_edges);
-    std::printf("degenerate faces: %zu\ninconsistently oriented edges: %zu\nconnected components: %zu\n",
-                r.degenerate_faces, r.inconsistent_edges, r.connected_components);
+    std::printf("degenerate faces: %zu\nduplicate faces: %zu\ninconsistently oriented edges: %zu\nconnected components: %zu\n",
+                r.degenerate_faces, r.duplicate_faces, r.inconsistent_edges, r.connected_components);
     std::printf("bounds: [%g, %g, %g] .. [%g, %g, %g]\n", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);
     for (const std::string& w : loaded.warnings) std::printf("warning: %s\n", w.c_str());
     for (const std::string& w : core::mesh_warnings(r)) std::printf("warning: %s\n", w.c_str());

@@ -38,17 +38,14 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
     return x;
 }
 
-}  // namespace
 
-EdgeTable build_edge_table(const Mesh& mesh) {
+// The table over the faces marked valid.
+EdgeTable build_from_valid(const Mesh& mesh, std::vector<uint8_t> face_valid) {
     EdgeTable t;
     const size_t n_faces = mesh.triangles.size();
     const size_t n_vertices = mesh.positions.size();
-    t.face_valid.resize(n_faces);
+    t.face_valid = std::move(face_valid);
     t.face_edges.assign(n_faces, glm::uvec3(kNoIndex));
-    internal::parallel_for(n_faces, kMinParallelFaces, [&](size_t begin, size_t end) {
-        for (size_t f = begin; f < end; ++f) t.face_valid[f] = is_degenerate(mesh, mesh.triangles[f]) ? 0 : 1;
-    });
 
     // Every corner side (a, b) of a valid face, bucketed by its smaller vertex (a counting sort),
     // in face order within a bucket. Edges are then the distinct larger vertices of each bucket,
@@ -134,12 +131,55 @@ EdgeTable build_edge_table(const Mesh& mesh) {
     return t;
 }
 
+// A face with the same three vertices as an earlier face shares every edge with it; the later
+// copy is marked invalid. Returns how many were found. Only faces sharing an edge are compared.
+size_t mark_duplicate_faces(const Mesh& mesh, EdgeTable& r_table) {
+    auto sorted = [&](uint32_t f) {
+        glm::uvec3 v = mesh.triangles[f];
+        if (v.x > v.y) std::swap(v.x, v.y);
+        if (v.y > v.z) std::swap(v.y, v.z);
+        if (v.x > v.y) std::swap(v.x, v.y);
+        return v;
+    };
+    size_t duplicates = 0;
+    for (uint32_t e = 0; e < r_table.edge_count(); ++e) {
+        const auto faces = r_table.faces_of(e);
+        for (size_t i = 1; i < faces.size(); ++i) {
+            for (size_t j = 0; j < i; ++j) {
+                if (r_table.face_valid[faces[i]] && r_table.face_valid[faces[j]] && sorted(faces[i]) == sorted(faces[j])) {
+                    r_table.face_valid[std::max(faces[i], faces[j])] = 0;
+                    ++duplicates;
+                }
+            }
+        }
+    }
+    return duplicates;
+}
+
+}  // namespace
+
+EdgeTable build_edge_table(const Mesh& mesh) {
+    const size_t n_faces = mesh.triangles.size();
+    std::vector<uint8_t> valid(n_faces);
+    internal::parallel_for(n_faces, kMinParallelFaces, [&](size_t begin, size_t end) {
+        for (size_t f = begin; f < end; ++f) valid[f] = is_degenerate(mesh, mesh.triangles[f]) ? 0 : 1;
+    });
+    EdgeTable t = build_from_valid(mesh, std::move(valid));
+    const size_t duplicates = mark_duplicate_faces(mesh, t);
+    if (duplicates == 0) return t;
+    // Rare: build again without the copies, so their edges are not counted twice.
+    t = build_from_valid(mesh, std::move(t.face_valid));
+    t.duplicate_faces = duplicates;
+    return t;
+}
+
 MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table) {
     MeshReport r;
     r.vertices = mesh.positions.size();
     r.faces = mesh.triangles.size();
     r.edges = table.edge_count();
-    r.degenerate_faces = size_t(std::count(table.face_valid.begin(), table.face_valid.end(), 0));
+    r.duplicate_faces = table.duplicate_faces;
+    r.degenerate_faces = size_t(std::count(table.face_valid.begin(), table.face_valid.end(), 0)) - r.duplicate_faces;
 
     std::vector<uint32_t> parent(r.faces);
     std::iota(parent.begin(), parent.end(), 0u);
@@ -173,6 +213,8 @@ std::vector<std::string> mesh_warnings(const MeshReport& r) {
     std::vector<std::string> out;
     if (r.degenerate_faces > 0)
         out.push_back(std::to_string(r.degenerate_faces) + " degenerate face(s) ignored");
+    if (r.duplicate_faces > 0)
+        out.push_back(std::to_string(r.duplicate_faces) + " duplicate face(s) ignored");
     if (r.non_manifold_edges > 0)
         out.push_back(std::to_string(r.non_manifold_edges) +
                       " non-manifold edge(s), drawn as boundary lines");

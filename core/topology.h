@@ -24,7 +24,8 @@ struct EdgeTable {
     std::vector<uint32_t> edge_face_offsets;   // #E+1, CSR offsets into edge_faces
     std::vector<uint32_t> edge_faces;          // faces of each edge, ascending
     std::vector<glm::uvec3> face_edges;        // #F, edges (c0c1, c1c2, c2c0); kNoIndex if degenerate
-    std::vector<uint8_t> face_valid;           // #F, 0 for degenerate faces (ignored everywhere)
+    std::vector<uint8_t> face_valid;           // #F, 0 for degenerate and duplicate faces (ignored everywhere)
+    size_t duplicate_faces = 0;                // faces repeating an earlier face's three vertices
     std::vector<uint32_t> vertex_edge_offsets; // #V+1, CSR offsets into vertex_edges
     std::vector<uint32_t> vertex_edges;        // edges around each vertex, ascending
 
@@ -47,7 +48,8 @@ struct EdgeTable {
     }
 };
 
-// Builds the table; faces with a repeated vertex or zero area are marked invalid and left out.
+// Builds the table; faces with a repeated vertex or zero area, and later copies of a face with
+// the same three vertices, are marked invalid and left out.
 EdgeTable build_edge_table(const Mesh& mesh);
 
 // What `inkline info` prints about a mesh.
@@ -58,6 +60,7 @@ struct MeshReport {
     size_t boundary_edges = 0;        // exactly one face
     size_t non_manifold_edges = 0;    // three or more faces
     size_t degenerate_faces = 0;
+    size_t duplicate_faces = 0;       // same three vertices as an earlier face
     size_t inconsistent_edges = 0;    // interior edges whose two faces disagree in orientation
     size_t connected_components = 0;  // of valid faces joined by edges
 };

@@ -82,6 +82,21 @@ TEST(Topology, ReportsOddities) {
     EXPECT_EQ(core::mesh_warnings(r).size(), 2u);
 }
 
+TEST(Topology, DuplicateFacesAreIgnoredWithAWarning) {
+    core::Mesh m = test::cube(1.0);
+    m.triangles.push_back(m.triangles[3]);                                   // same order
+    m.triangles.push_back({m.triangles[5].z, m.triangles[5].y, m.triangles[5].x});  // flipped copy
+    const core::EdgeTable table = core::build_edge_table(m);
+    const core::MeshReport r = core::describe_mesh(m, table);
+    EXPECT_EQ(r.duplicate_faces, 2u);
+    EXPECT_EQ(r.degenerate_faces, 0u);
+    EXPECT_EQ(r.non_manifold_edges, 0u) << "the copies do not make edges non-manifold";
+    EXPECT_EQ(r.boundary_edges, 0u);
+    EXPECT_EQ(table.face_valid[12], 0);
+    EXPECT_EQ(table.face_valid[13], 0);
+    EXPECT_EQ(core::mesh_warnings(r).size(), 1u);
+}
+
 TEST(Topology, DetectsInconsistentOrientation) {
     core::Mesh m = test::cube(1.0);
     std::swap(m.triangles[0].y, m.triangles[0].z);  // flip one face
