@@ -42,7 +42,7 @@ void write_script(const fs::path& path, const std::string& text) {
 // The per-frame files a render plan writes.
 std::vector<std::string> frame_files(const RenderPlan& plan, int frame) {
     std::vector<std::string> files;
-    for (const std::string* pattern : {&plan.json, &plan.svg, &plan.png}) {
+    for (const std::string* pattern : {&plan.json, &plan.svg, &plan.png, &plan.preview}) {
         if (!pattern->empty()) files.push_back(core::format_frame(*pattern, frame));
     }
     if (plan.pdf_per_frame) files.push_back(core::format_frame(plan.pdf, frame));

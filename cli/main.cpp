@@ -22,6 +22,10 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
     cmd->add_option("--json", r.json_pattern, "polylines JSON per frame, e.g. out/json/frame_%04d.json");
     cmd->add_option("--svg", r.svg_pattern, "SVG per frame, e.g. out/svg/frame_%04d.svg");
     cmd->add_option("--png", r.png_pattern, "PNG per frame (Cairo), e.g. out/png/frame_%04d.png");
+    cmd->add_option("--preview", r.preview_pattern,
+                    "GL preview PNG per frame, strokes textured with the brush tip, e.g. out/preview/frame_%04d.png");
+    cmd->add_option("--preview-underlay", r.preview_underlay, "mesh under the preview's strokes: none, flat or toon")
+        ->capture_default_str();
     cmd->add_option("--pdf", r.pdf_path,
                            "PDF: a file gets one page per frame; a pattern with %04d one file per frame");
     cmd->add_option("--page", r.page, "PDF page size: A4, A3, Letter or WxHmm (default: the image at --dpi)");

@@ -24,8 +24,10 @@
 #include "export/pdf.h"
 #include "export/png.h"
 #include "export/svg.h"
+#include "gl/brush_tip.h"
 #include "gl/context.h"
 #include "gl/depth_visibility.h"
+#include "gl/preview.h"
 
 #include <glm/mat4x4.hpp>
 
@@ -110,21 +112,23 @@ struct Outputs {
     std::string json;
     std::string svg;
     std::string png;
+    std::string preview;
     std::string pdf;
     bool pdf_per_frame = false;
 };
 
 // Explicit patterns as given; -o DIR fills in JSON and SVG; no output at all means -o out.
 Outputs resolve_outputs(const RenderArgs& args, const FrameRange& frames) {
-    Outputs out{args.json_pattern, args.svg_pattern, args.png_pattern, args.pdf_path, false};
+    Outputs out{args.json_pattern, args.svg_pattern, args.png_pattern, args.preview_pattern, args.pdf_path, false};
     out.pdf_per_frame = !out.pdf.empty() && core::has_frame_field(out.pdf);
-    const bool any_explicit = !out.json.empty() || !out.svg.empty() || !out.png.empty() || !out.pdf.empty();
+    const bool any_explicit =
+        !out.json.empty() || !out.svg.empty() || !out.png.empty() || !out.preview.empty() || !out.pdf.empty();
     if (!args.out_dir.empty() || !any_explicit) {
         const fs::path dir = args.out_dir.empty() ? fs::path("out") : fs::path(args.out_dir);
         if (out.json.empty()) out.json = (dir / "json" / "frame_%04d.json").string();
         if (out.svg.empty()) out.svg = (dir / "svg" / "frame_%04d.svg").string();
     }
-    for (const std::string* pattern : {&out.json, &out.svg, &out.png}) {
+    for (const std::string* pattern : {&out.json, &out.svg, &out.png, &out.preview}) {
         if (!pattern->empty() && frames.count() > 1 && !core::has_frame_field(*pattern)) {
             throw InputError("output pattern '" + *pattern + "' has no frame field such as %04d but " +
                              std::to_string(frames.count()) + " frames are rendered");
@@ -136,6 +140,8 @@ Outputs resolve_outputs(const RenderArgs& args, const FrameRange& frames) {
 struct DrawnFrame {
     core::FrameLines lines;
     core::FrameStrokes strokes;
+    const core::Mesh* mesh = nullptr;  // the frame's mesh, alive until the next draw()
+    glm::dmat4 world_from_object{1.0};
 };
 
 // The occlusion test chosen for a run, and why.
@@ -228,6 +234,8 @@ class Sequence {
         result.strokes = core::split_by_visibility(chains, mesh, projection, occlusion, visibility);
         const double visibility_ms = clock.lap_ms();
         out.strokes = core::build_strokes(result, mesh, table, projection, scene_.brush, coherence_);
+        out.mesh = &mesh;
+        out.world_from_object = world_from_object;
         const double strokes_ms = clock.lap_ms();
         first_frame_ = false;
 
@@ -253,6 +261,40 @@ class Sequence {
 
     void warn(const std::string& message) const {
         if (!args_.quiet) std::fprintf(stderr, "inkline: warning: %s\n", message.c_str());
+    }
+
+    // The GL preview of a frame just drawn (--preview): on the depth pass's context when it has
+    // one, else on a context of its own, created with the first frame.
+    gl::PreviewImage preview(const DrawnFrame& drawn) {
+        if (!preview_) {
+            const gl::Context* context = visibility_.context.get();
+            if (!context) {
+                try {
+                    preview_context_ = gl::create_context(gl::parse_backend(args_.gl_backend));
+                } catch (const gl::ContextError& e) {
+                    throw InputError(std::string("--preview: no OpenGL context: ") + e.what());
+                }
+                context = preview_context_.get();
+            }
+            gl::PreviewOptions options;
+            const std::string& underlay = args_.preview_underlay;
+            if (underlay == "flat") {
+                options.underlay = gl::Underlay::kFlat;
+            } else if (underlay == "toon") {
+                options.underlay = gl::Underlay::kToon;
+            } else if (underlay != "none") {
+                throw InputError("--preview-underlay '" + underlay + "': expected none, flat or toon");
+            }
+            if (!args_.background.empty()) {
+                const output::Rgb bg = output::parse_color(args_.background, "--background");
+                options.background = glm::dvec3(bg.r, bg.g, bg.b);
+            }
+            const gl::BrushTip tip =
+                scene_.brush.tip.empty() ? gl::default_brush_tip() : gl::load_brush_tip(scene_.brush.tip);
+            preview_ = std::make_unique<gl::PreviewRenderer>(*context, scene_.brush, tip, options);
+        }
+        return preview_->render(drawn.lines, drawn.strokes,
+                                {.mesh = drawn.mesh, .world_from_object = drawn.world_from_object});
     }
 
   private:
@@ -298,6 +340,9 @@ class Sequence {
     core::StrokeCoherence coherence_;
     bool first_frame_ = true;
     bool warned_inside_ = false;
+    // Declared after visibility_: destroyed before the context they may run on.
+    std::unique_ptr<gl::Context> preview_context_;
+    std::unique_ptr<gl::PreviewRenderer> preview_;
 };
 
 // SOURCE_DATE_EPOCH when set (the reproducible-builds convention), else the input file's
@@ -448,7 +493,7 @@ RenderPlan plan_render(const RenderArgs& args) {
     }
     if (!args.frames.empty()) frames = parse_frames(args.frames);
     const Outputs o = resolve_outputs(args, frames);
-    return {frames.first, frames.last, o.json, o.svg, o.png, o.pdf, o.pdf_per_frame};
+    return {frames.first, frames.last, o.json, o.svg, o.png, o.preview, o.pdf, o.pdf_per_frame};
 }
 
 int run_render(const RenderArgs& args) {
@@ -524,6 +569,14 @@ int run_render(const RenderArgs& args) {
             continue;
         }
         files += writers.write(result);
+        if (!outputs.preview.empty()) {
+            Clock clock;
+            const gl::PreviewImage image = sequence.preview(result);
+            output::write_file_atomically(core::format_frame(outputs.preview, frame),
+                                          output::png_from_rgba(image.width, image.height, image.rgba));
+            ++files;
+            result.lines.stats.ms.emplace_back("preview", clock.lap_ms());
+        }
         strokes += result.strokes.strokes.size();
         progress.frame_done();
         if (args.verbose) {

@@ -14,6 +14,8 @@ struct RenderArgs {
     std::string json_pattern;
     std::string svg_pattern;
     std::string png_pattern;
+    std::string preview_pattern;          // GL preview PNG per frame (textured brush strokes)
+    std::string preview_underlay = "none";  // none | flat | toon: the mesh under the preview's strokes
     std::string pdf_path;     // a pattern with a frame field: one file per frame; else one page per frame
     std::string page;         // A4, A3, Letter, WxHmm; empty: the image size at dpi
     double margin_mm = 10.0;
@@ -48,7 +50,7 @@ ChunkRange chunk_range(int first, int last, int k, int n);
 struct RenderPlan {
     int first = 1;
     int last = 1;
-    std::string json, svg, png, pdf;  // patterns; pdf may be a single file
+    std::string json, svg, png, preview, pdf;  // patterns; pdf may be a single file
     bool pdf_per_frame = false;
 };
 RenderPlan plan_render(const RenderArgs& args);

@@ -80,6 +80,21 @@ TEST_F(Cli, PngPdfAndMatchingIds) {
     for (int e : elements) EXPECT_TRUE(all.count(e));
 }
 
+TEST_F(Cli, GlPreviewPerFrame) {
+    const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1:2 --size 256x256 -q --preview " +
+                            (dir / "preview" / "f%04d.png").string() + " --preview-underlay toon");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* name : {"f0001.png", "f0002.png"}) {
+        const std::string png = test::read_text(dir / "preview" / name);
+        ASSERT_GT(png.size(), 8u) << name;
+        EXPECT_EQ(png.substr(1, 3), "PNG") << name;
+    }
+    const RunResult bad = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1:1 -q --preview " +
+                              (dir / "p.png").string() + " --preview-underlay glossy");
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_NE(bad.output.find("--preview-underlay 'glossy'"), std::string::npos) << bad.output;
+}
+
 TEST_F(Cli, PdfPerFramePattern) {
     const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1:2 --size 128x96 -q --pdf " +
                             (dir / "p_%02d.pdf").string());

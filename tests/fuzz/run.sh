@@ -29,6 +29,7 @@ for target in scene mesh; do
   fi
   # Edge coverage only, so the corpus keeps one input per new edge rather than per hit count.
   ./build-fuzz/tests/fuzz/inkline_${target}_fuzz -merge=1 -use_counters=0 -use_value_profile=0 \
+    -artifact_prefix="tests/fuzz/corpus/$target/" \
     "tests/fuzz/corpus/$target" "$work" >/dev/null 2>&1 || true
   rm -rf "$work"
 done
