@@ -41,7 +41,8 @@ class BadInput : public ::testing::Test {
             const std::string name = e.path().filename().string();
             const std::string text = test::read_text(e.path());
             const bool whole = (name.ends_with(".svg") && text.ends_with("</svg>\n")) ||
-                               (name.ends_with(".json") && text.ends_with("}\n"));
+                               (name.ends_with(".json") && text.ends_with("}\n")) ||
+                               (name.ends_with(".png") && text.ends_with(std::string("IEND\xae\x42\x60\x82", 8)));
             if (!whole) bad.push_back(e.path().string());
         }
         return bad;
@@ -100,12 +101,15 @@ TEST_F(BadInput, InterruptedRunLeavesOnlyWholeFiles) {
         fs::remove_all(dir / "out");
         const pid_t child = ::fork();
         if (child == 0) {
+            // PNG output at 2048 px keeps every frame busy long enough to be interrupted.
             const std::string input = (dir / "torus.obj").string(), out = (dir / "out").string();
+            const std::string png = (dir / "out" / "png" / "f%04d.png").string();
             ::execl(INKLINE_EXE, INKLINE_EXE, "render", input.c_str(), "--size", "2048x2048", "--hidden", "-q", "-o",
-                    out.c_str(), static_cast<char*>(nullptr));
+                    out.c_str(), "--png", png.c_str(), static_cast<char*>(nullptr));
             ::_exit(127);
         }
-        ::usleep(400 * 1000);
+        // Interrupt as soon as the first frame is written: mid-sequence, whatever the speed.
+        for (int i = 0; i < 500 && !fs::exists(dir / "out" / "json" / "frame_0001.json"); ++i) ::usleep(10 * 1000);
         ::kill(child, signal_number);
         int status = 0;
         ::waitpid(child, &status, 0);
