@@ -47,6 +47,9 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
                            "render chunk K of N contiguous chunks of the frames (K/N), or 'slurm' for the job array task");
     cmd->add_flag("--keep-going", r.keep_going, "report a frame that fails and render the rest");
     cmd->add_option("--max-faces", r.max_faces, "refuse meshes with more faces")->capture_default_str();
+    cmd->add_option("--max-image-side", r.max_image_side, "refuse larger images, px")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1 << 20));
     cmd->add_flag("-v,--verbose", r.verbose, "per-frame details on stderr");
     cmd->add_flag("-q,--quiet", r.quiet, "no summary or warnings on stderr");
 

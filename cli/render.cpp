@@ -77,14 +77,14 @@ FrameRange parse_frames(const std::string& text) {
     return r;
 }
 
-core::ImageSize parse_size(const std::string& text) {
+core::ImageSize parse_size(const std::string& text, int max_side) {
     static const std::regex size(R"(^\s*(\d{1,9})\s*[xX]\s*(\d{1,9})\s*$)");
     std::smatch m;
     if (!std::regex_match(text, m, size)) throw InputError("--size '" + text + "': expected WxH");
     const core::ImageSize image{std::stoi(m[1]), std::stoi(m[2])};
-    if (image.width <= 0 || image.height <= 0 || image.width > core::kMaxImageSide ||
-        image.height > core::kMaxImageSide) {
-        throw InputError("--size '" + text + "': each side must be 1.." + std::to_string(core::kMaxImageSide) + " px");
+    if (image.width <= 0 || image.height <= 0 || image.width > max_side || image.height > max_side) {
+        throw InputError("--size '" + text + "': each side must be 1.." + std::to_string(max_side) +
+                         " px (see --max-image-side)");
     }
     return image;
 }
@@ -488,7 +488,7 @@ ChunkRange chunk_range(int first, int last, int k, int n) {
 RenderPlan plan_render(const RenderArgs& args) {
     FrameRange frames{1, 48};  // a bare mesh's default turntable
     if (is_scene_file(args.input)) {
-        const core::Scene scene = core::load_scene(args.input);
+        const core::Scene scene = core::load_scene(args.input, args.max_image_side);
         frames = {scene.first_frame, scene.last_frame};
     }
     if (!args.frames.empty()) frames = parse_frames(args.frames);
@@ -501,7 +501,7 @@ int run_render(const RenderArgs& args) {
     const bool from_scene = is_scene_file(args.input);
     core::Scene scene;
     if (from_scene) {
-        scene = core::load_scene(args.input);
+        scene = core::load_scene(args.input, args.max_image_side);
     } else {
         scene.mesh.path = args.input;
         scene.first_frame = 1;
@@ -509,7 +509,7 @@ int run_render(const RenderArgs& args) {
     }
     FrameRange frames{scene.first_frame, scene.last_frame};
     if (!args.frames.empty()) frames = parse_frames(args.frames);
-    if (!args.size.empty()) scene.image = parse_size(args.size);
+    if (!args.size.empty()) scene.image = parse_size(args.size, args.max_image_side);
     if (args.hidden) scene.lines.hidden = true;
     const Outputs outputs = resolve_outputs(args, frames);
     // A chunk renders its frames after replaying the earlier ones without output: stroke ids,

@@ -30,6 +30,7 @@ struct RenderArgs {
     std::string chunk;        // "K/N" or "slurm": render the K-th of N contiguous chunks of the frames
     bool keep_going = false;
     size_t max_faces = 50'000'000;
+    int max_image_side = 16384;  // px
     bool verbose = false;
     bool quiet = false;
 };

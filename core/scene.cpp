@@ -262,7 +262,7 @@ BrushStyle read_brush(const Reader& r, const std::filesystem::path& base) {
 
 }  // namespace
 
-Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file) {
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file, int max_image_side) {
     const std::string name = scene_file.string();
     json root;
     try {
@@ -297,7 +297,9 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
         for (const char* key : {"width", "height"}) {
             const int side = std::string(key) == "width" ? scene.image.width : scene.image.height;
             if (side <= 0) img.fail(key, "must be a positive number of pixels");
-            if (side > kMaxImageSide) img.fail(key, "exceeds the limit of " + std::to_string(kMaxImageSide) + " px");
+            if (side > max_image_side) {
+                img.fail(key, "exceeds the limit of " + std::to_string(max_image_side) + " px (see --max-image-side)");
+            }
         }
     }
     scene.camera = read_camera(r.child("camera"));
@@ -334,12 +336,12 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
     return scene;
 }
 
-Scene load_scene(const std::filesystem::path& scene_file) {
+Scene load_scene(const std::filesystem::path& scene_file, int max_image_side) {
     std::ifstream in(scene_file, std::ios::binary);
     if (!in) throw InputError(scene_file.string() + ": cannot open scene file");
     std::ostringstream text;
     text << in.rdbuf();
-    return parse_scene(text.str(), scene_file);
+    return parse_scene(text.str(), scene_file, max_image_side);
 }
 
 Scene default_turntable_scene(const std::filesystem::path& mesh_file, const Bounds& bounds) {

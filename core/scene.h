@@ -18,7 +18,8 @@
 
 namespace inkline::core {
 
-// Largest accepted image side, px: keeps a typo from allocating gigabytes.
+// Largest accepted image side by default, px: keeps a typo from allocating gigabytes
+// (`--max-image-side` changes it).
 inline constexpr int kMaxImageSide = 16384;
 
 struct Rotation {
@@ -75,10 +76,11 @@ struct Scene {
 
 // Reads and validates a scene file; relative paths resolve against its folder.
 // Throws InputError naming the file and key.
-Scene load_scene(const std::filesystem::path& scene_file);
+Scene load_scene(const std::filesystem::path& scene_file, int max_image_side = kMaxImageSide);
 
 // Parses scene JSON text; scene_file names errors and anchors relative paths.
-Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file);
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file,
+                  int max_image_side = kMaxImageSide);
 
 // A 48-frame turntable around a mesh whose object-space bounds are given.
 Scene default_turntable_scene(const std::filesystem::path& mesh_file, const Bounds& bounds);

@@ -126,6 +126,21 @@ TEST_F(BadInput, FaceLimitIsEnforced) {
     EXPECT_NE(r.output.find("12 faces exceed the limit of 10"), std::string::npos) << r.output;
 }
 
+TEST_F(BadInput, ImageSizeLimitIsConfigurable) {
+    test::write_obj(dir / "cube.obj", test::cube(1.0));
+    test::write_text(dir / "scene.json", R"({"mesh": "cube.obj", "image": {"width": 3000, "height": 200},
+        "camera": {"eye": [3, 2, 4], "target": [0, 0, 0]}})");
+    const test::RunResult refused =
+        test::run_inkline("render " + (dir / "scene.json").string() + " --max-image-side 2048 -o " + (dir / "out").string());
+    EXPECT_EQ(refused.code, 2);
+    EXPECT_NE(refused.output.find("key 'image.width': exceeds the limit of 2048 px"), std::string::npos) << refused.output;
+    EXPECT_EQ(test::run_inkline("render " + (dir / "scene.json").string() + " -q --svg " + (dir / "f.svg").string()).code, 0);
+    const test::RunResult size = test::run_inkline("render " + (dir / "scene.json").string() + " --size 100000x100000 -o " +
+                                                   (dir / "out").string());
+    EXPECT_EQ(size.code, 2);
+    EXPECT_NE(size.output.find("each side must be 1..16384 px"), std::string::npos) << size.output;
+}
+
 TEST_F(BadInput, CameraInsideTheMeshWarnsAndDraws) {
     test::write_obj(dir / "sphere.obj", test::uv_sphere(32, 16, 2.0));
     test::write_text(dir / "scene.json", R"({"mesh": "sphere.obj", "camera": {"eye": [0, 0, 0.5], "target": [0, 0, -1]}})");
