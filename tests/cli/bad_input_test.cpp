@@ -141,6 +141,25 @@ TEST_F(BadInput, ImageSizeLimitIsConfigurable) {
     EXPECT_NE(size.output.find("each side must be 1..16384 px"), std::string::npos) << size.output;
 }
 
+TEST_F(BadInput, OddMeshesWarnAndStillDraw) {
+    core::Mesh odd = test::cube(1.0);
+    std::swap(odd.triangles[0].y, odd.triangles[0].z);  // a flipped face
+    odd.triangles.push_back(odd.triangles[4]);          // a duplicate face
+    odd.positions.insert(odd.positions.end(), {{3, 0, 0}, {3, 1, 0}, {4, 0.5f, 0}, {2, 0.5f, 0}, {3, 0.5f, 1}, {0, -1, -1}});
+    odd.triangles.push_back({0, 1, 13});  // zero area: vertex 13 lies between vertices 0 and 1
+    odd.triangles.push_back({8, 9, 10});  // three faces on one edge: non-manifold
+    odd.triangles.push_back({9, 8, 11});
+    odd.triangles.push_back({8, 9, 12});
+    test::write_obj(dir / "odd.obj", odd);
+    const test::RunResult r = test::run_inkline("render " + (dir / "odd.obj").string() + " --frames 1:1 -o " + (dir / "out").string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    for (const char* warning : {"1 degenerate face(s) ignored", "1 duplicate face(s) ignored", "1 non-manifold edge(s)",
+                                "inconsistent orientation"}) {
+        EXPECT_NE(r.output.find(warning), std::string::npos) << warning << "\n" << r.output;
+    }
+    EXPECT_NE(test::read_text(dir / "out" / "svg" / "frame_0001.svg").find("<path id=\"stroke-"), std::string::npos);
+}
+
 TEST_F(BadInput, CameraInsideTheMeshWarnsAndDraws) {
     test::write_obj(dir / "sphere.obj", test::uv_sphere(32, 16, 2.0));
     test::write_text(dir / "scene.json", R"({"mesh": "sphere.obj", "camera": {"eye": [0, 0, 0.5], "target": [0, 0, -1]}})");
