@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "export/drawing.h"
 
+#include "core/brush.h"
 #include "core/error.h"
 
 #include <algorithm>
@@ -69,12 +70,7 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
     return d;
 }
 
-std::string hex_color(const glm::dvec3& rgb) {
-    char buf[8];
-    auto channel = [](double v) { return int(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); };
-    std::snprintf(buf, sizeof buf, "#%02x%02x%02x", channel(rgb.r), channel(rgb.g), channel(rgb.b));
-    return buf;
-}
+std::string hex_color(const glm::dvec3& rgb) { return core::color_hex(rgb); }
 
 std::vector<std::string> layer_names() {
     std::vector<std::string> names;

@@ -54,7 +54,7 @@ Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style
 Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& strokes, const DrawStyle& style,
                       bool centerline);
 
-// "#rrggbb" of an sRGB colour with components in [0, 1].
+// "#rrggbb" of an sRGB colour with components in [0, 1] (core::color_hex).
 std::string hex_color(const glm::dvec3& rgb);
 
 // Layer names in drawing order: the line kinds, then "hidden".
