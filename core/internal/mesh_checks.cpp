@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 namespace inkline::core::internal {
 namespace {
@@ -108,6 +109,60 @@ size_t check_obj(const std::filesystem::path& path) {
     return short_faces;
 }
 
+namespace {
+
+struct PlyElement {
+    std::string name;
+    uintmax_t count = 0;
+    std::vector<std::string> lists;  // per property: the list's count type, or "" for a scalar
+};
+
+// OpenMesh collects a face's corners before handing them on, as many as its list count says. In
+// ASCII files each face line is checked to hold the indices its count announces (one element per
+// line, elements in header order); binary files may use 8-bit list counts only, which bound it.
+void check_ply_lists(const std::filesystem::path& path, std::istream& in, int header_lines,
+                     const std::vector<PlyElement>& elements, bool binary) {
+    for (const PlyElement& element : elements) {
+        for (const std::string& count_type : element.lists) {
+            if (binary && !count_type.empty() && count_type != "uchar" && count_type != "char" &&
+                count_type != "uint8" && count_type != "int8") {
+                throw InputError(path.string() + ": binary PLY with " + count_type +
+                                 " list counts is not supported (8-bit counts, as in 'property list uchar int "
+                                 "vertex_indices', are)");
+            }
+        }
+    }
+    if (binary) return;
+    std::string line;
+    size_t number = size_t(header_lines);
+    for (const PlyElement& element : elements) {
+        for (uintmax_t i = 0; i < element.count && std::getline(in, line); ++i) {
+            ++number;
+            std::istringstream words(line);
+            std::string token;
+            for (const std::string& count_type : element.lists) {
+                if (!(words >> token)) break;
+                if (count_type.empty()) continue;
+                // A list: its count, then that many values, all on this line.
+                const std::string count_text = token;
+                char* end = nullptr;
+                const long long n = std::strtoll(count_text.c_str(), &end, 10);
+                size_t available = 0;
+                std::istringstream rest(line.substr(size_t(words.tellg() < 0 ? line.size() : size_t(words.tellg()))));
+                while (rest >> token) ++available;
+                if (*end != '\0' || n < 0 || uintmax_t(n) > available) {
+                    throw InputError(path.string() + ":" + std::to_string(number) + ": a " + element.name +
+                                     " list declares " + count_text + " values but the line holds " +
+                                     std::to_string(available));
+                }
+                for (long long k = 0; k < n; ++k) words >> token;
+            }
+        }
+    }
+}
+
+}  // namespace
+
 // OpenMesh's PLY reader trusts the header's structure (a property before any element crashes
 // it), so the header is checked line by line first: "ply", one "format", then "element NAME N",
 // "property TYPE NAME", "property list TYPE TYPE NAME", "comment" and "obj_info" lines, up to
@@ -121,6 +176,7 @@ void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
     std::string line;
     PlyCounts counts;
     bool have_format = false, in_element = false;
+    std::vector<PlyElement> elements;
     for (int number = 1; number <= kMaxHeaderLines && std::getline(in, line); ++number) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
         auto fail = [&](const std::string& problem) {
@@ -136,6 +192,7 @@ void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
         if (keyword == "end_header") {
             if (!have_format) fail("no format line");
             check_counts(path, counts, file_size);
+            check_ply_lists(path, in, number, elements, counts.binary);
             return;
         }
         if (keyword == "comment" || keyword == "obj_info" || keyword.empty()) continue;
@@ -160,6 +217,7 @@ void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
             const uintmax_t count = std::stoull(count_text);
             if (name == "vertex") counts.vertices = count;
             if (name == "face") counts.faces = count;
+            elements.push_back({name, count, {}});
             in_element = true;
         } else if (keyword == "property") {
             if (!in_element) fail("a property before any element");
@@ -169,8 +227,11 @@ void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
                 std::string count_type, item_type;
                 if (!(words >> count_type >> item_type >> name) || !kTypes.count(count_type) || !kTypes.count(item_type))
                     fail("expected 'property list TYPE TYPE NAME'");
+                elements.back().lists.push_back(count_type);
             } else if (!kTypes.count(type) || !(words >> name)) {
                 fail("expected 'property TYPE NAME'");
+            } else {
+                elements.back().lists.push_back("");
             }
             if (words >> extra) fail("unexpected words after the property name");
         } else {

@@ -185,6 +185,23 @@ TEST_F(MeshIo, ObjFaceCornersMustBeIndices_fuzz_crash_631a40f6) {
     EXPECT_EQ(core::load_mesh(dir / "ok.obj").mesh.triangles.size(), 1u);
 }
 
+// Found by tests/fuzz/run.sh: OpenMesh collects as many corners as a face list's count says.
+TEST_F(MeshIo, PlyFaceListCountsMustFitTheirLine_fuzz_oom_39421bb9) {
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                               "property float z\nelement face 1\nproperty list int int vertex_indices\nend_header\n"
+                               "0 0 0\n1 0 0\n0 1 0\n";
+    test::write_text(dir / "l.ply", header + "2000000000 0 1 2\n");
+    EXPECT_NE(error_of(dir / "l.ply").find("l.ply:13: a face list declares 2000000000 values but the line holds 3"),
+              std::string::npos)
+        << error_of(dir / "l.ply");
+    test::write_text(dir / "ok.ply", header + "3 0 1 2\n");
+    EXPECT_EQ(core::load_mesh(dir / "ok.ply").mesh.triangles.size(), 1u);
+    test::write_text(dir / "b.ply", "ply\nformat binary_little_endian 1.0\nelement face 1\n"
+                                    "property list uint int vertex_indices\nend_header\n" + std::string(16, '\0'));
+    EXPECT_NE(error_of(dir / "b.ply").find("binary PLY with uint list counts is not supported"), std::string::npos)
+        << error_of(dir / "b.ply");
+}
+
 TEST_F(MeshIo, UnknownExtensionIsAnError) {
     test::write_text(dir / "mesh.xyz", "garbage");
     EXPECT_NE(error_of(dir / "mesh.xyz").find("cannot read"), std::string::npos);
