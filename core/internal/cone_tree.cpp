@@ -274,14 +274,7 @@ void ConeTree::fit_node(ConeNode& node) const {
     set_spread(node, std::sqrt(spread2));
 }
 
-void ConeTree::set_spread(ConeNode& node, double spread) {
-    // A unit normal n with |n - axis| <= r makes an angle of at most alpha with the axis,
-    // where r = 2 sin(alpha / 2).
-    node.spread = std::min(2.0, spread);
-    const double r = node.spread;
-    node.cos_alpha = 1.0 - 0.5 * r * r;
-    node.sin_alpha = r * std::sqrt(std::max(0.0, 1.0 - 0.25 * r * r));
-}
+void ConeTree::set_spread(ConeNode& node, double spread) { node.spread = std::min(2.0, spread); }
 
 void ConeTree::refit(const Mesh& mesh) {
     cones_.resize(faces.size());
@@ -337,10 +330,16 @@ ClusterFacing ConeTree::facing(uint32_t index, const glm::dvec3& eye) const {
     // m: c0 cos alpha - sqrt(1 - c0^2) sin alpha > m, here multiplied by farthest and squared.
     const glm::dvec3 far_corner = glm::abs(to_eye) + half;
     const double farthest2 = glm::dot(far_corner, far_corner);
+    // A unit normal n with |n - axis| <= r makes an angle of at most alpha with the axis, where
+    // r = 2 sin(alpha / 2): cos alpha = 1 - r^2 / 2, sin alpha = r sqrt(1 - r^2 / 4). Computed
+    // here rather than stored: 16 bytes less per node.
+    const double r = node.spread;
+    const double cos_alpha = 1.0 - 0.5 * r * r;
+    const double sin_alpha = r * std::sqrt(std::max(0.0, 1.0 - 0.25 * r * r));
     const double m = node.error + kConeMargin;
-    const double lhs = nearest * node.cos_alpha - m * std::sqrt(farthest2);
+    const double lhs = nearest * cos_alpha - m * std::sqrt(farthest2);
     if (!(lhs > 0.0)) return ClusterFacing::kUnknown;
-    const double rest2 = std::max(0.0, farthest2 - nearest * nearest) * node.sin_alpha * node.sin_alpha;
+    const double rest2 = std::max(0.0, farthest2 - nearest * nearest) * sin_alpha * sin_alpha;
     return lhs * lhs > rest2 ? side : ClusterFacing::kUnknown;
 }
 

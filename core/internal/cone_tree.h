@@ -23,8 +23,6 @@ struct ConeNode {
     glm::dvec3 box_max{0.0};
     glm::dvec3 axis{0.0, 0.0, 1.0};  // unit cone axis
     double spread = 2.0;             // max |unit normal - axis| over the faces; 2 bounds nothing
-    double cos_alpha = -1.0;         // of the cone's half-angle alpha = 2 asin(spread / 2)
-    double sin_alpha = 0.0;
     double error = 1.0;              // largest relative error of facing_value's normal (see .cpp)
     uint32_t face_begin = 0;         // range in ConeTree::faces
     uint32_t face_end = 0;
