@@ -141,15 +141,39 @@ size_t mark_duplicate_faces(const Mesh& mesh, EdgeTable& r_table) {
         if (v.x > v.y) std::swap(v.x, v.y);
         return v;
     };
+    // Few faces on an edge (almost always two): compare pairwise. Many (a fan of sheets on one
+    // edge): sort by vertex set, so the cost stays n log n.
+    constexpr size_t kPairwiseFaces = 8;
     size_t duplicates = 0;
+    std::vector<std::pair<glm::uvec3, uint32_t>> crowd;
+    auto key_less = [](const std::pair<glm::uvec3, uint32_t>& a, const std::pair<glm::uvec3, uint32_t>& b) {
+        if (a.first.x != b.first.x) return a.first.x < b.first.x;
+        if (a.first.y != b.first.y) return a.first.y < b.first.y;
+        if (a.first.z != b.first.z) return a.first.z < b.first.z;
+        return a.second < b.second;
+    };
     for (uint32_t e = 0; e < r_table.edge_count(); ++e) {
         const auto faces = r_table.faces_of(e);
-        for (size_t i = 1; i < faces.size(); ++i) {
-            for (size_t j = 0; j < i; ++j) {
-                if (r_table.face_valid[faces[i]] && r_table.face_valid[faces[j]] && sorted(faces[i]) == sorted(faces[j])) {
-                    r_table.face_valid[std::max(faces[i], faces[j])] = 0;
-                    ++duplicates;
+        if (faces.size() <= kPairwiseFaces) {
+            for (size_t i = 1; i < faces.size(); ++i) {
+                for (size_t j = 0; j < i; ++j) {
+                    if (r_table.face_valid[faces[i]] && r_table.face_valid[faces[j]] && sorted(faces[i]) == sorted(faces[j])) {
+                        r_table.face_valid[std::max(faces[i], faces[j])] = 0;
+                        ++duplicates;
+                    }
                 }
+            }
+            continue;
+        }
+        crowd.clear();
+        for (uint32_t f : faces) {
+            if (r_table.face_valid[f]) crowd.emplace_back(sorted(f), f);
+        }
+        std::sort(crowd.begin(), crowd.end(), key_less);
+        for (size_t i = 1; i < crowd.size(); ++i) {
+            if (crowd[i].first == crowd[i - 1].first && r_table.face_valid[crowd[i].second]) {
+                r_table.face_valid[crowd[i].second] = 0;  // the later face of an equal run
+                ++duplicates;
             }
         }
     }

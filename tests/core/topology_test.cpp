@@ -97,6 +97,20 @@ TEST(Topology, DuplicateFacesAreIgnoredWithAWarning) {
     EXPECT_EQ(core::mesh_warnings(r).size(), 1u);
 }
 
+TEST(Topology, ManySheetsOnOneEdgeStayFast) {
+    // 20000 triangles sharing edge (0, 1), each once and one of them twice: linear work per edge.
+    core::Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}};
+    for (int i = 0; i < 20000; ++i) {
+        m.positions.emplace_back(0.5f, std::cos(i * 1e-4f), std::sin(i * 1e-4f));
+        m.triangles.push_back({0, 1, unsigned(i + 2)});
+    }
+    m.triangles.push_back({1, 0, 7});
+    const core::EdgeTable table = core::build_edge_table(m);
+    EXPECT_EQ(table.duplicate_faces, 1u);
+    EXPECT_EQ(table.face_valid.back(), 0);
+}
+
 TEST(Topology, DetectsInconsistentOrientation) {
     core::Mesh m = test::cube(1.0);
     std::swap(m.triangles[0].y, m.triangles[0].z);  // flip one face
