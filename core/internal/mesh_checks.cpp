@@ -117,11 +117,12 @@ struct PlyElement {
     std::vector<std::string> lists;  // per property: the list's count type, or "" for a scalar
 };
 
-// OpenMesh collects a face's corners before handing them on, as many as its list count says. In
-// ASCII files each face line is checked to hold the indices its count announces (one element per
-// line, elements in header order); binary files may use 8-bit list counts only, which bound it.
-void check_ply_lists(const std::filesystem::path& path, std::istream& in, int header_lines,
-                     const std::vector<PlyElement>& elements, bool binary) {
+// OpenMesh collects a list's values before handing them on, as many as its count says. ASCII
+// PLY is read the way OpenMesh reads it, token by token in header order, and each list count
+// must fit the bytes left in the file (a value takes at least two); binary files may use 8-bit
+// list counts only, which bound it.
+void check_ply_lists(const std::filesystem::path& path, std::istream& in, const std::vector<PlyElement>& elements,
+                     bool binary, uintmax_t file_size) {
     for (const PlyElement& element : elements) {
         for (const std::string& count_type : element.lists) {
             if (binary && !count_type.empty() && count_type != "uchar" && count_type != "char" &&
@@ -133,29 +134,23 @@ void check_ply_lists(const std::filesystem::path& path, std::istream& in, int he
         }
     }
     if (binary) return;
-    std::string line;
-    size_t number = size_t(header_lines);
+    std::string token;
     for (const PlyElement& element : elements) {
-        for (uintmax_t i = 0; i < element.count && std::getline(in, line); ++i) {
-            ++number;
-            std::istringstream words(line);
-            std::string token;
+        for (uintmax_t i = 0; i < element.count; ++i) {
             for (const std::string& count_type : element.lists) {
-                if (!(words >> token)) break;
+                if (!(in >> token)) return;  // a short file: OpenMesh's reader reports it
                 if (count_type.empty()) continue;
-                // A list: its count, then that many values, all on this line.
-                const std::string count_text = token;
                 char* end = nullptr;
-                const long long n = std::strtoll(count_text.c_str(), &end, 10);
-                size_t available = 0;
-                std::istringstream rest(line.substr(size_t(words.tellg() < 0 ? line.size() : size_t(words.tellg()))));
-                while (rest >> token) ++available;
-                if (*end != '\0' || n < 0 || uintmax_t(n) > available) {
-                    throw InputError(path.string() + ":" + std::to_string(number) + ": a " + element.name +
-                                     " list declares " + count_text + " values but the line holds " +
-                                     std::to_string(available));
+                const long long n = std::strtoll(token.c_str(), &end, 10);
+                const std::streamoff at = in.tellg();
+                const uintmax_t left = at < 0 ? 0 : file_size - std::min<uintmax_t>(file_size, uintmax_t(at));
+                if (*end != '\0' || n < 0 || uintmax_t(n) > left / 2 + 1) {
+                    throw InputError(path.string() + ": a " + element.name + " list (element " + std::to_string(i) +
+                                     ") declares '" + token + "' values; " + std::to_string(left) +
+                                     " bytes are left in the file");
                 }
-                for (long long k = 0; k < n; ++k) words >> token;
+                for (long long k = 0; k < n && (in >> token); ++k) {
+                }
             }
         }
     }
@@ -192,7 +187,7 @@ void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
         if (keyword == "end_header") {
             if (!have_format) fail("no format line");
             check_counts(path, counts, file_size);
-            check_ply_lists(path, in, number, elements, counts.binary);
+            check_ply_lists(path, in, elements, counts.binary, file_size);
             return;
         }
         if (keyword == "comment" || keyword == "obj_info" || keyword.empty()) continue;
