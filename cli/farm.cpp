@@ -74,7 +74,7 @@ int summarize(const FarmArgs& args, const RenderPlan& plan) {
         complete = false;
         report << "missing frame(s)";
         for (int f : missing) report << " " << f;
-        report << "; re-run: sbatch --array=" << k << " " << (fs::path(args.out_dir) / "farm" / "render.sbatch").string()
+        report << "; re-run: sbatch --array=" << k << " " << (fs::path(args.out_dir) / "slurm" / "render.sbatch").string()
                << "\n";
     }
     if (complete && !args.assemble_pdf.empty()) {
@@ -93,7 +93,7 @@ int summarize(const FarmArgs& args, const RenderPlan& plan) {
         }
     }
     report << (complete ? "complete\n" : "INCOMPLETE\n");
-    output::write_file_atomically(fs::path(args.out_dir) / "farm" / "summary.txt", report.str());
+    output::write_file_atomically(fs::path(args.out_dir) / "slurm" / "summary.txt", report.str());
     std::fputs(report.str().c_str(), stdout);
     return complete ? 0 : kFramesMissing;
 }
@@ -118,7 +118,7 @@ int run_farm(const FarmArgs& args, const RenderArgs& render_in) {
     if (args.summarize) return summarize(farm, plan);
 
     // Every path in the scripts is absolute: jobs may start in any folder on any node.
-    const fs::path dir = fs::path(farm.out_dir) / "farm";
+    const fs::path dir = fs::path(farm.out_dir) / "slurm";
     const std::string exe = self_path();
     std::string render_words;
     for (const std::string& a : args.render_args) render_words += " " + quote(a);

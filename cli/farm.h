@@ -25,7 +25,7 @@ struct FarmArgs {
     std::vector<std::string> render_args;  // after "--": passed to every `inkline render`
 };
 
-// `render_args` parsed into `base` (its input and -o are the farm's). Writes DIR/farm/ or, with
+// `render_args` parsed into `base` (its input and -o are the farm's). Writes DIR/slurm/ or, with
 // summarize, checks the outputs. Returns the exit code.
 int run_farm(const FarmArgs& args, const RenderArgs& render);
 

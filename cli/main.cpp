@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
     CLI::App* farm_cmd = app.add_subcommand("farm", "Write (and with --submit, submit) a Slurm job array for a sequence");
     farm_cmd->add_option("scene", farm.scene, "scene file (.json) or mesh")->required();
     farm_cmd->add_option("--chunks", farm.chunks, "number of chunks (array tasks)")->required();
-    farm_cmd->add_option("-o,--out", farm.out_dir, "output folder; the scripts go to DIR/farm/")->required();
+    farm_cmd->add_option("-o,--out", farm.out_dir, "output folder; the scripts go to DIR/slurm/")->required();
     farm_cmd->add_option("--partition", farm.partition, "sbatch --partition");
     farm_cmd->add_option("--time", farm.time, "sbatch --time per chunk, e.g. 01:00:00");
     farm_cmd->add_option("--mem", farm.mem, "sbatch --mem per chunk, e.g. 4G");

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: installs missing packages, builds, runs every test with CTest.
-# With CI=true it also runs the Slurm farm test (tests/farm/slurm_test.sh; INKLINE_SLURM_TEST=1
+# With CI=true it also runs the Slurm farm test (tests/slurm/slurm_test.sh; INKLINE_SLURM_TEST=1
 # alone) and builds and runs the suite under AddressSanitizer + UndefinedBehaviorSanitizer
 # (INKLINE_SANITIZE=1 alone).
 set -euo pipefail
@@ -15,7 +15,7 @@ ctest --test-dir build -j "$jobs" --output-on-failure
 
 # The farm on a real single-node Slurm cluster (root only; installs slurm-wlm and munge).
 if [ "${CI:-}" = "true" ] || [ "${INKLINE_SLURM_TEST:-0}" = "1" ]; then
-  bash tests/farm/slurm_test.sh build
+  bash tests/slurm/slurm_test.sh build
 fi
 
 if [ "${CI:-}" = "true" ] || [ "${INKLINE_SANITIZE:-0}" = "1" ]; then

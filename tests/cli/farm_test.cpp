@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // `inkline farm`: the job scripts, and the summary that finds a failed chunk and completes once
-// that chunk alone is re-run. (tests/farm/slurm_test.sh runs the same on a real Slurm cluster.)
+// that chunk alone is re-run. (tests/slurm/slurm_test.sh runs the same on a real Slurm cluster.)
 #include "tests/support/obj.h"
 #include "tests/support/run.h"
 
@@ -18,12 +18,12 @@ TEST(Farm, SummaryNamesTheFailedChunkAndCompletesAfterItsRerun) {
     const std::string farm = "farm " + scene + " --chunks 4 -o " + dir.string();
     const test::RunResult wrote = test::run_inkline(farm + " --partition debug --mem 2G" + render_args);
     ASSERT_EQ(wrote.code, 0) << wrote.output;
-    const std::string job = test::read_text(dir / "farm" / "render.sbatch");
+    const std::string job = test::read_text(dir / "slurm" / "render.sbatch");
     EXPECT_NE(job.find("#SBATCH --array=1-4"), std::string::npos) << job;
     EXPECT_NE(job.find("#SBATCH --partition=debug"), std::string::npos);
     EXPECT_NE(job.find("#SBATCH --mem=2G"), std::string::npos);
     EXPECT_NE(job.find("--chunk slurm"), std::string::npos);
-    EXPECT_NE(test::read_text(dir / "farm" / "submit.sh").find("--dependency=afterany:$array"), std::string::npos);
+    EXPECT_NE(test::read_text(dir / "slurm" / "submit.sh").find("--dependency=afterany:$array"), std::string::npos);
 
     // Chunks 1, 2 and 4 run as Slurm would start them; chunk 3 "fails".
     const std::string chunk = "render " + scene + " -q -o " + dir.string() + " --chunk ";
@@ -39,7 +39,7 @@ TEST(Farm, SummaryNamesTheFailedChunkAndCompletesAfterItsRerun) {
     ASSERT_EQ(test::run_inkline(chunk + "3/4" + rest).code, 0);
     const test::RunResult full = test::run_inkline(farm + " --summarize" + render_args);
     EXPECT_EQ(full.code, 0) << full.output;
-    EXPECT_NE(test::read_text(dir / "farm" / "summary.txt").find("complete"), std::string::npos);
+    EXPECT_NE(test::read_text(dir / "slurm" / "summary.txt").find("complete"), std::string::npos);
     const test::RunResult pages = test::run_shell("pdfinfo " + (dir / "sequence.pdf").string());
     EXPECT_NE(pages.output.find("Pages:           12"), std::string::npos) << pages.output;
     fs::remove_all(dir);

@@ -3,7 +3,7 @@
 # key, slurm.conf, ports and state in a temporary folder. Submits the sample in 4 chunks with
 # `inkline farm --submit`, waits, and compares every file with a sequential run byte for byte
 # (polylines JSON apart from its timings). Stops only the daemons it started, by process id.
-#   bash tests/farm/slurm_test.sh BUILD_DIR
+#   bash tests/slurm/slurm_test.sh BUILD_DIR
 # Skips (exit 0, with a message) when not root or when slurm-wlm and munge cannot be installed.
 set -uo pipefail
 cd "$(dirname "$0")/../.."
@@ -78,7 +78,7 @@ pids+=($!)
 
 fail() {
   echo "slurm_test: FAIL: $*" >&2
-  tail -n 20 "$tmp"/log/*.log "$tmp"/log/*.out "$tmp"/out/farm/logs/*.log 2>/dev/null >&2
+  tail -n 20 "$tmp"/log/*.log "$tmp"/log/*.out "$tmp"/out/slurm/logs/*.log 2>/dev/null >&2
   exit 1
 }
 for _ in $(seq 60); do
@@ -99,7 +99,7 @@ for _ in $(seq 300); do
 done
 [ -z "$(squeue -h)" ] || fail "jobs still queued after 300 s"
 farm_s=$(echo "$(date +%s.%N) - $start" | bc)
-grep -q '^complete' "$tmp/out/farm/summary.txt" 2>/dev/null || fail "summary: $(cat "$tmp/out/farm/summary.txt" 2>/dev/null)"
+grep -q '^complete' "$tmp/out/slurm/summary.txt" 2>/dev/null || fail "summary: $(cat "$tmp/out/slurm/summary.txt" 2>/dev/null)"
 pdfinfo "$tmp/out/sequence.pdf" | grep -q 'Pages: *12' || fail "sequence.pdf does not have 12 pages"
 
 seq_args=(--frames 1:12 --size 512x512 --png "$tmp/seq/png/f_%04d.png" --pdf "$tmp/seq/pdf/f_%04d.pdf")
