@@ -186,6 +186,9 @@ void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
         }
         if (keyword == "end_header") {
             if (!have_format) fail("no format line");
+            // The checks below read the data from the next line on, as the format requires.
+            std::string trailing;
+            if (words >> trailing) fail("data on the end_header line (it must end the line)");
             check_counts(path, counts, file_size);
             check_ply_lists(path, in, elements, counts.binary, file_size);
             return;
