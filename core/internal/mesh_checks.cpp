@@ -117,6 +117,16 @@ struct PlyElement {
     std::vector<std::string> lists;  // per property: the list's count type, or "" for a scalar
 };
 
+void require_number(const std::filesystem::path& path, const std::string& element, uintmax_t index,
+                    const std::string& token) {
+    char* end = nullptr;
+    std::strtod(token.c_str(), &end);
+    if (end == token.c_str() || *end != '\0') {
+        throw InputError(path.string() + ": " + element + " " + std::to_string(index) + ": '" + token +
+                         "' is not a number");
+    }
+}
+
 // OpenMesh collects a list's values before handing them on, as many as its count says. ASCII
 // PLY is read the way OpenMesh reads it, token by token in header order, and each list count
 // must fit the bytes left in the file (a value takes at least two); binary files may use 8-bit
@@ -139,6 +149,9 @@ void check_ply_lists(const std::filesystem::path& path, std::istream& in, const 
         for (uintmax_t i = 0; i < element.count; ++i) {
             for (const std::string& count_type : element.lists) {
                 if (!(in >> token)) return;  // a short file: OpenMesh's reader reports it
+                // OpenMesh's >> would split "2-1" into two numbers; only whole numbers keep both
+                // readings of the file the same.
+                require_number(path, element.name, i, token);
                 if (count_type.empty()) continue;
                 char* end = nullptr;
                 const long long n = std::strtoll(token.c_str(), &end, 10);
@@ -149,8 +162,7 @@ void check_ply_lists(const std::filesystem::path& path, std::istream& in, const 
                                      ") declares '" + token + "' values; " + std::to_string(left) +
                                      " bytes are left in the file");
                 }
-                for (long long k = 0; k < n && (in >> token); ++k) {
-                }
+                for (long long k = 0; k < n && (in >> token); ++k) require_number(path, element.name, i, token);
             }
         }
     }

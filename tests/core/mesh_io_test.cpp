@@ -199,6 +199,8 @@ TEST_F(MeshIo, PlyFaceListCountsMustFitTheirLine_fuzz_oom_39421bb9) {
     // Found by the fuzzer: a CR alone after end_header put the data on the header's last line.
     test::write_text(dir / "cr.ply", header.substr(0, header.find("end_header") + 10) + "\r0 0 0 1 0 0 0 1 0 -2 0 1\n");
     EXPECT_NE(error_of(dir / "cr.ply").find("data on the end_header line"), std::string::npos) << error_of(dir / "cr.ply");
+    test::write_text(dir / "glued.ply", header.substr(0, header.size() - 18) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2-1\n");
+    EXPECT_NE(error_of(dir / "glued.ply").find("face 0: '2-1' is not a number"), std::string::npos) << error_of(dir / "glued.ply");
     test::write_text(dir / "ok.ply", header + "3 0 1 2\n");
     EXPECT_EQ(core::load_mesh(dir / "ok.ply").mesh.triangles.size(), 1u);
     test::write_text(dir / "b.ply", "ply\nformat binary_little_endian 1.0\nelement face 1\n"
