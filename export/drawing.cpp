@@ -28,19 +28,27 @@ Rgb parse_color(const std::string& text, const std::string& what) {
     throw InputError(what + ": '" + text + "' is not a colour (expected #rrggbb or #rgb)");
 }
 
+namespace {
+
+// A constant-width stroked centerline; a closed one drops its repeated first point (Z closes it).
+Shape stroked_shape(uint32_t id, core::LineKind kind, bool visible, bool closed, std::vector<glm::dvec2> points) {
+    if (closed && points.size() > 2 && points.front() == points.back()) points.pop_back();
+    Shape s;
+    s.stroke_id = id;
+    s.kind = kind;
+    s.hidden = !visible;
+    s.closed = closed;
+    s.paths.push_back(std::move(points));
+    return s;
+}
+
+}  // namespace
+
 Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style) {
     Drawing d{frame.frame, frame.image, frame.camera, style, {}};
     d.shapes.reserve(frame.strokes.size());
     for (const core::Polyline& line : frame.strokes) {
-        Shape s;
-        s.stroke_id = line.id;
-        s.kind = line.kind;
-        s.hidden = !line.visible;
-        s.filled = false;
-        s.closed = line.closed;
-        s.paths.push_back(line.points_px);
-        if (s.closed && s.paths[0].size() > 1) s.paths[0].pop_back();  // the first point closes it
-        d.shapes.push_back(std::move(s));
+        d.shapes.push_back(stroked_shape(line.id, line.kind, line.visible, line.closed, line.points_px));
     }
     return d;
 }
@@ -50,22 +58,21 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
     Drawing d{frame.frame, frame.image, frame.camera, style, {}};
     d.shapes.reserve(strokes.strokes.size());
     for (const core::Stroke& stroke : strokes.strokes) {
-        Shape s;
-        s.stroke_id = stroke.id;
-        s.kind = stroke.kind;
-        s.hidden = !stroke.visible;
-        s.closed = stroke.closed;
         if (stroke.visible && !stroke.drawn) continue;
         if (stroke.visible && !centerline) {
             if (stroke.outline.empty()) continue;
+            Shape s;
+            s.stroke_id = stroke.id;
+            s.kind = stroke.kind;
+            s.closed = stroke.closed;
             s.filled = true;
             s.paths.assign(stroke.outline.begin(), stroke.outline.end());
-        } else {
-            // Hidden lines and plotter output follow the drawn centerline when there is one.
-            s.paths.push_back(stroke.centerline_px.size() >= 2 ? stroke.centerline_px : stroke.points_px);
-            if (s.closed && s.paths[0].size() > 2 && s.paths[0].front() == s.paths[0].back()) s.paths[0].pop_back();
+            d.shapes.push_back(std::move(s));
+            continue;
         }
-        d.shapes.push_back(std::move(s));
+        // Hidden lines and plotter output follow the drawn centerline when there is one.
+        d.shapes.push_back(stroked_shape(stroke.id, stroke.kind, stroke.visible, stroke.closed,
+                                         stroke.centerline_px.size() >= 2 ? stroke.centerline_px : stroke.points_px));
     }
     return d;
 }
