@@ -2,11 +2,12 @@
 # Fuzzes the scene parser and mesh loading with libFuzzer (clang) under ASan + UBSan, for a
 # bounded time per target. New inputs join tests/fuzz/corpus/<target>/; a crash is saved there
 # too (as crash-*), so tests/fuzz/replay_test.cpp keeps it as a regression test.
-#   bash tests/fuzz/run.sh [seconds per target, default 600]
+#   bash tests/fuzz/run.sh [seconds per target, default 600] [targets, default: scene mesh]
 # Needs clang-14 and libclang-rt-14-dev (Debian); it installs nothing itself.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:-600}
+targets=${2:-scene mesh}
 
 if ! command -v clang++-14 >/dev/null; then
   echo "fuzz: clang++-14 not found; install clang-14 libclang-rt-14-dev" >&2
@@ -18,7 +19,7 @@ cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelW
 cmake --build build-fuzz -j "$(nproc)" --target inkline_scene_fuzz inkline_mesh_fuzz
 
 status=0
-for target in scene mesh; do
+for target in $targets; do
   echo "== fuzzing $target for ${seconds}s =="
   work=$(mktemp -d)
   # New interesting inputs go to a scratch folder; the minimised set is merged into the corpus.
