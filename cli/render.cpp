@@ -607,8 +607,9 @@ int run_info(const std::string& mesh_path) {
     const core::MeshReport r = core::describe_mesh(loaded.mesh, table);
     const core::Bounds b = core::bounds_of(loaded.mesh.positions);
     std::printf("file: %s\n", mesh_path.c_str());
-    std::printf("vertices: %zu\nfaces: %zu\nedges: %zu\nboundary edges: %zu\nnon-manifold edges: %zu\n", r.vertices,
-                r.faces, r.edges, r.boundary_edges, r.non_manifold_edges);
+    std::printf("vertices: %zu\nfaces: %zu\nedges: %zu\nboundary edges: %zu\nnon-manifold edges: %zu\n"
+                "non-manifold vertices: %zu\n",
+                r.vertices, r.faces, r.edges, r.boundary_edges, r.non_manifold_edges, r.non_manifold_vertices);
     std::printf("degenerate faces: %zu\nduplicate faces: %zu\ninconsistently oriented edges: %zu\nconnected components: %zu\n",
                 r.degenerate_faces, r.duplicate_faces, r.inconsistent_edges, r.connected_components);
     std::printf("bounds: [%g, %g, %g] .. [%g, %g, %g]\n", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);

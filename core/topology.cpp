@@ -197,6 +197,43 @@ EdgeTable build_edge_table(const Mesh& mesh) {
     return t;
 }
 
+namespace {
+
+// A vertex is manifold when its faces form one fan: each joined to the next across an edge of the
+// vertex that has exactly two faces. Two cones touching at their tips, or faces meeting at a
+// non-manifold edge, make more than one fan.
+size_t count_non_manifold_vertices(const EdgeTable& table) {
+    size_t count = 0;
+    std::vector<uint32_t> faces, fan;  // the vertex's faces and the fan root of each
+    const size_t vertices = table.vertex_edge_offsets.empty() ? 0 : table.vertex_edge_offsets.size() - 1;
+    for (uint32_t v = 0; v < vertices; ++v) {
+        faces.clear();
+        for (uint32_t e : table.edges_around(v)) {
+            for (uint32_t f : table.faces_of(e)) {
+                if (std::find(faces.begin(), faces.end(), f) == faces.end()) faces.push_back(f);
+            }
+        }
+        if (faces.size() < 2) continue;
+        fan.resize(faces.size());
+        std::iota(fan.begin(), fan.end(), 0u);
+        auto index_of = [&](uint32_t f) { return uint32_t(std::find(faces.begin(), faces.end(), f) - faces.begin()); };
+        size_t fans = faces.size();
+        for (uint32_t e : table.edges_around(v)) {
+            if (!table.is_interior(e)) continue;
+            const auto pair = table.faces_of(e);
+            const uint32_t a = find_root(fan, index_of(pair[0])), b = find_root(fan, index_of(pair[1]));
+            if (a != b) {
+                fan[a] = b;
+                --fans;
+            }
+        }
+        if (fans > 1) ++count;
+    }
+    return count;
+}
+
+}  // namespace
+
 MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table) {
     MeshReport r;
     r.vertices = mesh.positions.size();
@@ -230,6 +267,7 @@ MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table) {
     for (uint32_t f = 0; f < r.faces; ++f) {
         if (table.face_valid[f] && find_root(parent, f) == f) ++r.connected_components;
     }
+    r.non_manifold_vertices = count_non_manifold_vertices(table);
     return r;
 }
 
@@ -242,6 +280,9 @@ std::vector<std::string> mesh_warnings(const MeshReport& r) {
     if (r.non_manifold_edges > 0)
         out.push_back(std::to_string(r.non_manifold_edges) +
                       " non-manifold edge(s), drawn as boundary lines");
+    if (r.non_manifold_vertices > 0)
+        out.push_back(std::to_string(r.non_manifold_vertices) +
+                      " non-manifold vertex(es) where separate sheets touch; lines drawn as usual");
     if (r.inconsistent_edges > 0)
         out.push_back(std::to_string(r.inconsistent_edges) +
                       " edge(s) between faces of inconsistent orientation; silhouettes there "

@@ -59,6 +59,7 @@ struct MeshReport {
     size_t edges = 0;
     size_t boundary_edges = 0;        // exactly one face
     size_t non_manifold_edges = 0;    // three or more faces
+    size_t non_manifold_vertices = 0; // faces around the vertex form more than one fan
     size_t degenerate_faces = 0;
     size_t duplicate_faces = 0;       // same three vertices as an earlier face
     size_t inconsistent_edges = 0;    // interior edges whose two faces disagree in orientation
@@ -67,7 +68,8 @@ struct MeshReport {
 
 MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table);
 
-// Warnings for drawable oddities (degenerate faces, non-manifold edges, inconsistent orientation).
+// Warnings for drawable oddities (degenerate faces, non-manifold edges and vertices, inconsistent
+// orientation).
 std::vector<std::string> mesh_warnings(const MeshReport& report);
 
 }  // namespace inkline::core

@@ -154,7 +154,7 @@ TEST_F(BadInput, OddMeshesWarnAndStillDraw) {
     const test::RunResult r = test::run_inkline("render " + (dir / "odd.obj").string() + " --frames 1:1 -o " + (dir / "out").string());
     EXPECT_EQ(r.code, 0) << r.output;
     for (const char* warning : {"1 degenerate face(s) ignored", "1 duplicate face(s) ignored", "1 non-manifold edge(s)",
-                                "inconsistent orientation"}) {
+                                "2 non-manifold vertex(es)", "inconsistent orientation"}) {
         EXPECT_NE(r.output.find(warning), std::string::npos) << warning << "\n" << r.output;
     }
     EXPECT_NE(test::read_text(dir / "out" / "svg" / "frame_0001.svg").find("<path id=\"stroke-"), std::string::npos);

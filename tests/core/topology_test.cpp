@@ -77,9 +77,31 @@ TEST(Topology, ReportsOddities) {
     const core::MeshReport r = core::describe_mesh(m, table);
     EXPECT_EQ(r.degenerate_faces, 1u);
     EXPECT_EQ(r.non_manifold_edges, 1u);
+    EXPECT_EQ(r.non_manifold_vertices, 2u) << "the two ends of the non-manifold edge";
     EXPECT_EQ(r.connected_components, 2u);
     EXPECT_EQ(r.boundary_edges, 8u + 6u);
-    EXPECT_EQ(core::mesh_warnings(r).size(), 2u);
+    EXPECT_EQ(core::mesh_warnings(r).size(), 3u);
+}
+
+TEST(Topology, SheetsTouchingAtAVertexAreNonManifold) {
+    // Two fans of four triangles around the origin, one above and one below, touching only there:
+    // no edge has more than two faces, but the origin's faces form two fans.
+    core::Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 1}, {0, 1, 1}, {-1, 0, 1}, {0, -1, 1}, {1, 0, -1}, {0, 1, -1}, {-1, 0, -1}, {0, -1, -1}};
+    for (unsigned k = 0; k < 4; ++k) {
+        m.triangles.push_back({0, 1 + k, 1 + (k + 1) % 4});
+        m.triangles.push_back({0, 5 + (k + 1) % 4, 5 + k});
+    }
+    const core::EdgeTable table = core::build_edge_table(m);
+    const core::MeshReport r = core::describe_mesh(m, table);
+    EXPECT_EQ(r.non_manifold_edges, 0u);
+    EXPECT_EQ(r.non_manifold_vertices, 1u);
+    ASSERT_EQ(core::mesh_warnings(r).size(), 1u);
+    EXPECT_NE(core::mesh_warnings(r)[0].find("1 non-manifold vertex"), std::string::npos);
+    // A closed surface and an open grid have none: a boundary vertex's faces are one fan too.
+    for (const core::Mesh& manifold : {test::cube(1.0), test::grid(3, 1.0)}) {
+        EXPECT_EQ(core::describe_mesh(manifold, core::build_edge_table(manifold)).non_manifold_vertices, 0u);
+    }
 }
 
 TEST(Topology, DuplicateFacesAreIgnoredWithAWarning) {
