@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Renders the two coherence sequences of issue 5 to polylines JSON and measures them:
+# the torus sample and a mesh of your choice, each turning 3 degrees per frame (120 frames),
+# 1024 x 1024, default brush.
+#
+#   bash bench/coherence/render.sh [BUILD_DIR] [MESH] [OUT_DIR]
+#
+# MESH is any mesh inkline reads, e.g. bunny00.off from Debian's libcgal-demo data
+# (tar xzf /usr/share/doc/libcgal-demo/data.tar.gz: data/meshes/bunny00.off); without it only
+# the torus is rendered. The mesh gets the camera of the default turntable (20 degrees above
+# its centre, fitted in 35 degrees) orbiting 360 degrees over 120 frames.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+build=${1:-build}
+mesh=${2:-}
+out=${3:-$(mktemp -d)}
+inkline="$build/cli/inkline"
+[ -x "$inkline" ] || { echo "build $inkline first (cmake --build $build)" >&2; exit 1; }
+mkdir -p "$out"
+
+echo "== torus sample, 3 degrees per frame"
+rm -rf "$out/torus"
+"$inkline" render "$here/torus_3deg.json" -q --json "$out/torus/json/f_%04d.json"
+python3 "$here/coherence.py" "$out/torus/json" --worst 3
+
+if [ -n "$mesh" ]; then
+  echo "== $(basename "$mesh"), 3 degrees per frame"
+  rm -rf "$out/mesh"
+  mkdir -p "$out/mesh"
+  # The default turntable's camera (core::default_turntable_scene), over 120 frames.
+  "$inkline" info "$mesh" | python3 -c '
+import json, math, re, sys
+mesh = sys.argv[1]
+text = sys.stdin.read()
+lo, hi = (list(map(float, v.split(","))) for v in re.search(r"bounds: \[(.*)\] \.\. \[(.*)\]", text).groups())
+center = [(a + b) / 2 for a, b in zip(lo, hi)]
+radius = max(math.dist(lo, hi) / 2, 1e-6)
+distance = 1.1 * radius / math.sin(math.radians(35 / 2))
+e = math.radians(20)
+eye = [center[0], center[1] + distance * math.sin(e), center[2] + distance * math.cos(e)]
+json.dump({"version": 1, "mesh": mesh, "frames": [1, 120], "image": {"width": 1024, "height": 1024},
+           "camera": {"eye": eye, "target": center, "fov_y_deg": 35,
+                      "orbit": {"axis": [0, 1, 0], "degrees": 360}}}, sys.stdout, indent=2)
+' "$(realpath "$mesh")" > "$out/mesh/scene.json"
+  "$inkline" render "$out/mesh/scene.json" -q --json "$out/mesh/json/f_%04d.json"
+  python3 "$here/coherence.py" "$out/mesh/json" --worst 3
+fi
+echo "JSON under $out"
