@@ -78,11 +78,16 @@ class SampleGrid {
     std::vector<Entry> entries_;
 };
 
-bool compatible(const StrokeCandidate& c, const StrokeTrace& t) { return c.kind == t.kind && c.visible == t.visible; }
+// Strokes of one kind match; a hidden part that comes into view (or a visible one that goes
+// behind) is the same line, so visibility may change, but such pairs come after every pair of
+// the same visibility (a hidden line may run right behind a visible one).
+bool compatible(const StrokeCandidate& c, const StrokeTrace& t) { return c.kind == t.kind; }
+bool crosses(const StrokeCandidate& c, const StrokeTrace& t) { return c.visible != t.visible; }
 
 struct Pair {
     size_t candidate, trace;
     double score;
+    bool cross;  // the visibility changed
 };
 
 // Overlap (px) of every candidate with every compatible trace it touches.
@@ -103,7 +108,12 @@ std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const
     for (size_t c = 0; c < candidates.size(); ++c) {
         if (candidate_done[c]) continue;
         const StrokeCandidate& cand = candidates[c];
-        const auto use = [&](size_t t) { return !trace_taken[t] && compatible(cand, traces[t]); };
+        const auto use_same = [&](size_t t) {
+            return !trace_taken[t] && compatible(cand, traces[t]) && !crosses(cand, traces[t]);
+        };
+        const auto use_cross = [&](size_t t) {
+            return !trace_taken[t] && compatible(cand, traces[t]) && crosses(cand, traces[t]);
+        };
         auto add = [&](size_t t, double amount) {
             if (score[t] == 0.0) touched.push_back(t);
             score[t] += amount;
@@ -116,16 +126,18 @@ std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const
                     add(it->second, cand.edge_length_px[s]);
             }
         }
-        // Samples count with their share of the length where last frame's nearest stroke lies close.
+        // Samples count with their share of the length where last frame's nearest stroke lies
+        // close: the nearest of the same visibility, and the nearest of the other.
         const double share = cand.samples_px.empty() ? 0.0 : cand.length_px / double(cand.samples_px.size());
         for (const glm::dvec2& p : cand.samples_px) {
-            const SampleGrid::Hit hit = grid.nearest(p, use);
-            if (hit.trace != size_t(-1) && share > 0.0) add(hit.trace, share);
+            for (const SampleGrid::Hit& hit : {grid.nearest(p, use_same), grid.nearest(p, use_cross)}) {
+                if (hit.trace != size_t(-1) && share > 0.0) add(hit.trace, share);
+            }
         }
         std::sort(touched.begin(), touched.end());
         for (size_t t : touched) {
             const double shorter = std::min(cand.length_px, traces[t].length_px);
-            if (score[t] >= kMinOverlapFraction * shorter) pairs.push_back({c, t, score[t]});
+            if (score[t] >= kMinOverlapFraction * shorter) pairs.push_back({c, t, score[t], crosses(cand, traces[t])});
             score[t] = 0.0;
         }
         touched.clear();
@@ -252,10 +264,11 @@ std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidat
     // sweep fast (a silhouette turning edge-on).
     for (int round = 0; round < kMatchRounds; ++round) {
         const SampleGrid grid(traces_, kMatchRadiusPx * double(1 << round));
-        // Largest overlaps first; ties by candidate, then trace, so the result is deterministic.
+        // Same visibility first, then largest overlaps first; ties by candidate, then trace, so
+        // the result is deterministic.
         std::vector<Pair> pairs = overlaps(candidates, traces_, grid, candidate_done, trace_taken);
         std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
-            return std::tie(b.score, a.candidate, a.trace) < std::tie(a.score, b.candidate, b.trace);
+            return std::tie(a.cross, b.score, a.candidate, a.trace) < std::tie(b.cross, a.score, b.candidate, b.trace);
         });
         for (const Pair& p : pairs) {
             if (candidate_done[p.candidate] || trace_taken[p.trace]) continue;

@@ -90,14 +90,41 @@ TEST(StrokeCoherence, DistantStrokeIsNew) {
     EXPECT_FALSE(m[0].inherited);
 }
 
-TEST(StrokeCoherence, KindsAndVisibilityDoNotMix) {
+TEST(StrokeCoherence, KindsDoNotMix) {
     core::StrokeCandidate c = candidate({0, 0}, {100, 0}, 0);
     const core::StrokeCoherence state({trace(c, 5, 0.0)}, 6);
     c.kind = core::LineKind::kCrease;
     EXPECT_FALSE(state.match({c})[0].inherited);
-    c.kind = core::LineKind::kSilhouette;
     c.visible = false;
     EXPECT_FALSE(state.match({c})[0].inherited);
+}
+
+TEST(StrokeCoherence, HiddenLineComingIntoViewKeepsItsId) {
+    // Last frame the line was hidden (written with lines.hidden); now it shows, moved 4 px and
+    // on the neighbouring mesh edges, as a silhouette sliding over the mesh does.
+    core::StrokeTrace hidden = trace(candidate({0, 0}, {100, 0}, 0), 5, 10.0);
+    hidden.visible = false;
+    const core::StrokeCoherence state({hidden}, 6);
+    const auto m = state.match({candidate({0, 4}, {100, 4}, 500)});
+    EXPECT_EQ(m[0].id, 5u);
+    EXPECT_TRUE(m[0].inherited);
+    EXPECT_NEAR(m[0].u_offset, 10.0, 1e-9);
+}
+
+TEST(StrokeCoherence, SameVisibilityComesFirst) {
+    // A visible line with a hidden one right behind it, both seen again, moved and on other
+    // edges: each keeps its own id, although the hidden stroke of last frame overlaps the
+    // visible one now (100 px) more than the visible one (60 px) or the hidden one (80 px) does.
+    core::StrokeTrace visible = trace(candidate({0, 0}, {60, 0}, 0), 1, 0.0);
+    core::StrokeTrace hidden = trace(candidate({0, 1}, {100, 1}, 100), 2, 0.0);
+    hidden.visible = false;
+    const core::StrokeCoherence state({visible, hidden}, 3);
+    core::StrokeCandidate now_visible = candidate({0, 0}, {100, 0}, 200);
+    core::StrokeCandidate now_hidden = candidate({0, 6}, {80, 6}, 300);
+    now_hidden.visible = false;
+    const auto m = state.match({now_visible, now_hidden});
+    EXPECT_EQ(m[0].id, 1u);
+    EXPECT_EQ(m[1].id, 2u);
 }
 
 TEST(StrokeCoherence, LoopStartStaysPut) {

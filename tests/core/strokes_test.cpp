@@ -28,7 +28,8 @@ namespace {
 // pipeline as the CLI runs it, strokes included.
 class TorusTurn {
   public:
-    explicit TorusTurn(const core::BrushStyle& style = {}) : style_(style) {
+    explicit TorusTurn(const core::BrushStyle& style = {}, bool keep_hidden = false)
+        : style_(style), keep_hidden_(keep_hidden) {
         scene_ = core::load_scene(std::filesystem::path(INKLINE_SAMPLES) / "torus" / "scene.json");
         scene_.last_frame = scene_.first_frame + 119;
         meshes_ = std::make_unique<core::MeshFrames>(scene_.mesh, scene_.first_frame);
@@ -52,13 +53,14 @@ class TorusTurn {
         const core::EdgeTable& table = meshes_->edges();
         const core::FeatureEdges features =
             core::extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
-        lines.strokes =
-            core::split_by_visibility(core::chain_feature_edges(features, table), mesh, projection, *occlusion_, {});
+        lines.strokes = core::split_by_visibility(core::chain_feature_edges(features, table), mesh, projection,
+                                                  *occlusion_, {.keep_hidden = keep_hidden_});
         return core::build_strokes(lines, mesh, table, projection, style_, coherence);
     }
 
   private:
     core::BrushStyle style_;
+    bool keep_hidden_ = false;
     core::Scene scene_;
     std::unique_ptr<core::MeshFrames> meshes_;
     std::unique_ptr<core::ExactOcclusion> occlusion_;
@@ -165,10 +167,16 @@ TEST(Strokes, SequenceIsDeterministicAndStateIsAValue) {
     for (size_t i = 0; i < first.size(); ++i) expect_identical(first[i], second[i]);
 }
 
-// Acceptance figures: over a full 3-degree-per-frame turn of the torus sample, most visible
-// length keeps its id from frame to frame, and loop starts barely move.
-TEST(Strokes, CoherentOverATorusTurn) {
-    TorusTurn torus;
+// Coherence figures over a full 3-degree-per-frame turn of the torus sample.
+struct TurnFigures {
+    double overall = 0.0;      // inherited fraction of all visible length
+    double worst = 1.0;        // of the worst frame
+    size_t at_95 = 0, frames = 0;
+    double median_move = 0.0;  // loop start movement, px
+};
+
+TurnFigures measure_torus_turn(bool keep_hidden) {
+    TorusTurn torus({}, keep_hidden);
     core::StrokeCoherence coherence;
     std::map<uint32_t, glm::dvec2> last_starts;
     std::vector<double> start_moves, fractions;
@@ -189,19 +197,43 @@ TEST(Strokes, CoherentOverATorusTurn) {
         inherited += frame.stats.inherited_length_px;
         visible += frame.stats.visible_length_px;
     }
-    std::vector<double> sorted = fractions;
-    std::sort(sorted.begin(), sorted.end());
-    const size_t at_95 = size_t(std::count_if(sorted.begin(), sorted.end(), [](double x) { return x >= 0.95; }));
+    TurnFigures r;
+    r.frames = fractions.size();
+    r.at_95 = size_t(std::count_if(fractions.begin(), fractions.end(), [](double x) { return x >= 0.95; }));
+    r.worst = *std::min_element(fractions.begin(), fractions.end());
+    r.overall = inherited / visible;
     std::sort(start_moves.begin(), start_moves.end());
-    ASSERT_FALSE(start_moves.empty());
-    const double median_move = start_moves[start_moves.size() / 2];
+    if (!start_moves.empty()) r.median_move = start_moves[start_moves.size() / 2];
     std::printf(
-        "torus turn: inherited length %.2f%% overall, frames >= 95%%: %zu of %zu, worst frame %.1f%%;"
+        "torus turn%s: inherited length %.2f%% overall, frames >= 95%%: %zu of %zu, worst frame %.1f%%;"
         " loop start moves: median %.2f px over %zu\n",
-        100.0 * inherited / visible, at_95, sorted.size(), 100.0 * sorted.front(), median_move, start_moves.size());
-    EXPECT_GE(inherited / visible, 0.95);
-    EXPECT_GE(double(at_95), 0.85 * double(sorted.size())) << "frames where new lines appear fall short";
-    EXPECT_LE(median_move, 2.0);
+        keep_hidden ? " (hidden lines kept)" : "", 100.0 * r.overall, r.at_95, r.frames, 100.0 * r.worst,
+        r.median_move, start_moves.size());
+    EXPECT_FALSE(start_moves.empty());
+    return r;
+}
+
+// Acceptance figures (issue 5 asks for 95% in every frame): most visible length keeps its id
+// from frame to frame, and loop starts barely move. Measured 102 of 119 frames at 95% and a
+// worst frame of 77.4%: frames fall short where a line comes into view (frame 53: the hole's
+// inner silhouette, hidden the frame before, which this output does not carry) or where a
+// visibility cut or junction splits a stroke (only one part can keep the id).
+TEST(Strokes, CoherentOverATorusTurn) {
+    const TurnFigures r = measure_torus_turn(false);
+    EXPECT_GE(r.overall, 0.98);
+    EXPECT_GE(r.at_95, 102u) << "frames where new lines appear fall short";
+    EXPECT_GE(r.worst, 0.77);
+    EXPECT_LE(r.median_move, 2.0);
+}
+
+// With hidden lines kept, a line coming into view keeps the id it had while hidden: measured
+// 117 of 119 frames at 95%, worst 88.2% (a junction splitting the hole's inner silhouette).
+TEST(Strokes, CoherentOverATorusTurnWithHiddenLines) {
+    const TurnFigures r = measure_torus_turn(true);
+    EXPECT_GE(r.overall, 0.99);
+    EXPECT_GE(r.at_95, 116u);
+    EXPECT_GE(r.worst, 0.85);
+    EXPECT_LE(r.median_move, 2.0);
 }
 
 }  // namespace
