@@ -230,8 +230,11 @@ class Sequence {
         const std::vector<core::Chain> chains = core::chain_feature_edges(features, table);
         const double chain_ms = clock.lap_ms();
         const core::Occlusion& occlusion = prepare_occlusion(mesh, table, projection);
-        const core::VisibilityOptions visibility{.keep_hidden = scene_.lines.hidden};
+        // Occluded parts are always found (the samples are classified anyway): the stroke stage
+        // bridges short ones. Without lines.hidden they stay out of the output.
+        const core::VisibilityOptions visibility{.keep_hidden = true};
         result.strokes = core::split_by_visibility(chains, mesh, projection, occlusion, visibility);
+        if (!scene_.lines.hidden) core::set_aside_occluded(result);
         const double visibility_ms = clock.lap_ms();
         out.strokes = core::build_strokes(result, mesh, table, projection, scene_.brush, coherence_);
         out.mesh = &mesh;

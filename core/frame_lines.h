@@ -36,8 +36,15 @@ struct FrameLines {
     Camera camera;
     Light light;
     std::vector<Polyline> strokes;
+    // Occluded parts not output (lines.hidden off): the stroke stage draws short ones across
+    // where they bridge a stroke (core/gap_bridging.h). With lines.hidden they are in strokes.
+    std::vector<Polyline> occluded;
     FrameStats stats;
 };
+
+// Moves the occluded polylines of frame.strokes into frame.occluded (kept for the stroke stage,
+// not output) and numbers the visible ones again in order, as if only they had been found.
+void set_aside_occluded(FrameLines& frame);
 
 // Sums the visible length of the strokes per kind into stats.visible_length_px.
 void tally_visible_length(FrameLines& frame);

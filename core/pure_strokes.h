@@ -54,6 +54,9 @@ struct StrokeGeometry {
     std::vector<glm::dvec3> points_world;
     std::vector<uint32_t> edges;  // mesh edge of each segment
     size_t pure_strokes = 1;      // how many pure strokes were linked into this one
+    // Per segment: 1 where the segment is occluded, drawn across a short gap (gap_bridging.h);
+    // empty when none is.
+    std::vector<uint8_t> hidden;
 
     double length_px() const;
 };

@@ -257,6 +257,19 @@ void StrokeCoherence::remember(std::vector<StrokeTrace> traces, uint32_t next_id
     next_id_ = next_id;
 }
 
+std::vector<int64_t> StrokeCoherence::nearest_visible_ids(const std::vector<glm::dvec2>& points_px,
+                                                          LineKind kind) const {
+    std::vector<int64_t> out(points_px.size(), -1);
+    if (traces_.empty()) return out;
+    const SampleGrid grid(traces_, kMatchRadiusPx);
+    for (size_t i = 0; i < points_px.size(); ++i) {
+        const SampleGrid::Hit hit =
+            grid.nearest(points_px[i], [&](size_t t) { return traces_[t].visible && traces_[t].kind == kind; });
+        if (hit.trace != size_t(-1)) out[i] = int64_t(traces_[hit.trace].id);
+    }
+    return out;
+}
+
 std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidate>& candidates) const {
     std::vector<StrokeMatch> matches(candidates.size());
     std::vector<uint8_t> candidate_done(candidates.size(), 0), trace_taken(traces_.size(), 0);

@@ -75,6 +75,10 @@ class StrokeCoherence {
     // Makes a frame's strokes the reference for the next; next_id is the next unused id.
     void remember(std::vector<StrokeTrace> traces, uint32_t next_id);
 
+    // Id of last frame's visible stroke of the kind with a sample nearest each point, within
+    // kMatchRadiusPx; -1 where there is none.
+    std::vector<int64_t> nearest_visible_ids(const std::vector<glm::dvec2>& points_px, LineKind kind) const;
+
     const std::vector<StrokeTrace>& traces() const { return traces_; }
     uint32_t next_id() const { return next_id_; }
 

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/brush.h"
+#include "core/gap_bridging.h"
 #include "core/internal/parallel.h"
 #include "core/stroke_path.h"
 
@@ -59,6 +60,7 @@ void reverse(StrokeGeometry& g) {
     std::reverse(g.points_px.begin(), g.points_px.end());
     std::reverse(g.points_world.begin(), g.points_world.end());
     std::reverse(g.edges.begin(), g.edges.end());
+    std::reverse(g.hidden.begin(), g.hidden.end());
     std::swap(g.ends[0], g.ends[1]);
 }
 
@@ -92,13 +94,17 @@ void restart_loop(StrokeGeometry& g, size_t s, double t, const Projection& proje
     std::vector<glm::dvec2> px;
     std::vector<glm::dvec3> world;
     std::vector<uint32_t> edges;
+    std::vector<uint8_t> hidden;
+    auto hide = [&](size_t k) {
+        if (!g.hidden.empty()) hidden.push_back(g.hidden[k % m]);
+    };
     auto push = [&](size_t k) {
         px.push_back(g.points_px[k % m]);
         world.push_back(g.points_world[k % m]);
     };
     if (t == 0.0) {
         for (size_t k = s; k <= s + m; ++k) push(k);
-        for (size_t k = s; k < s + m; ++k) edges.push_back(g.edges[k % m]);
+        for (size_t k = s; k < s + m; ++k) edges.push_back(g.edges[k % m]), hide(k);
     } else {
         // Image fraction t to world fraction: 1/w is linear in the image.
         const glm::dvec3 a = g.points_world[s], b = g.points_world[s + 1];
@@ -112,8 +118,9 @@ void restart_loop(StrokeGeometry& g, size_t s, double t, const Projection& proje
         for (size_t k = s + 1; k <= s + m; ++k) push(k);
         px.push_back(start_px);
         world.push_back(start_world);
-        for (size_t k = s; k <= s + m; ++k) edges.push_back(g.edges[k % m]);
+        for (size_t k = s; k <= s + m; ++k) edges.push_back(g.edges[k % m]), hide(k);
     }
+    g.hidden = std::move(hidden);
     g.points_px = std::move(px);
     g.points_world = std::move(world);
     g.edges = std::move(edges);
@@ -175,6 +182,7 @@ Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint
     stroke.points_px = std::move(g.points_px);
     stroke.points_world = std::move(g.points_world);
     stroke.edges = std::move(g.edges);
+    if (std::find(g.hidden.begin(), g.hidden.end(), uint8_t(1)) != g.hidden.end()) stroke.hidden = std::move(g.hidden);
     return stroke;
 }
 
@@ -220,6 +228,19 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     out.stats.corners = pure.corners;
     out.stats.links = pure.links;
 
+    // Short occluded gaps bridged, with last frame's strokes as memory. Only where occluded
+    // parts are not output (frame.occluded): with hidden lines the hidden part is a stroke of
+    // its own, and taking it into the visible one measured worse (torus turn with hidden lines:
+    // 112 instead of 117 frames at 95%).
+    if (!frame.occluded.empty()) {
+        const std::vector<StrokeGeometry> occluded =
+            build_pure_strokes(frame.occluded, {style.turn_angle_deg}).strokes;
+        std::vector<uint8_t> used;
+        out.stats.bridges = bridge_hidden_gaps(pure.strokes, occluded, r_coherence,
+                                               gap_bridge_options(style.width_max_px), used);
+        std::erase_if(pure.strokes, [](const StrokeGeometry& g) { return g.points_px.empty(); });
+    }
+
     // Ids, direction and u from the previous frame. Each stroke's centerline, and below its
     // styling, depends on that stroke alone: built in parallel, gathered in stroke order.
     const size_t n = pure.strokes.size();
@@ -233,10 +254,11 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     });
     const std::vector<StrokeMatch> matches = r_coherence.match(candidates);
 
-    // Normals only where the frame's lines run: a full pass over a million vertices would cost
+    // Normals only where the frame's lines run (bridged gaps included): a full pass over a million vertices would cost
     // more than the rest of this stage.
     std::vector<uint32_t> line_edges;
     for (const Polyline& line : frame.strokes) line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
+    for (const Polyline& line : frame.occluded) line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
     const StrokeLighting lighting(mesh, table, projection.world_from_object(), frame.light, line_edges);
     const glm::dmat4 object_from_world = glm::inverse(projection.world_from_object());
     std::vector<Stroke> styled(n);
@@ -267,7 +289,10 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
         s.drawn += stroke.drawn;
         s.inherited += m.inherited;
         if (stroke.visible) {
-            const double len = stroke.length_px();
+            double len = stroke.length_px();
+            for (size_t k = 0; k < stroke.hidden.size(); ++k) {
+                if (stroke.hidden[k]) len -= glm::length(stroke.points_px[k + 1] - stroke.points_px[k]);
+            }
             s.visible_length_px += len;
             if (m.inherited) s.inherited_length_px += len;
         }

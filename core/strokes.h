@@ -35,6 +35,9 @@ struct Stroke {
     std::vector<glm::dvec2> points_px;
     std::vector<glm::dvec3> points_world;
     std::vector<uint32_t> edges;
+    // Per segment: 1 where the segment is occluded but drawn, bridging a short gap of a visible
+    // stroke (core/gap_bridging.h); empty when there is none.
+    std::vector<uint8_t> hidden;
     std::vector<double> u;          // per point: arc-length parameter, px, carried between frames
     std::vector<double> intensity;  // per point: light intensity in [0, 1], smoothed along u
     std::vector<double> width;      // per point: brush width, px
@@ -56,9 +59,10 @@ struct StrokeStats {
     size_t pure_strokes = 0;           // after splitting at corners, before linking
     size_t corners = 0;                // splits at sharp turns
     size_t links = 0;                  // joins through junctions
+    size_t bridges = 0;                // short occluded gaps drawn across
     size_t drawn = 0;                  // strokes with an outline
     size_t inherited = 0;              // strokes whose id was present last frame
-    double visible_length_px = 0.0;    // exact length of the visible strokes
+    double visible_length_px = 0.0;    // exact length of the visible strokes (bridged gaps left out)
     double inherited_length_px = 0.0;  // ... of those whose id was present last frame
     double max_deviation_px = 0.0;     // over drawn strokes
     double max_removed_px = 0.0;       // over drawn strokes: back-tracking removed
@@ -72,7 +76,8 @@ struct FrameStrokes {
 
 // Builds one frame's brush strokes from its polylines (frame.strokes) and light (frame.light).
 // mesh and table are the frame's mesh and edge table, projection its camera and object motion.
-// Reads the previous frame's strokes from r_coherence and leaves this frame's there.
+// Reads the previous frame's strokes from r_coherence and leaves this frame's there; short
+// occluded gaps (frame.occluded) are bridged as gap_bridge_options says.
 // Deterministic: the same frames in the same order give the same strokes, bit for bit.
 FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
                            const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence);

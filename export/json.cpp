@@ -80,6 +80,13 @@ json brush_strokes(const core::FrameStrokes& frame_strokes) {
                            {"intensity", rounded(s.intensity, 1e4)},
                            {"width", rounded(s.width, 1e3)},
                            {"outline", std::move(outline)}});
+        if (!s.hidden.empty()) {
+            json hidden = json::array();
+            for (size_t k = 0; k < s.hidden.size(); ++k) {
+                if (s.hidden[k]) hidden.push_back(k);
+            }
+            strokes.back()["hidden_segments"] = std::move(hidden);
+        }
     }
     return strokes;
 }
@@ -107,6 +114,7 @@ std::string polylines_json(const core::FrameLines& frame, const core::FrameStrok
         const core::StrokeStats& t = frame_strokes->stats;
         stats["strokes"] = {{"pure_strokes", t.pure_strokes},
                             {"drawn", t.drawn},
+                            {"bridges", t.bridges},
                             {"inherited_ids", t.inherited},
                             {"inherited_length_fraction",
                              t.visible_length_px > 0.0 ? std::round(1e4 * t.inherited_length_px / t.visible_length_px) / 1e4 : 1.0},

@@ -40,7 +40,9 @@ def load(paths):
                 "closed": s.get("closed", False),
                 "ends": s.get("ends", []),
                 "start": s["points"][0] if s["points"] else None,
-                "length": polyline_length(s["points"]),
+                # Segments drawn across a short occluded gap (hidden_segments) are not visible length.
+                "length": polyline_length(s["points"])
+                - sum(math.dist(s["points"][k], s["points"][k + 1]) for k in s.get("hidden_segments", [])),
             }
             for s in data["strokes"]
         ]

@@ -54,7 +54,8 @@ class TorusTurn {
         const core::FeatureEdges features =
             core::extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
         lines.strokes = core::split_by_visibility(core::chain_feature_edges(features, table), mesh, projection,
-                                                  *occlusion_, {.keep_hidden = keep_hidden_});
+                                                  *occlusion_, {.keep_hidden = true});
+        if (!keep_hidden_) core::set_aside_occluded(lines);
         return core::build_strokes(lines, mesh, table, projection, style_, coherence);
     }
 
@@ -214,14 +215,14 @@ TurnFigures measure_torus_turn(bool keep_hidden) {
 }
 
 // Acceptance figures (issue 5 asks for 95% in every frame): most visible length keeps its id
-// from frame to frame, and loop starts barely move. Measured 102 of 119 frames at 95% and a
-// worst frame of 77.4%: frames fall short where a line comes into view (frame 53: the hole's
-// inner silhouette, hidden the frame before, which this output does not carry) or where a
-// visibility cut or junction splits a stroke (only one part can keep the id).
+// from frame to frame, and loop starts barely move. Measured 109 of 119 frames at 95% (102
+// before short occluded gaps were bridged) and a worst frame of 77.4%: frames fall short where
+// a line comes into view (frame 53: the hole's inner silhouette, hidden the frame before, which
+// this output does not carry) or where a junction splits a stroke (only one part keeps the id).
 TEST(Strokes, CoherentOverATorusTurn) {
     const TurnFigures r = measure_torus_turn(false);
     EXPECT_GE(r.overall, 0.98);
-    EXPECT_GE(r.at_95, 102u) << "frames where new lines appear fall short";
+    EXPECT_GE(r.at_95, 109u) << "frames where new lines appear fall short";
     EXPECT_GE(r.worst, 0.77);
     EXPECT_LE(r.median_move, 2.0);
 }

@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: MIT
+#include "core/gap_bridging.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <vector>
+
+namespace inkline {
+namespace {
+
+using glm::dvec2;
+
+// A straight stroke from a to b with a point every px, on edges first_edge...
+core::StrokeGeometry line(dvec2 a, dvec2 b, bool visible, uint32_t first_edge) {
+    core::StrokeGeometry g;
+    g.visible = visible;
+    const int n = std::max(1, int(std::ceil(glm::length(b - a))));
+    for (int i = 0; i <= n; ++i) {
+        const dvec2 p = i == n ? b : a + (b - a) * (double(i) / n);
+        g.points_px.push_back(p);
+        g.points_world.push_back(glm::dvec3(p, 0.0));
+        if (i < n) g.edges.push_back(first_edge + uint32_t(i));
+    }
+    return g;
+}
+
+// Last frame remembered visible strokes from a to b with these ids.
+core::StrokeTrace trace(dvec2 a, dvec2 b, uint32_t id) {
+    core::StrokeTrace t;
+    t.id = id;
+    t.length_px = glm::length(b - a);
+    for (double s = 0.0; s <= t.length_px + 1e-9; s += core::kTraceSpacingPx) {
+        t.samples_px.push_back(a + (b - a) * (s / t.length_px));
+        t.samples_u.push_back(s);
+    }
+    return t;
+}
+
+struct Bridged {
+    std::vector<core::StrokeGeometry> strokes;  // empty ones (merged away) removed
+    std::vector<uint8_t> used;
+    size_t count = 0;
+};
+
+// Visible 0..40 and gap_px + 40.. along x, the gap between them occluded.
+Bridged bridge_gap(double gap_px, const core::StrokeCoherence& coherence) {
+    std::vector<core::StrokeGeometry> strokes{line({0, 0}, {40, 0}, true, 0),
+                                              line({40 + gap_px, 0}, {80 + gap_px, 0}, true, 100)};
+    const std::vector<core::StrokeGeometry> occluded{line({40, 0}, {40 + gap_px, 0}, false, 50)};
+    Bridged r;
+    r.count = core::bridge_hidden_gaps(strokes, occluded, coherence, core::gap_bridge_options(4.8), r.used);
+    for (core::StrokeGeometry& g : strokes) {
+        if (!g.points_px.empty()) r.strokes.push_back(std::move(g));
+    }
+    return r;
+}
+
+TEST(GapBridging, BoundsFollowTheBrush) {
+    const core::GapBridgeOptions o = core::gap_bridge_options(4.8);
+    EXPECT_DOUBLE_EQ(o.max_gap_px, 9.6);
+    EXPECT_LT(o.split_gap_px, o.new_gap_px);
+    EXPECT_LT(o.new_gap_px, o.max_gap_px);
+}
+
+// A short gap with no memory is drawn across; its points stay exact and are marked hidden.
+TEST(GapBridging, ShortGapBecomesOneStrokeWithHiddenSegmentsMarked) {
+    const Bridged r = bridge_gap(3.0, {});
+    EXPECT_EQ(r.count, 1u);
+    ASSERT_EQ(r.strokes.size(), 1u);
+    EXPECT_EQ(r.used, std::vector<uint8_t>{1});
+    const core::StrokeGeometry& g = r.strokes[0];
+    EXPECT_TRUE(g.visible);
+    EXPECT_FALSE(g.closed);
+    ASSERT_EQ(g.hidden.size(), g.edges.size());
+    ASSERT_EQ(g.points_px.size(), g.edges.size() + 1);
+    EXPECT_EQ(g.points_px.front(), dvec2(0, 0));
+    EXPECT_EQ(g.points_px.back(), dvec2(83, 0));
+    for (size_t k = 0; k < g.edges.size(); ++k) {
+        const bool in_gap = g.edges[k] >= 50 && g.edges[k] < 100;
+        EXPECT_EQ(g.hidden[k], in_gap ? 1 : 0) << k;
+        // Hidden segments lie exactly on the gap.
+        if (in_gap) {
+            EXPECT_GE(g.points_px[k].x, 40.0);
+            EXPECT_LE(g.points_px[k + 1].x, 43.0);
+        }
+    }
+}
+
+// Without memory, a gap wider than new_gap_px stays; where last frame drew one stroke across
+// the place, gaps up to max_gap_px are bridged; wider ones never are.
+TEST(GapBridging, WiderGapsBridgedOnlyWhereLastFrameDrewOneStroke) {
+    EXPECT_EQ(bridge_gap(7.0, {}).strokes.size(), 2u);
+    const core::StrokeCoherence one({trace({0, 0.5}, {90, 0.5}, 7)}, 8);
+    EXPECT_EQ(bridge_gap(7.0, one).strokes.size(), 1u);
+    EXPECT_EQ(bridge_gap(9.0, one).strokes.size(), 1u);
+    EXPECT_EQ(bridge_gap(11.0, one).strokes.size(), 2u);
+}
+
+// Where last frame split (two strokes met at the gap), the gap is kept unless it closes well
+// below the bound: the split does not flicker either.
+TEST(GapBridging, GapThatExistedLastFrameKeptUnlessItAlmostCloses) {
+    const core::StrokeCoherence two({trace({0, 0}, {40, 0}, 3), trace({44, 0}, {84, 0}, 4)}, 5);
+    EXPECT_EQ(bridge_gap(3.0, two).strokes.size(), 2u);
+    EXPECT_EQ(bridge_gap(2.0, two).strokes.size(), 1u);
+}
+
+// A stroke whose two ends meet across a gap stays open: a loop made only by a flickering dip
+// would come and go, and its start with it.
+TEST(GapBridging, GapBetweenOneStrokesEndsStaysOpen) {
+    core::StrokeGeometry open = line({0, 0}, {40, 0}, true, 0);
+    for (const dvec2 p : {dvec2(40, 20), dvec2(0, 20), dvec2(0, 2)}) {
+        open.points_px.push_back(p);
+        open.points_world.push_back(glm::dvec3(p, 0.0));
+        open.edges.push_back(uint32_t(open.edges.size()));
+    }
+    std::vector<core::StrokeGeometry> strokes{open};
+    const std::vector<core::StrokeGeometry> occluded{line({0, 2}, {0, 0}, false, 500)};
+    std::vector<uint8_t> used;
+    EXPECT_EQ(core::bridge_hidden_gaps(strokes, occluded, {}, core::gap_bridge_options(4.8), used), 0u);
+    ASSERT_EQ(strokes.size(), 1u);
+    EXPECT_FALSE(strokes[0].closed);
+    EXPECT_TRUE(strokes[0].hidden.empty());
+}
+
+// At a junction (two visible ends at the gap's end) there is no single stroke to continue.
+TEST(GapBridging, NoBridgeIntoAJunction) {
+    std::vector<core::StrokeGeometry> strokes{line({0, 0}, {40, 0}, true, 0), line({43, 0}, {80, 0}, true, 100),
+                                              line({43, 0}, {43, 30}, true, 200)};
+    const std::vector<core::StrokeGeometry> occluded{line({40, 0}, {43, 0}, false, 50)};
+    std::vector<uint8_t> used;
+    EXPECT_EQ(core::bridge_hidden_gaps(strokes, occluded, {}, core::gap_bridge_options(4.8), used), 0u);
+    EXPECT_EQ(used, std::vector<uint8_t>{0});
+}
+
+// Two occluded parts leaving one visible end: the first bridges, the second finds the end taken
+// and leaves the strokes alone (it must not join them anywhere else).
+TEST(GapBridging, AnEndBridgesOnce) {
+    std::vector<core::StrokeGeometry> strokes{line({0, 0}, {40, 0}, true, 0), line({43, 0}, {80, 0}, true, 100),
+                                              line({40, 3}, {40, 40}, true, 200)};
+    const std::vector<core::StrokeGeometry> occluded{line({40, 0}, {43, 0}, false, 50),
+                                                     line({40, 0}, {40, 3}, false, 60)};
+    std::vector<uint8_t> used;
+    EXPECT_EQ(core::bridge_hidden_gaps(strokes, occluded, {}, core::gap_bridge_options(4.8), used), 1u);
+    EXPECT_EQ(used, (std::vector<uint8_t>{1, 0}));
+    EXPECT_EQ(strokes[0].points_px.back(), dvec2(80, 0));
+    EXPECT_EQ(strokes[2].points_px.front(), dvec2(40, 3));
+}
+
+// Deterministic: the same strokes and memory give the same bridges.
+TEST(GapBridging, SameInputSameResult) {
+    const core::StrokeCoherence one({trace({0, 0.5}, {90, 0.5}, 7)}, 8);
+    const Bridged a = bridge_gap(6.0, one), b = bridge_gap(6.0, one);
+    ASSERT_EQ(a.strokes.size(), b.strokes.size());
+    for (size_t i = 0; i < a.strokes.size(); ++i) {
+        EXPECT_EQ(a.strokes[i].points_px, b.strokes[i].points_px);
+        EXPECT_EQ(a.strokes[i].hidden, b.strokes[i].hidden);
+    }
+}
+
+}  // namespace
+}  // namespace inkline
