@@ -25,7 +25,12 @@ std::array<size_t, kLineKindCount> FeatureEdges::count_by_kind() const {
 
 double facing_value(const Mesh& mesh, uint32_t face, const glm::dvec3& eye_object) {
     const glm::uvec3 t = mesh.triangles[face];
-    const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
+    return facing_value(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], eye_object);
+}
+
+double facing_value(const glm::vec3& corner_a, const glm::vec3& corner_b, const glm::vec3& corner_c,
+                    const glm::dvec3& eye_object) {
+    const glm::dvec3 a(corner_a), b(corner_b), c(corner_c);
     const glm::dvec3 centroid = (a + b + c) / 3.0;
     return glm::dot(glm::cross(b - a, c - a), eye_object - centroid);
 }

@@ -39,6 +39,8 @@ struct FeatureEdges {
 // Signed facing of a face: dot(n, eye - centroid), n from counter-clockwise order.
 // Front-facing when > 0. Every extractor uses this one function so their results agree exactly.
 double facing_value(const Mesh& mesh, uint32_t face, const glm::dvec3& eye_object);
+// The same for the triangle of corners a, b, c (the face's positions, in order).
+double facing_value(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::dvec3& eye_object);
 
 // True when the dihedral angle between the two faces' normals exceeds the crease angle.
 bool is_crease(const Mesh& mesh, uint32_t face0, uint32_t face1, double cos_crease_angle);

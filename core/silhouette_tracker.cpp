@@ -7,6 +7,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <span>
 
@@ -29,8 +30,30 @@ SilhouetteTracker::SilhouetteTracker(const EdgeTable& table, const Mesh& mesh, c
     for (uint32_t e = 0; e < table.edge_count(); ++e) {
         if (!table.is_interior(e)) boundary_.push_back(e);
     }
-    face_stamp_.assign(tree_->faces.size(), 0);
-    face_front_.assign(tree_->faces.size(), 0);
+    face_state_.assign(tree_->faces.size(), 0);
+    leaf_facing_.assign(tree_->leaf_count(), ClusterFacing::kUnknown);
+    found_bits_.assign((table.edge_count() + 63) / 64, 0);
+    if (!options.deforming) {
+        // The faces in tree order, their vertices renumbered in order of first use: a cluster's
+        // corners then lie together in memory, wherever the file put them.
+        std::vector<uint32_t> renumbered(mesh.positions.size(), kNoIndex);
+        local_triangles_.resize(tree_->faces.size());
+        for (size_t k = 0; k < local_triangles_.size(); ++k) {
+            const glm::uvec3 t = mesh.triangles[tree_->faces[k]];
+            for (int c = 0; c < 3; ++c) {
+                if (renumbered[t[c]] == kNoIndex) {
+                    renumbered[t[c]] = uint32_t(local_positions_.size());
+                    local_positions_.push_back(mesh.positions[t[c]]);
+                }
+                local_triangles_[k][c] = renumbered[t[c]];
+            }
+        }
+        local_positions_.shrink_to_fit();
+    }
+    if (options.search != TrackerSearch::kHierarchy) {
+        face_position_.assign(face_count_, kNoIndex);
+        for (uint32_t k = 0; k < tree_->faces.size(); ++k) face_position_[tree_->faces[k]] = k;
+    }
     // The hierarchy alone reaches each edge at most once a frame; the walk and a deforming
     // mesh's crease pass can reach edges again.
     stamp_edges_ = options.search != TrackerSearch::kHierarchy || options.deforming;
@@ -69,21 +92,42 @@ FeatureEdges SilhouetteTracker::update(const Mesh& mesh, const glm::dvec3& eye_o
             edges_tested_ = table_->edge_count();
         }
     }
-    silhouettes_ = found_;
-    std::sort(silhouettes_.begin(), silhouettes_.end());
+    sort_found();
     stats_.silhouette_edges = silhouettes_.size();
     FeatureEdges out = assemble(lines);
     mesh_ = nullptr;
     return out;
 }
 
+void SilhouetteTracker::sort_found() {
+    // A bit per edge, read word by word: linear in the edge count / 64 rather than n log n in the
+    // silhouette edges, which at a million faces number tens of thousands.
+    silhouettes_.clear();
+    if (found_.size() < 64) {
+        silhouettes_ = found_;
+        std::sort(silhouettes_.begin(), silhouettes_.end());
+        return;
+    }
+    for (uint32_t e : found_) found_bits_[e >> 6] |= uint64_t(1) << (e & 63);
+    silhouettes_.reserve(found_.size());
+    for (size_t w = 0; w < found_bits_.size(); ++w) {
+        for (uint64_t bits = found_bits_[w]; bits != 0; bits &= bits - 1) {
+            silhouettes_.push_back(uint32_t(w * 64 + size_t(std::countr_zero(bits))));
+        }
+        found_bits_[w] = 0;
+    }
+}
+
 void SilhouetteTracker::begin_frame() {
-    if (frame_ == 0xffffffffu) {  // stamps wrapped: forget them all
-        std::fill(face_stamp_.begin(), face_stamp_.end(), 0u);
+    if (frame_ == 0xffffffffu) {  // stamps would wrap: forget them all
         std::fill(edge_stamp_.begin(), edge_stamp_.end(), 0u);
         frame_ = 0;
     }
     ++frame_;
+    if (++face_stamp_ == 128) {  // seven bits of stamp per face
+        std::fill(face_state_.begin(), face_state_.end(), uint8_t(0));
+        face_stamp_ = 1;
+    }
     found_.clear();
     extended_ = 0;
     edges_tested_ = 0;
@@ -92,28 +136,39 @@ void SilhouetteTracker::begin_frame() {
 }
 
 bool SilhouetteTracker::is_front(uint32_t position) {
-    if (face_stamp_[position] != frame_) {
-        face_stamp_[position] = frame_;
-        face_front_[position] = facing_value(*mesh_, tree_->faces[position], eye_) > 0.0 ? 1 : 0;
+    uint8_t& state = face_state_[position];
+    if ((state >> 1) != face_stamp_) {
+        double facing;
+        if (local_triangles_.empty()) {
+            facing = facing_value(*mesh_, tree_->faces[position], eye_);
+        } else {
+            const glm::uvec3 t = local_triangles_[position];
+            facing = facing_value(local_positions_[t.x], local_positions_[t.y], local_positions_[t.z], eye_);
+        }
+        state = uint8_t((face_stamp_ << 1) | (facing > 0.0 ? 1u : 0u));
         ++faces_tested_;
     }
-    return face_front_[position] != 0;
+    return (state & 1u) != 0;
 }
 
 SilhouetteTracker::Visit SilhouetteTracker::visit_edge(uint32_t edge) {
     if (!table_->is_interior(edge)) return Visit::kSeen;
     const auto faces = table_->faces_of(edge);
-    const internal::ListedEdge le{edge, {tree_->face_position[faces[0]], tree_->face_position[faces[1]]}};
-    return visit_interior_edge(le);
+    const internal::ListedEdge le{edge, {face_position_[faces[0]], face_position_[faces[1]]}};
+    return visit_interior_edge(le, ClusterFacing::kUnknown, ClusterFacing::kUnknown);
 }
 
-SilhouetteTracker::Visit SilhouetteTracker::visit_interior_edge(const internal::ListedEdge& le) {
+SilhouetteTracker::Visit SilhouetteTracker::visit_interior_edge(const internal::ListedEdge& le, ClusterFacing known0,
+                                                                ClusterFacing known1) {
     if (stamp_edges_) {
         if (edge_stamp_[le.edge] == frame_) return Visit::kSeen;
         edge_stamp_[le.edge] = frame_;
     }
     ++edges_tested_;
-    if (is_front(le.position[0]) == is_front(le.position[1])) return Visit::kPlain;
+    // A facing the cone tree proved is facing_value's sign: no need to evaluate it.
+    const bool front0 = known0 == ClusterFacing::kUnknown ? is_front(le.position[0]) : known0 == ClusterFacing::kFront;
+    const bool front1 = known1 == ClusterFacing::kUnknown ? is_front(le.position[1]) : known1 == ClusterFacing::kFront;
+    if (front0 == front1) return Visit::kPlain;
     found_.push_back(le.edge);
     return Visit::kSilhouette;
 }
@@ -121,10 +176,10 @@ SilhouetteTracker::Visit SilhouetteTracker::visit_interior_edge(const internal::
 void SilhouetteTracker::full_pass(const LineOptions& lines, double cos_crease) {
     const EdgeTable& table = *table_;
     if (lines.silhouette) {
-        for (uint32_t f = 0; f < face_count_; ++f) {
-            if (table.face_valid[f]) is_front(tree_->face_position[f]);
+        for (uint32_t k = 0; k < tree_->faces.size(); ++k) is_front(k);
+        for (const internal::ListedEdge& le : tree_->edges) {
+            visit_interior_edge(le, ClusterFacing::kUnknown, ClusterFacing::kUnknown);
         }
-        for (uint32_t e = 0; e < table.edge_count(); ++e) visit_edge(e);
     }
     creases_angle_.reset();
     if (lines.crease) {
@@ -148,7 +203,6 @@ void SilhouetteTracker::all_creases(double cos_crease) {
 void SilhouetteTracker::search() {
     if (options_.search != TrackerSearch::kHierarchy) walk();
     // Prove that nothing else exists: loops that appeared, lines that the walk lost.
-    proven_.clear();
     if (options_.search != TrackerSearch::kWalkOnly && !tree_->nodes.empty()) prove(0);
     stats_.proven = found_.size() - stats_.kept - stats_.walked;
 }
@@ -181,7 +235,7 @@ void SilhouetteTracker::extend_from_found() {
 void SilhouetteTracker::walk_from_stopped(uint32_t edge) {
     // Both faces of the edge now share one facing: the silhouette moved away through faces that
     // took it, so follow those until the sign changes.
-    const bool side = is_front(tree_->face_position[table_->faces_of(edge)[0]]);
+    const bool side = is_front(face_position_[table_->faces_of(edge)[0]]);
     ring_.assign(1, edge);
     for (int r = 0; r < kStoppedWalkRings && !ring_.empty(); ++r) {
         next_ring_.clear();
@@ -189,7 +243,7 @@ void SilhouetteTracker::walk_from_stopped(uint32_t edge) {
             for (uint32_t vertex : {table_->edge_vertices[e].x, table_->edge_vertices[e].y}) {
                 for (uint32_t n : table_->edges_around(vertex)) {
                     if (visit_edge(n) == Visit::kPlain &&
-                        is_front(tree_->face_position[table_->faces_of(n)[0]]) == side) {
+                        is_front(face_position_[table_->faces_of(n)[0]]) == side) {
                         next_ring_.push_back(n);
                     }
                 }
@@ -204,62 +258,29 @@ ClusterFacing SilhouetteTracker::prove(uint32_t index) {
     const internal::ConeNode& node = tree_->nodes[index];
     const ClusterFacing facing = tree_->facing(index, eye_);
     if (facing != ClusterFacing::kUnknown) {
-        proven_.push_back({node.face_begin, node.face_end, facing});
+        const auto [first, last] = tree_->leaves_of(node);
+        std::fill(leaf_facing_.begin() + first, leaf_facing_.begin() + last, facing);
         return facing;
     }
     if (node.is_leaf()) {
+        leaf_facing_[tree_->leaf_of(node.face_begin)] = ClusterFacing::kUnknown;
         for (uint32_t k = node.edge_begin; k < node.edge_end; ++k) {
-            const internal::ListedEdge& le = tree_->edges[k];
-            visit_interior_edge(le);
+            visit_interior_edge(tree_->edges[k], ClusterFacing::kUnknown, ClusterFacing::kUnknown);
         }
         return ClusterFacing::kUnknown;
     }
-    // Depth first, left to right: the children's proven ranges are appended in tree order.
-    const size_t first_range = proven_.size();
     const ClusterFacing l = prove(index + 1);
     const ClusterFacing r = prove(node.second_child);
-    if (l == r && l != ClusterFacing::kUnknown) {
-        proven_.resize(first_range);  // both halves proven alike, so is the whole
-        proven_.push_back({node.face_begin, node.face_end, l});
-        return l;
-    }
-    // Edges joining the halves: skip those whose faces both lie in proven ranges of one facing,
-    // a whole run at a time where possible.
-    const std::span<const ProvenRange> ranges(proven_.begin() + std::ptrdiff_t(first_range), proven_.end());
-    for (uint32_t j = 0, k = node.edge_begin; k < node.edge_end; ++j, k += internal::kSpanEdges) {
-        const internal::EdgeSpan& span = tree_->spans[node.span_begin + j];
-        const std::span<const ProvenRange> near0 = overlapping(ranges, span.first_min, span.first_max);
-        const std::span<const ProvenRange> near1 = overlapping(ranges, span.second_min, span.second_max);
-        if (near0.size() == 1 && near1.size() == 1 && near0[0].facing == near1[0].facing &&
-            near0[0].begin <= span.first_min && span.first_max < near0[0].end &&
-            near1[0].begin <= span.second_min && span.second_max < near1[0].end) {
-            continue;
-        }
-        for (uint32_t i = k; i < std::min(k + internal::kSpanEdges, node.edge_end); ++i) {
-            const internal::ListedEdge& le = tree_->edges[i];
-            const ClusterFacing f0 = facing_at(near0, le.position[0]);
-            if (f0 == ClusterFacing::kUnknown || f0 != facing_at(near1, le.position[1])) {
-                visit_interior_edge(le);
-            }
-        }
+    if (l == r && l != ClusterFacing::kUnknown) return l;  // both halves proven alike: so is the whole
+    // Edges joining the halves: skip those whose faces lie in leaves proven of one facing.
+    const uint32_t leaf_faces = tree_->leaf_faces();
+    for (uint32_t k = node.edge_begin; k < node.edge_end; ++k) {
+        const internal::ListedEdge& le = tree_->edges[k];
+        const ClusterFacing f0 = leaf_facing_[le.position[0] / leaf_faces];
+        const ClusterFacing f1 = leaf_facing_[le.position[1] / leaf_faces];
+        if (f0 == ClusterFacing::kUnknown || f0 != f1) visit_interior_edge(le, f0, f1);
     }
     return ClusterFacing::kUnknown;
-}
-
-std::span<const SilhouetteTracker::ProvenRange> SilhouetteTracker::overlapping(std::span<const ProvenRange> ranges,
-                                                                                uint32_t lo, uint32_t hi) {
-    auto by_begin = [](uint32_t p, const ProvenRange& range) { return p < range.begin; };
-    auto first = std::upper_bound(ranges.begin(), ranges.end(), lo, by_begin);
-    if (first != ranges.begin() && lo < std::prev(first)->end) --first;
-    const auto last = std::upper_bound(first, ranges.end(), hi, by_begin);
-    return {first, last};
-}
-
-ClusterFacing SilhouetteTracker::facing_at(std::span<const ProvenRange> ranges, uint32_t position) {
-    const auto after = std::upper_bound(ranges.begin(), ranges.end(), position,
-                                        [](uint32_t p, const ProvenRange& range) { return p < range.begin; });
-    if (after == ranges.begin() || position >= std::prev(after)->end) return ClusterFacing::kUnknown;
-    return std::prev(after)->facing;
 }
 
 void SilhouetteTracker::collect_creases(uint32_t index, double crease_angle_rad, double cos_crease,

@@ -17,7 +17,6 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <span>
 #include <vector>
 
 namespace inkline::core {
@@ -75,9 +74,12 @@ class SilhouetteTracker {
     enum class Visit : uint8_t { kSeen, kPlain, kSilhouette };
 
     void begin_frame();
+    void sort_found();  // found_ into silhouettes_, ascending
     bool is_front(uint32_t position);  // of the face at this position in ConeTree::faces
     Visit visit_edge(uint32_t edge);
-    Visit visit_interior_edge(const internal::ListedEdge& edge);
+    // Tests an edge listed in the cone tree; a face's facing given as known is not evaluated.
+    Visit visit_interior_edge(const internal::ListedEdge& edge, internal::ClusterFacing known0,
+                              internal::ClusterFacing known1);
     void full_pass(const LineOptions& lines, double cos_crease);
     void all_creases(double cos_crease);
     void search();
@@ -85,14 +87,6 @@ class SilhouetteTracker {
     void extend_from_found();
     void walk_from_stopped(uint32_t edge);
     internal::ClusterFacing prove(uint32_t node);
-    struct ProvenRange {  // faces [begin, end) of ConeTree::faces share a facing
-        uint32_t begin, end;
-        internal::ClusterFacing facing;
-    };
-    // The ranges, sorted and disjoint, that hold any position in [lo, hi].
-    static std::span<const ProvenRange> overlapping(std::span<const ProvenRange> ranges, uint32_t lo, uint32_t hi);
-    // The facing proven for a position by one of the ranges; kUnknown if none holds it.
-    static internal::ClusterFacing facing_at(std::span<const ProvenRange> ranges, uint32_t position);
     void collect_creases(uint32_t node, double crease_angle_rad, double cos_crease,
                          std::vector<uint32_t>& r_creases);
     FeatureEdges assemble(const LineOptions& lines) const;
@@ -112,12 +106,21 @@ class SilhouetteTracker {
     const Mesh* mesh_ = nullptr;
     glm::dvec3 eye_{0.0};
     uint32_t frame_ = 0;
-    std::vector<uint32_t> face_stamp_;   // per valid face, in ConeTree::faces order
-    std::vector<uint8_t> face_front_;    // facing_value > 0, when face_stamp_ == frame_
+    // Per valid face, in ConeTree::faces order: (stamp << 1) | (facing_value > 0), for the
+    // frame whose face_stamp_ (1..127, cycling) last evaluated it.
+    std::vector<uint8_t> face_state_;
+    uint8_t face_stamp_ = 0;
+    // A static mesh's faces in ConeTree::faces order with their own copy of the vertices (empty
+    // for a deforming mesh, which is read in place).
+    std::vector<glm::uvec3> local_triangles_;
+    std::vector<glm::vec3> local_positions_;
+    std::vector<uint32_t> face_position_;  // #F, each face's index in ConeTree::faces (walk only)
     bool stamp_edges_ = true;
     std::vector<uint32_t> edge_stamp_;   // #E when stamp_edges_, tested this frame
-    std::vector<ProvenRange> proven_;    // this frame's proven clusters, in tree order
+    // Per leaf of the cone tree, what this frame proved of it (kUnknown: its edges were tested).
+    std::vector<internal::ClusterFacing> leaf_facing_;
     std::vector<uint32_t> found_;        // silhouette edges found this frame, discovery order
+    std::vector<uint64_t> found_bits_;   // #E bits, all zero between frames: sorts found_
     std::vector<uint32_t> stopped_;      // last frame's silhouette edges that no longer are
     std::vector<uint32_t> ring_, next_ring_;  // scratch of walk_from_stopped
     size_t extended_ = 0;                // found_[0, extended_) had their neighbours tested

@@ -45,7 +45,6 @@ EdgeTable build_from_valid(const Mesh& mesh, std::vector<uint8_t> face_valid) {
     const size_t n_faces = mesh.triangles.size();
     const size_t n_vertices = mesh.positions.size();
     t.face_valid = std::move(face_valid);
-    t.face_edges.assign(n_faces, glm::uvec3(kNoIndex));
 
     // Every corner side (a, b) of a valid face, bucketed by its smaller vertex (a counting sort),
     // in face order within a bucket. Edges are then the distinct larger vertices of each bucket,
@@ -54,7 +53,6 @@ EdgeTable build_from_valid(const Mesh& mesh, std::vector<uint8_t> face_valid) {
     struct Side {
         uint32_t other;  // the larger vertex
         uint32_t face;
-        uint32_t slot;   // side c_slot c_slot+1 of the face
     };
     std::vector<uint32_t> bucket_offsets(n_vertices + 1, 0);
     for (size_t f = 0; f < n_faces; ++f) {
@@ -71,7 +69,7 @@ EdgeTable build_from_valid(const Mesh& mesh, std::vector<uint8_t> face_valid) {
             const glm::uvec3 tri = mesh.triangles[f];
             for (uint32_t s = 0; s < 3; ++s) {
                 const uint32_t a = tri[int(s)], b = tri[int((s + 1) % 3)];
-                sides[fill[std::min(a, b)]++] = {std::max(a, b), f, s};
+                sides[fill[std::min(a, b)]++] = {std::max(a, b), f};
             }
         }
     }
@@ -103,12 +101,8 @@ EdgeTable build_from_valid(const Mesh& mesh, std::vector<uint8_t> face_valid) {
     for (uint32_t v = 0; v < n_vertices; ++v) {
         for (uint32_t i = bucket_offsets[v]; i < bucket_offsets[v + 1];) {
             const uint32_t other = sides[i].other;
-            const uint32_t edge = uint32_t(t.edge_vertices.size());
             t.edge_vertices.emplace_back(v, other);
-            for (; i < bucket_offsets[v + 1] && sides[i].other == other; ++i) {
-                t.edge_faces.push_back(sides[i].face);
-                t.face_edges[sides[i].face][int(sides[i].slot)] = edge;
-            }
+            for (; i < bucket_offsets[v + 1] && sides[i].other == other; ++i) t.edge_faces.push_back(sides[i].face);
             t.edge_face_offsets.push_back(uint32_t(t.edge_faces.size()));
         }
     }
@@ -233,6 +227,25 @@ size_t count_non_manifold_vertices(const EdgeTable& table) {
 }
 
 }  // namespace
+
+uint32_t find_edge(const EdgeTable& table, uint32_t a, uint32_t b) {
+    if (a > b) std::swap(a, b);
+    if (size_t(a) + 1 >= table.vertex_edge_offsets.size()) return kNoIndex;
+    for (uint32_t e : table.edges_around(a)) {
+        if (table.edge_vertices[e] == glm::uvec2(a, b)) return e;
+    }
+    return kNoIndex;
+}
+
+std::vector<glm::uvec3> face_edges(const Mesh& mesh, const EdgeTable& table) {
+    std::vector<glm::uvec3> out(mesh.triangles.size(), glm::uvec3(kNoIndex));
+    for (size_t f = 0; f < out.size(); ++f) {
+        if (!table.face_valid[f]) continue;
+        const glm::uvec3 t = mesh.triangles[f];
+        out[f] = {find_edge(table, t.x, t.y), find_edge(table, t.y, t.z), find_edge(table, t.z, t.x)};
+    }
+    return out;
+}
 
 MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table) {
     MeshReport r;

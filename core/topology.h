@@ -23,7 +23,6 @@ struct EdgeTable {
     std::vector<glm::uvec2> edge_vertices;     // #E, (v0, v1) with v0 < v1
     std::vector<uint32_t> edge_face_offsets;   // #E+1, CSR offsets into edge_faces
     std::vector<uint32_t> edge_faces;          // faces of each edge, ascending
-    std::vector<glm::uvec3> face_edges;        // #F, edges (c0c1, c1c2, c2c0); kNoIndex if degenerate
     std::vector<uint8_t> face_valid;           // #F, 0 for degenerate and duplicate faces (ignored everywhere)
     size_t duplicate_faces = 0;                // faces repeating an earlier face's three vertices
     std::vector<uint32_t> vertex_edge_offsets; // #V+1, CSR offsets into vertex_edges
@@ -51,6 +50,12 @@ struct EdgeTable {
 // Builds the table; faces with a repeated vertex or zero area, and later copies of a face with
 // the same three vertices, are marked invalid and left out.
 EdgeTable build_edge_table(const Mesh& mesh);
+
+// The index of the edge (a, b) in either order, or kNoIndex if no valid face has it.
+uint32_t find_edge(const EdgeTable& table, uint32_t a, uint32_t b);
+
+// The edges (c0c1, c1c2, c2c0) of each face; kNoIndex for the ignored faces (degenerate, copies).
+std::vector<glm::uvec3> face_edges(const Mesh& mesh, const EdgeTable& table);
 
 // What `inkline info` prints about a mesh.
 struct MeshReport {

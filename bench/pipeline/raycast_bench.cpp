@@ -104,6 +104,7 @@ core::Mesh bumpy_icosphere(int levels) {
     for (int level = 0; level < levels; ++level) {
         // One new vertex per edge; each face (a, b, c) becomes four.
         const core::EdgeTable table = core::build_edge_table(m);
+        const std::vector<glm::uvec3> edges_of = core::face_edges(m, table);
         const uint32_t base = uint32_t(m.positions.size());
         for (const glm::uvec2& e : table.edge_vertices) {
             m.positions.push_back(glm::normalize(m.positions[e.x] + m.positions[e.y]));
@@ -112,7 +113,7 @@ core::Mesh bumpy_icosphere(int levels) {
         split.reserve(4 * m.triangles.size());
         for (size_t f = 0; f < m.triangles.size(); ++f) {
             const glm::uvec3 c = m.triangles[f];
-            const glm::uvec3 mid = table.face_edges[f] + glm::uvec3(base);  // (ab, bc, ca)
+            const glm::uvec3 mid = edges_of[f] + glm::uvec3(base);  // (ab, bc, ca)
             split.emplace_back(c.x, mid.x, mid.z);
             split.emplace_back(mid.x, c.y, mid.y);
             split.emplace_back(mid.z, mid.y, c.z);

@@ -3,10 +3,14 @@
 // side in one run: a 120-frame turntable at 3 degrees a frame. Prints a markdown table; with
 // --csv FILE also every frame's fraction of edges tested and extraction times.
 //
-//   inkline_tracker_bench [--max-faces N] [--frames N] [--csv FILE]
+//   inkline_tracker_bench [--max-faces N] [--frames N] [--csv FILE] [--only TEXT] [--mesh FILE]...
+//
+// --only runs the cases whose name contains TEXT; --mesh adds a mesh file (OBJ, OFF, PLY, STL),
+// for example the models of Debian's libcgal-demo data.
 
 #include "core/features.h"
 #include "core/mesh.h"
+#include "core/mesh_io.h"
 #include "core/scene.h"
 #include "core/silhouette_tracker.h"
 #include "core/topology.h"
@@ -17,6 +21,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <filesystem>
 #include <functional>
 #include <numbers>
 #include <random>
@@ -49,6 +55,7 @@ core::Mesh icosphere(int levels) {
     for (int level = 0; level < levels; ++level) {
         // One new vertex per edge; each face (a, b, c) becomes four.
         const core::EdgeTable table = core::build_edge_table(m);
+        const std::vector<glm::uvec3> edges_of = core::face_edges(m, table);
         const uint32_t base = uint32_t(m.positions.size());
         for (const glm::uvec2& e : table.edge_vertices) {
             m.positions.push_back(glm::normalize(m.positions[e.x] + m.positions[e.y]));
@@ -57,7 +64,7 @@ core::Mesh icosphere(int levels) {
         split.reserve(4 * m.triangles.size());
         for (size_t f = 0; f < m.triangles.size(); ++f) {
             const glm::uvec3 c = m.triangles[f];
-            const glm::uvec3 mid = table.face_edges[f] + glm::uvec3(base);  // (ab, bc, ca)
+            const glm::uvec3 mid = edges_of[f] + glm::uvec3(base);  // (ab, bc, ca)
             split.emplace_back(c.x, mid.x, mid.z);
             split.emplace_back(mid.x, c.y, mid.y);
             split.emplace_back(mid.z, mid.y, c.z);
@@ -151,8 +158,8 @@ bool same_edges(const core::FeatureEdges& a, const core::FeatureEdges& b) {
                       });
 }
 
-// The turntable's eye in object space: the object turns 3 degrees a frame about y under a camera
-// above and in front of it, like samples/torus.
+// The turntable's eye in object space, from the centre of the object's box: the object turns 3
+// degrees a frame about y under a camera above and in front of it, like samples/torus.
 glm::dvec3 turntable_eye(int frame, double radius) {
     const double a = -3.0 * frame * std::numbers::pi / 180.0;
     const glm::dvec3 eye_world(0.0, 1.2 * radius, 3.2 * radius);
@@ -173,7 +180,8 @@ Row run(const Case& c, int frames, std::FILE* csv) {
     row.name = c.name;
     const core::Mesh rest = c.make();
     core::Mesh mesh = rest;
-    const double radius = core::bounds_of(rest.positions).radius();
+    const core::Bounds bounds = core::bounds_of(rest.positions);
+    const double radius = bounds.radius();
     double start = cpu_ms();
     const core::EdgeTable table = core::build_edge_table(rest);
     core::SilhouetteTracker tracker(table, rest, {.deforming = c.deforming, .search = c.search});
@@ -182,7 +190,7 @@ Row run(const Case& c, int frames, std::FILE* csv) {
     row.edges = table.edge_count();
     for (int frame = 0; frame < frames; ++frame) {
         if (c.deforming) breathe(rest, frame, mesh);
-        const glm::dvec3 eye = turntable_eye(frame, radius);
+        const glm::dvec3 eye = bounds.center() + turntable_eye(frame, radius);
         start = cpu_ms();
         const core::FeatureEdges brute = core::extract_feature_edges(mesh, table, eye, c.lines);
         const double brute_ms = cpu_ms() - start;
@@ -225,6 +233,13 @@ int main(int argc, char** argv) {
     size_t max_faces = 2'000'000;
     int frames = 120;
     std::FILE* csv = nullptr;
+    std::string only;
+    std::vector<std::filesystem::path> mesh_files;
+    const char* usage = "usage: %s [--max-faces N] [--frames N] [--csv FILE] [--only TEXT] [--mesh FILE]...\n";
+    if (argc % 2 == 0) {
+        std::fprintf(stderr, usage, argv[0]);
+        return 2;
+    }
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string key = argv[i];
         if (key == "--max-faces") {
@@ -239,15 +254,19 @@ int main(int argc, char** argv) {
             }
             std::fprintf(csv, "mesh,frame,edges_tested_fraction,faces_tested_fraction,brute_ms,tracker_ms,"
                               "silhouette_edges,identical\n");
+        } else if (key == "--only") {
+            only = argv[i + 1];
+        } else if (key == "--mesh") {
+            mesh_files.emplace_back(argv[i + 1]);
         } else {
-            std::fprintf(stderr, "usage: %s [--max-faces N] [--frames N] [--csv FILE]\n", argv[0]);
+            std::fprintf(stderr, usage, argv[0]);
             return 2;
         }
     }
 
     core::LineOptions silhouettes_only;
     silhouettes_only.boundary = silhouettes_only.crease = false;
-    const std::vector<Case> cases = {
+    std::vector<Case> cases = {
         {"icosphere", [] { return icosphere(4); }, 5'120, {}},
         {"bumpy icosphere", [] { return bumpy(icosphere(5), 40, 1); }, 20'480, {}},
         {"noisy torus", [] { return noisy_torus(256, 128); }, 65'536, {}},
@@ -261,6 +280,18 @@ int main(int argc, char** argv) {
          core::TrackerSearch::kWalkAndHierarchy},
     };
 
+    for (const std::filesystem::path& file : mesh_files) {
+        core::Mesh mesh;
+        try {
+            mesh = core::load_mesh(file).mesh;
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "%s\n", e.what());
+            return 2;
+        }
+        const size_t faces = mesh.triangles.size();
+        cases.push_back({file.filename().string(), [mesh] { return mesh; }, faces, {}});
+    }
+
     std::printf("%d-frame turntable, 3 degrees a frame; means over frames 2..%d (frame 1 is the full pass); "
                 "times are thread CPU time.\n\n",
                 frames, frames);
@@ -268,7 +299,7 @@ int main(int argc, char** argv) {
                 "incremental ms | speedup | full pass ms | build ms | missed by the walk | identical |\n");
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const Case& c : cases) {
-        if (c.faces > max_faces) continue;
+        if (c.faces > max_faces || c.name.find(only) == std::string::npos) continue;
         const Row r = run(c, frames, csv);
         // Silhouette edges that only the hierarchy found, summed over frames: the thesis's
         // method alone would have lost them.

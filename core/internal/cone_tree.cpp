@@ -45,8 +45,15 @@ double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v
 constexpr size_t kMinParallelItems = 50000;
 constexpr size_t kMinParallelNodes = 4096;
 
-// The number of nodes in the subtree of a node of n faces: median splits (n / 2 and the rest)
-// down to leaves of at most leaf_faces. Remembers the few distinct sizes a tree has.
+// Faces in the first child of a node of n > leaf_faces faces: half its leaves, rounded up, so that
+// every node starts at a multiple of leaf_faces and every leaf but the last is full.
+uint32_t first_child_faces(uint32_t n, uint32_t leaf_faces) {
+    const uint32_t leaves = (n + leaf_faces - 1) / leaf_faces;
+    return (leaves + 1) / 2 * leaf_faces;
+}
+
+// The number of nodes in the subtree of a node of n faces, split as first_child_faces says down
+// to leaves of at most leaf_faces. Remembers the few distinct sizes a tree has.
 class SubtreeSizes {
   public:
     explicit SubtreeSizes(uint32_t leaf_faces) : leaf_faces_(leaf_faces) {}
@@ -55,7 +62,8 @@ class SubtreeSizes {
         for (const auto& [faces, count] : known_) {
             if (faces == n) return count;
         }
-        const uint32_t count = 1 + (*this)(n / 2) + (*this)(n - n / 2);
+        const uint32_t first = first_child_faces(n, leaf_faces_);
+        const uint32_t count = 1 + (*this)(first) + (*this)(n - first);
         known_.emplace_back(n, count);
         return count;
     }
@@ -67,13 +75,12 @@ class SubtreeSizes {
 
 }  // namespace
 
-ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces) {
+ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces) : leaf_faces_(leaf_faces) {
     INKLINE_CHECK(leaf_faces >= 1);
     const size_t n_faces = mesh.triangles.size();
     for (uint32_t f = 0; f < n_faces; ++f) {
         if (table.face_valid[f]) faces.push_back(f);
     }
-    face_position.assign(n_faces, kNoIndex);
     if (faces.empty()) return;
     // The cones are built in face order and then reordered by the splits; each carries its face.
     cones_.resize(faces.size());
@@ -81,7 +88,7 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
         for (size_t k = begin; k < end; ++k) cones_[k] = face_cone(mesh, faces[k]);
     });
 
-    // Top-down median splits, depth first so that a traversal reads the nodes in order. A node
+    // Top-down splits near the median, depth first so that a traversal reads the nodes in order. A node
     // of n faces heads subtree_nodes(n) nodes, so every node's index is known before its
     // subtree is built and the subtrees below the top levels are built in parallel, each exactly
     // as the sequential recursion would.
@@ -123,7 +130,7 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
             if (spread > widest) widest = spread, key = k;
         }
         auto value = [key](const FaceCone& cone) { return key < 3 ? cone.centroid[key] : cone.normal[key - 3]; };
-        const uint32_t mid = t.begin + (t.end - t.begin) / 2;
+        const uint32_t mid = t.begin + first_child_faces(t.end - t.begin, leaf_faces);
         std::nth_element(cones_.begin() + t.begin, cones_.begin() + mid, cones_.begin() + t.end,
                          [&](const FaceCone& a, const FaceCone& b) { return value(a) < value(b); });
         nodes[t.index].second_child = t.index + 1 + local_sizes(mid - t.begin);
@@ -157,6 +164,8 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
             for (size_t i = begin; i < end; ++i) build(build, tasks[i], local_sizes);
         });
     }
+    // The position of each face in `faces`, while the edges are listed.
+    std::vector<uint32_t> face_position(n_faces, kNoIndex);
     for (uint32_t k = 0; k < faces.size(); ++k) {
         faces[k] = cones_[k].face;
         face_position[faces[k]] = k;
@@ -203,28 +212,12 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
         edges[offsets[edge_node[e]]++] = {e, {face_position[f0], face_position[f1]}};
     }
     edge_node = std::vector<uint32_t>();
-    uint32_t span_count = 0;
-    for (ConeNode& node : nodes) {
-        node.span_begin = span_count;
-        span_count += (node.edge_end - node.edge_begin + kSpanEdges - 1) / kSpanEdges;
-    }
-    spans.resize(span_count);
     parallel_for(nodes.size(), kMinParallelNodes, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             const ConeNode& node = nodes[i];
             if (!node.is_leaf()) {
                 std::sort(edges.begin() + node.edge_begin, edges.begin() + node.edge_end,
                           [](const ListedEdge& a, const ListedEdge& b) { return a.position[0] < b.position[0]; });
-            }
-            for (uint32_t k = node.edge_begin, j = node.span_begin; k < node.edge_end; k += kSpanEdges, ++j) {
-                EdgeSpan span{kNoIndex, 0, kNoIndex, 0};
-                for (uint32_t l = k; l < std::min(k + kSpanEdges, node.edge_end); ++l) {
-                    span.first_min = std::min(span.first_min, edges[l].position[0]);
-                    span.first_max = std::max(span.first_max, edges[l].position[0]);
-                    span.second_min = std::min(span.second_min, edges[l].position[1]);
-                    span.second_max = std::max(span.second_max, edges[l].position[1]);
-                }
-                spans[j] = span;
             }
         }
     });

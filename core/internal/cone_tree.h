@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace inkline::core::internal {
@@ -28,7 +29,6 @@ struct ConeNode {
     uint32_t face_end = 0;
     uint32_t edge_begin = 0;         // range in ConeTree::edges
     uint32_t edge_end = 0;
-    uint32_t span_begin = 0;         // ConeTree::spans[span_begin + j] bounds the j-th kSpanEdges edges
     uint32_t second_child = kNoIndex;  // the first child is the next node; kNoIndex: a leaf
 
     bool is_leaf() const { return second_child == kNoIndex; }
@@ -41,23 +41,18 @@ struct ListedEdge {
     uint32_t position[2];
 };
 
-// Bounds of the face positions of a run of kSpanEdges consecutive listed edges of one node: a
-// run whose two sides each lie inside one proven cluster can be skipped without reading it.
-inline constexpr uint32_t kSpanEdges = 16;
-struct EdgeSpan {
-    uint32_t first_min, first_max;    // of position[0]
-    uint32_t second_min, second_max;  // of position[1]
-};
-
 // Nodes are in depth-first order: node 0 is the root (absent when the mesh has no valid face) and
-// an inner node i has children i + 1 and second_child.
+// an inner node i has children i + 1 and second_child. Leaves hold leaf_faces faces each (the last
+// one possibly fewer), so the leaf holding position p is the (p / leaf_faces)-th leaf in tree
+// order, and a node's leaves are the consecutive range leaves_of(node).
 // Every interior edge (two faces) is listed once, at the deepest node holding both its faces:
 // a leaf's edges lie inside it, an inner node's edges join its two children and are sorted by
 // the position of their face in the first child, so that runs of them stay close on the mesh.
 class ConeTree {
   public:
-    // Splits the valid faces at the median of their widest position or normal spread, down to
-    // leaves of at most leaf_faces faces, and fits every cone exactly.
+    // Splits the valid faces near the median of their widest position or normal spread (the
+    // first half gets a whole number of leaves), down to leaves of leaf_faces faces, and fits
+    // every cone exactly.
     ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces);
 
     // New positions, same topology: refits leaves exactly and inner nodes from their children
@@ -67,6 +62,15 @@ class ConeTree {
     // kFront (kBack) when facing_value(mesh, f, eye) > 0 (<= 0) is certain for every face f of
     // the node, including floating-point error; kUnknown otherwise.
     ClusterFacing facing(uint32_t node, const glm::dvec3& eye) const;
+
+    uint32_t leaf_faces() const { return leaf_faces_; }
+    uint32_t leaf_count() const { return (uint32_t(faces.size()) + leaf_faces_ - 1) / leaf_faces_; }
+    // The leaf (in tree order, not a node index) that holds a position in `faces`.
+    uint32_t leaf_of(uint32_t position) const { return position / leaf_faces_; }
+    // The leaves under a node: [first, second).
+    std::pair<uint32_t, uint32_t> leaves_of(const ConeNode& node) const {
+        return {node.face_begin / leaf_faces_, (node.face_end + leaf_faces_ - 1) / leaf_faces_};
+    }
 
     // True when no two faces of the node are further apart than crease_angle_rad, so is_crease
     // holds for none of its edges.
@@ -78,11 +82,10 @@ class ConeTree {
 
     std::vector<ConeNode> nodes;
     std::vector<uint32_t> faces;          // valid faces; a node holds faces[face_begin, face_end)
-    std::vector<uint32_t> face_position;  // #F, index of each face in `faces`; kNoIndex if invalid
     std::vector<ListedEdge> edges;        // interior edges; a node lists edges[edge_begin, edge_end)
-    std::vector<EdgeSpan> spans;
 
   private:
+    uint32_t leaf_faces_;
     struct FaceCone {
         glm::dvec3 centroid;
         glm::dvec3 normal;  // unit

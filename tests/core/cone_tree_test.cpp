@@ -109,6 +109,36 @@ TEST(ConeTree, EveryInteriorEdgeListedOnceAtItsFacesCommonNode) {
     for (uint32_t e = 0; e < table.edge_count(); ++e) EXPECT_EQ(seen[e], table.is_interior(e) ? 1 : 0) << "edge " << e;
 }
 
+// Every leaf but the last is full, so a position's leaf is position / leaf_faces: the leaves in
+// depth-first order tile the faces, and each node's leaves are the ones its face range covers.
+TEST(ConeTree, LeavesAreFullAndFoundByPosition) {
+    const core::Mesh sphere = test::hemisphere(40, 21, 1.0);
+    const core::EdgeTable table = core::build_edge_table(sphere);
+    for (const uint32_t leaf_faces : {1u, 5u, 16u}) {
+        const ConeTree tree(sphere, table, leaf_faces);
+        ASSERT_EQ(tree.faces.size(), sphere.triangles.size());
+        uint32_t leaf = 0;
+        for (uint32_t n = 0; n < tree.nodes.size(); ++n) {
+            const core::internal::ConeNode& node = tree.nodes[n];
+            const auto [first, last] = tree.leaves_of(node);
+            EXPECT_EQ(first, leaf) << "node " << n;  // depth first: a node's leaves come next
+            if (!node.is_leaf()) {
+                EXPECT_EQ(tree.leaves_of(tree.nodes[n + 1]).second, tree.leaves_of(tree.nodes[node.second_child]).first);
+                EXPECT_EQ(last, tree.leaves_of(tree.nodes[node.second_child]).second);
+                continue;
+            }
+            EXPECT_EQ(last, leaf + 1);
+            EXPECT_EQ(node.face_begin, leaf * leaf_faces);
+            if (node.face_end != tree.faces.size()) {
+                EXPECT_EQ(node.face_end - node.face_begin, leaf_faces);
+            }
+            for (uint32_t k = node.face_begin; k < node.face_end; ++k) EXPECT_EQ(tree.leaf_of(k), leaf);
+            ++leaf;
+        }
+        EXPECT_EQ(leaf, tree.leaf_count());
+    }
+}
+
 TEST(ConeTree, CreaseFreeNodesHoldNoCrease) {
     const core::Mesh sphere = test::uv_sphere(20, 10, 1.0);
     const core::EdgeTable table = core::build_edge_table(sphere);

@@ -26,14 +26,16 @@ TEST(Topology, ClosedShapesHaveNoBoundary) {
 TEST(Topology, EdgesAreSortedAndAdjacencyIsConsistent) {
     const core::Mesh mesh = test::torus(1.0, 0.3, 10, 6);
     const core::EdgeTable t = core::build_edge_table(mesh);
+    const std::vector<glm::uvec3> face_edges = core::face_edges(mesh, t);
     for (uint32_t e = 0; e < t.edge_count(); ++e) {
         EXPECT_LT(t.edge_vertices[e].x, t.edge_vertices[e].y);
+        EXPECT_EQ(core::find_edge(t, t.edge_vertices[e].y, t.edge_vertices[e].x), e);
         if (e > 0) {
             const auto prev = t.edge_vertices[e - 1], cur = t.edge_vertices[e];
             EXPECT_TRUE(prev.x < cur.x || (prev.x == cur.x && prev.y < cur.y));
         }
         for (uint32_t f : t.faces_of(e)) {
-            const glm::uvec3 fe = t.face_edges[f];
+            const glm::uvec3 fe = face_edges[f];
             EXPECT_TRUE(fe.x == e || fe.y == e || fe.z == e);
         }
         for (uint32_t v : {t.edge_vertices[e].x, t.edge_vertices[e].y}) {
