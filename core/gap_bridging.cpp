@@ -59,14 +59,6 @@ int64_t majority(const std::vector<int64_t>& ids) {
     return best;
 }
 
-void reverse(StrokeGeometry& g) {
-    std::reverse(g.points_px.begin(), g.points_px.end());
-    std::reverse(g.points_world.begin(), g.points_world.end());
-    std::reverse(g.edges.begin(), g.edges.end());
-    std::reverse(g.hidden.begin(), g.hidden.end());
-    std::swap(g.ends[0], g.ends[1]);
-}
-
 // Appends `piece` (its first point equal to out's last) to out; hidden marks every segment of
 // the piece as occluded.
 void append(StrokeGeometry& out, const StrokeGeometry& piece, bool hidden) {
@@ -185,8 +177,8 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
         // An end taken by an earlier gap (two occluded parts leaving one point) is gone.
         const bool a_back = a.points_px.back() == p0, b_front = b.points_px.front() == p1;
         if ((!a_back && a.points_px.front() != p0) || (!b_front && b.points_px.back() != p1)) continue;
-        if (!a_back) reverse(a);
-        if (!b_front) reverse(b);
+        if (!a_back) a.reverse();
+        if (!b_front) b.reverse();
         append(a, occluded[gap.occluded], true);
         a.ends[1] = b.ends[1];
         append(a, b, false);

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <numeric>
+#include <utility>
 
 #include "core/stroke_path.h"
 
@@ -391,6 +392,14 @@ double StrokeGeometry::length_px() const {
     double len = 0.0;
     for (size_t i = 1; i < points_px.size(); ++i) len += glm::length(points_px[i] - points_px[i - 1]);
     return len;
+}
+
+void StrokeGeometry::reverse() {
+    std::reverse(points_px.begin(), points_px.end());
+    std::reverse(points_world.begin(), points_world.end());
+    std::reverse(edges.begin(), edges.end());
+    std::reverse(hidden.begin(), hidden.end());
+    std::swap(ends[0], ends[1]);
 }
 
 std::vector<double> turn_angles_deg(const std::vector<glm::dvec2>& points_px, bool closed, double window_px) {

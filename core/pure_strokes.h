@@ -59,6 +59,8 @@ struct StrokeGeometry {
     std::vector<uint8_t> hidden;
 
     double length_px() const;
+    // Runs the stroke the other way: points, edges, hidden marks and end types.
+    void reverse();
 };
 
 struct PureStrokes {

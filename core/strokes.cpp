@@ -56,14 +56,6 @@ StrokeCandidate candidate_of(const StrokeGeometry& g, const StrokePath& path) {
     return c;
 }
 
-void reverse(StrokeGeometry& g) {
-    std::reverse(g.points_px.begin(), g.points_px.end());
-    std::reverse(g.points_world.begin(), g.points_world.end());
-    std::reverse(g.edges.begin(), g.edges.end());
-    std::reverse(g.hidden.begin(), g.hidden.end());
-    std::swap(g.ends[0], g.ends[1]);
-}
-
 struct PointOnPolyline {
     size_t segment = 0;
     double t = 0.0;  // along the segment in the image
@@ -269,7 +261,7 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
             const StrokeMatch& m = matches[i];
             // The centerline is built again only where the stroke was turned round or restarted.
             std::optional<StrokePath> path = std::move(paths[i]);
-            if (m.reverse) reverse(g), path.reset();
+            if (m.reverse) g.reverse(), path.reset();
             bool anchored = false;
             if (g.closed && g.points_px.size() > 2) {
                 anchored = choose_loop_start(g, m, lighting, projection, object_from_world);
