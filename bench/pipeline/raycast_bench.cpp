@@ -19,6 +19,7 @@
 #include "core/scene.h"
 #include "core/topology.h"
 #include "core/visibility.h"
+#include "tests/support/shapes.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -42,6 +43,7 @@
 namespace {
 
 namespace core = inkline::core;
+namespace test = inkline::test;
 constexpr double kPi = std::numbers::pi;
 
 // Wall-clock and whole-process CPU time, ms. The machines these run on are shared: wall time
@@ -91,36 +93,9 @@ core::Mesh bumpy_torus(int major, int minor) {
     return m;
 }
 
-// Bumpy unit icosphere: an icosahedron split `levels` times into four (20 * 4^levels faces).
+// Bumpy unit icosphere (20 * 4^levels faces).
 core::Mesh bumpy_icosphere(int levels) {
-    const float t = float((1.0 + std::sqrt(5.0)) / 2.0);
-    core::Mesh m;
-    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (glm::vec3& p : m.positions) p = glm::normalize(p);
-    for (int level = 0; level < levels; ++level) {
-        // One new vertex per edge; each face (a, b, c) becomes four.
-        const core::EdgeTable table = core::build_edge_table(m);
-        const std::vector<glm::uvec3> edges_of = core::face_edges(m, table);
-        const uint32_t base = uint32_t(m.positions.size());
-        for (const glm::uvec2& e : table.edge_vertices) {
-            m.positions.push_back(glm::normalize(m.positions[e.x] + m.positions[e.y]));
-        }
-        std::vector<glm::uvec3> split;
-        split.reserve(4 * m.triangles.size());
-        for (size_t f = 0; f < m.triangles.size(); ++f) {
-            const glm::uvec3 c = m.triangles[f];
-            const glm::uvec3 mid = edges_of[f] + glm::uvec3(base);  // (ab, bc, ca)
-            split.emplace_back(c.x, mid.x, mid.z);
-            split.emplace_back(mid.x, c.y, mid.y);
-            split.emplace_back(mid.z, mid.y, c.z);
-            split.emplace_back(mid.x, mid.y, mid.z);
-        }
-        m.triangles = std::move(split);
-    }
+    core::Mesh m = test::icosphere(levels);
     for (glm::vec3& p : m.positions) {
         const glm::dvec3 d(p);
         p = glm::vec3(d * (1.0 + bumps(d, 0.04)));

@@ -14,6 +14,7 @@
 #include "core/scene.h"
 #include "core/silhouette_tracker.h"
 #include "core/topology.h"
+#include "tests/support/shapes.h"
 
 #include <glm/geometric.hpp>
 
@@ -34,45 +35,13 @@
 namespace {
 
 namespace core = inkline::core;
+namespace test = inkline::test;
 // CPU time of this thread, ms: the machines these run on are shared, and wall-clock time there
 // measures the neighbours as much as the code.
 double cpu_ms() {
     timespec t{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
     return 1e3 * double(t.tv_sec) + 1e-6 * double(t.tv_nsec);
-}
-
-// Unit icosphere: an icosahedron split `levels` times into four (20 * 4^levels faces).
-core::Mesh icosphere(int levels) {
-    const float t = float((1.0 + std::sqrt(5.0)) / 2.0);
-    core::Mesh m;
-    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (glm::vec3& p : m.positions) p = glm::normalize(p);
-    for (int level = 0; level < levels; ++level) {
-        // One new vertex per edge; each face (a, b, c) becomes four.
-        const core::EdgeTable table = core::build_edge_table(m);
-        const std::vector<glm::uvec3> edges_of = core::face_edges(m, table);
-        const uint32_t base = uint32_t(m.positions.size());
-        for (const glm::uvec2& e : table.edge_vertices) {
-            m.positions.push_back(glm::normalize(m.positions[e.x] + m.positions[e.y]));
-        }
-        std::vector<glm::uvec3> split;
-        split.reserve(4 * m.triangles.size());
-        for (size_t f = 0; f < m.triangles.size(); ++f) {
-            const glm::uvec3 c = m.triangles[f];
-            const glm::uvec3 mid = edges_of[f] + glm::uvec3(base);  // (ab, bc, ca)
-            split.emplace_back(c.x, mid.x, mid.z);
-            split.emplace_back(mid.x, c.y, mid.y);
-            split.emplace_back(mid.z, mid.y, c.z);
-            split.emplace_back(mid.x, mid.y, mid.z);
-        }
-        m.triangles = std::move(split);
-    }
-    return m;
 }
 
 // Pushes a unit sphere out by Gaussian bumps of random height and width at `count` points.
@@ -267,16 +236,16 @@ int main(int argc, char** argv) {
     core::LineOptions silhouettes_only;
     silhouettes_only.boundary = silhouettes_only.crease = false;
     std::vector<Case> cases = {
-        {"icosphere", [] { return icosphere(4); }, 5'120, {}},
-        {"bumpy icosphere", [] { return bumpy(icosphere(5), 40, 1); }, 20'480, {}},
+        {"icosphere", [] { return test::icosphere(4); }, 5'120, {}},
+        {"bumpy icosphere", [] { return bumpy(test::icosphere(5), 40, 1); }, 20'480, {}},
         {"noisy torus", [] { return noisy_torus(256, 128); }, 65'536, {}},
-        {"rough icosphere", [] { return rough(icosphere(6), 0.004, 2); }, 81'920, {}},
-        {"bumpy icosphere", [] { return bumpy(icosphere(7), 60, 3); }, 327'680, {}},
-        {"bumpy icosphere, deforming", [] { return bumpy(icosphere(7), 60, 3); }, 327'680, {}, true},
+        {"rough icosphere", [] { return rough(test::icosphere(6), 0.004, 2); }, 81'920, {}},
+        {"bumpy icosphere", [] { return bumpy(test::icosphere(7), 60, 3); }, 327'680, {}},
+        {"bumpy icosphere, deforming", [] { return bumpy(test::icosphere(7), 60, 3); }, 327'680, {}, true},
         {"noisy torus", [] { return noisy_torus(1024, 512); }, 1'048'576, {}},
-        {"bumpy icosphere", [] { return bumpy(icosphere(8), 60, 4); }, 1'310'720, {}},
-        {"bumpy icosphere, silhouettes only", [] { return bumpy(icosphere(8), 60, 4); }, 1'310'720, silhouettes_only},
-        {"bumpy icosphere, walk and hierarchy", [] { return bumpy(icosphere(8), 60, 4); }, 1'310'720, {}, false,
+        {"bumpy icosphere", [] { return bumpy(test::icosphere(8), 60, 4); }, 1'310'720, {}},
+        {"bumpy icosphere, silhouettes only", [] { return bumpy(test::icosphere(8), 60, 4); }, 1'310'720, silhouettes_only},
+        {"bumpy icosphere, walk and hierarchy", [] { return bumpy(test::icosphere(8), 60, 4); }, 1'310'720, {}, false,
          core::TrackerSearch::kWalkAndHierarchy},
     };
 

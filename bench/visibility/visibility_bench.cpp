@@ -21,6 +21,7 @@
 #include "gl/context.h"
 #include "gl/depth_visibility.h"
 #include "tests/support/agreement.h"
+#include "tests/support/shapes.h"
 
 #include <glm/geometric.hpp>
 
@@ -49,43 +50,10 @@ double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Unit icosphere: an icosahedron split `levels` times into four (20 * 4^levels faces).
-core::Mesh icosphere(int levels) {
-    const float t = float((1.0 + std::sqrt(5.0)) / 2.0);
-    core::Mesh m;
-    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (glm::vec3& p : m.positions) p = glm::normalize(p);
-    for (int level = 0; level < levels; ++level) {
-        // One new vertex per edge; each face (a, b, c) becomes four.
-        const core::EdgeTable table = core::build_edge_table(m);
-        const std::vector<glm::uvec3> edges_of = core::face_edges(m, table);
-        const auto base = uint32_t(m.positions.size());
-        for (const glm::uvec2& e : table.edge_vertices) {
-            m.positions.push_back(glm::normalize(m.positions[e.x] + m.positions[e.y]));
-        }
-        std::vector<glm::uvec3> split;
-        split.reserve(4 * m.triangles.size());
-        for (size_t f = 0; f < m.triangles.size(); ++f) {
-            const glm::uvec3 c = m.triangles[f];
-            const glm::uvec3 mid = edges_of[f] + glm::uvec3(base);  // (ab, bc, ca)
-            split.emplace_back(c.x, mid.x, mid.z);
-            split.emplace_back(mid.x, c.y, mid.y);
-            split.emplace_back(mid.z, mid.y, c.z);
-            split.emplace_back(mid.x, mid.y, mid.z);
-        }
-        m.triangles = std::move(split);
-    }
-    return m;
-}
-
 // A unit sphere pushed out by Gaussian bumps at `count` points and jittered radially by up to
 // `rough`: bumps hide parts of each other's silhouettes, jitter adds short silhouette loops.
 core::Mesh bumpy_sphere(int levels, int count, double rough, uint32_t seed) {
-    core::Mesh m = icosphere(levels);
+    core::Mesh m = test::icosphere(levels);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> height(0.05, 0.2), width(0.1, 0.3), jitter(-rough, rough);
     struct Bump {

@@ -1,8 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "tests/support/shapes.h"
 
+#include "core/topology.h"
+
+#include <glm/geometric.hpp>
+
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 namespace inkline::test {
 namespace {
@@ -98,6 +104,38 @@ Mesh grid(int n, double h) {
             m.triangles.emplace_back(at(i, j), at(i, j + 1), at(i + 1, j + 1));
             m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i + 1, j));
         }
+    }
+    return m;
+}
+
+Mesh icosphere(int levels) {
+    const float t = float((1.0 + std::sqrt(5.0)) / 2.0);
+    Mesh m;
+    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                   {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    for (glm::vec3& p : m.positions) p = glm::normalize(p);
+    for (int level = 0; level < levels; ++level) {
+        // One new vertex per edge; each face (a, b, c) becomes four.
+        const core::EdgeTable table = core::build_edge_table(m);
+        const std::vector<glm::uvec3> edges_of = core::face_edges(m, table);
+        const auto base = uint32_t(m.positions.size());
+        for (const glm::uvec2& e : table.edge_vertices) {
+            m.positions.push_back(glm::normalize(m.positions[e.x] + m.positions[e.y]));
+        }
+        std::vector<glm::uvec3> split;
+        split.reserve(4 * m.triangles.size());
+        for (size_t f = 0; f < m.triangles.size(); ++f) {
+            const glm::uvec3 c = m.triangles[f];
+            const glm::uvec3 mid = edges_of[f] + glm::uvec3(base);  // (ab, bc, ca)
+            split.emplace_back(c.x, mid.x, mid.z);
+            split.emplace_back(mid.x, c.y, mid.y);
+            split.emplace_back(mid.z, mid.y, c.z);
+            split.emplace_back(mid.x, mid.y, mid.z);
+        }
+        m.triangles = std::move(split);
     }
     return m;
 }

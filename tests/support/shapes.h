@@ -14,6 +14,9 @@ core::Mesh hemisphere(int segments, int rings, double radius);
 core::Mesh torus(double major_radius, double minor_radius, int major_segments, int minor_segments);
 // Axis-aligned cube [-h, h]^3, two triangles per face.
 core::Mesh cube(double half_size);
+// Unit icosphere: an icosahedron split `levels` times into four (20 * 4^levels faces), every
+// vertex on the unit sphere. Vertex indices scatter over the surface as subdivision adds them.
+core::Mesh icosphere(int levels);
 // Flat n x n quad grid in the z = 0 plane spanning [-h, h]^2, normals towards +z.
 core::Mesh grid(int n, double half_size);
 
