@@ -93,41 +93,6 @@ glm::dmat4 clip_from_object_of(const core::Projection& projection) {
     return m;
 }
 
-GLuint compile(const internal::Functions& fn, GLenum type, const char* source) {
-    const GLuint shader = fn.CreateShader(type);
-    fn.ShaderSource(shader, 1, &source, nullptr);
-    fn.CompileShader(shader);
-    GLint ok = GL_FALSE;
-    fn.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        char log[1024] = {};
-        fn.GetShaderInfoLog(shader, sizeof log, nullptr, log);
-        fn.DeleteShader(shader);
-        throw ContextError(std::string("depth pass shader does not compile: ") + log);
-    }
-    return shader;
-}
-
-GLuint link_program(const internal::Functions& fn) {
-    const GLuint vs = compile(fn, GL_VERTEX_SHADER, kVertexShader);
-    const GLuint fs = compile(fn, GL_FRAGMENT_SHADER, kFragmentShader);
-    const GLuint program = fn.CreateProgram();
-    fn.AttachShader(program, vs);
-    fn.AttachShader(program, fs);
-    fn.LinkProgram(program);
-    fn.DeleteShader(vs);
-    fn.DeleteShader(fs);
-    GLint ok = GL_FALSE;
-    fn.GetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        char log[1024] = {};
-        fn.GetProgramInfoLog(program, sizeof log, nullptr, log);
-        fn.DeleteProgram(program);
-        throw ContextError(std::string("depth pass shaders do not link: ") + log);
-    }
-    return program;
-}
-
 void check_gl(const internal::Functions& fn, const char* step) {
     const GLenum error = fn.GetError();
     if (error != GL_NO_ERROR) {
@@ -362,7 +327,7 @@ DepthOcclusion::DepthOcclusion(const Context& context, const DepthVisibilityOpti
     m.options = options;
     m.fn = internal::load_functions(context);
     const internal::Functions& fn = m.fn;
-    m.program = link_program(fn);
+    m.program = internal::link_program(fn, kVertexShader, kFragmentShader, "depth pass");
     m.clip_from_object_location = fn.GetUniformLocation(m.program, "clip_from_object");
     fn.GenVertexArrays(1, &m.vao);
     fn.GenBuffers(1, &m.positions);

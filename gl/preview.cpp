@@ -166,41 +166,6 @@ void check_gl(const internal::Functions& fn, const char* step) {
     }
 }
 
-GLuint compile(const internal::Functions& fn, GLenum type, const char* source) {
-    const GLuint shader = fn.CreateShader(type);
-    fn.ShaderSource(shader, 1, &source, nullptr);
-    fn.CompileShader(shader);
-    GLint ok = GL_FALSE;
-    fn.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        char log[1024] = {};
-        fn.GetShaderInfoLog(shader, sizeof log, nullptr, log);
-        fn.DeleteShader(shader);
-        throw ContextError(std::string("preview shader does not compile: ") + log);
-    }
-    return shader;
-}
-
-GLuint link_program(const internal::Functions& fn, const char* vertex, const char* fragment) {
-    const GLuint vs = compile(fn, GL_VERTEX_SHADER, vertex);
-    const GLuint fs = compile(fn, GL_FRAGMENT_SHADER, fragment);
-    const GLuint program = fn.CreateProgram();
-    fn.AttachShader(program, vs);
-    fn.AttachShader(program, fs);
-    fn.LinkProgram(program);
-    fn.DeleteShader(vs);
-    fn.DeleteShader(fs);
-    GLint ok = GL_FALSE;
-    fn.GetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        char log[1024] = {};
-        fn.GetProgramInfoLog(program, sizeof log, nullptr, log);
-        fn.DeleteProgram(program);
-        throw ContextError(std::string("preview shaders do not link: ") + log);
-    }
-    return program;
-}
-
 // One stroke's range in the frame's index buffer and what its shader needs.
 struct StrokeDraw {
     size_t first_index = 0;
@@ -270,8 +235,8 @@ struct PreviewRenderer::Impl {
     }
 
     void setup(const BrushTip& tip) {
-        stroke_program = link_program(fn, kStrokeVertexShader, kStrokeFragmentShader);
-        surface_program = link_program(fn, kSurfaceVertexShader, kSurfaceFragmentShader);
+        stroke_program = internal::link_program(fn, kStrokeVertexShader, kStrokeFragmentShader, "preview");
+        surface_program = internal::link_program(fn, kSurfaceVertexShader, kSurfaceFragmentShader, "preview");
         auto stroke_uniform = [&](const char* name) { return fn.GetUniformLocation(stroke_program, name); };
         su = {stroke_uniform("image_size"), stroke_uniform("tip"),           stroke_uniform("tip_length"),
               stroke_uniform("zones"),      stroke_uniform("stroke_length"), stroke_uniform("period"),

@@ -96,4 +96,43 @@ Functions load_functions(const Context& context) {
     return fn;
 }
 
+namespace {
+
+GLuint compile(const Functions& fn, GLenum type, const char* source, const char* what) {
+    const GLuint shader = fn.CreateShader(type);
+    fn.ShaderSource(shader, 1, &source, nullptr);
+    fn.CompileShader(shader);
+    GLint ok = GL_FALSE;
+    fn.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        char log[1024] = {};
+        fn.GetShaderInfoLog(shader, sizeof log, nullptr, log);
+        fn.DeleteShader(shader);
+        throw ContextError(std::string(what) + " shader does not compile: " + log);
+    }
+    return shader;
+}
+
+}  // namespace
+
+GLuint link_program(const Functions& fn, const char* vertex, const char* fragment, const char* what) {
+    const GLuint vs = compile(fn, GL_VERTEX_SHADER, vertex, what);
+    const GLuint fs = compile(fn, GL_FRAGMENT_SHADER, fragment, what);
+    const GLuint program = fn.CreateProgram();
+    fn.AttachShader(program, vs);
+    fn.AttachShader(program, fs);
+    fn.LinkProgram(program);
+    fn.DeleteShader(vs);
+    fn.DeleteShader(fs);
+    GLint ok = GL_FALSE;
+    fn.GetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        char log[1024] = {};
+        fn.GetProgramInfoLog(program, sizeof log, nullptr, log);
+        fn.DeleteProgram(program);
+        throw ContextError(std::string(what) + " shaders do not link: " + log);
+    }
+    return program;
+}
+
 }  // namespace inkline::gl::internal

@@ -91,4 +91,8 @@ struct Functions {
 // first one the platform does not provide.
 Functions load_functions(const Context& context);
 
+// Compiles and links a vertex and a fragment shader into a program. Throws ContextError with the
+// driver's log, naming the pass (`what`, e.g. "preview") whose shaders failed.
+GLuint link_program(const Functions& fn, const char* vertex, const char* fragment, const char* what);
+
 }  // namespace inkline::gl::internal
