@@ -77,27 +77,9 @@ core::Mesh rough(core::Mesh m, double amplitude, uint32_t seed) {
     return m;
 }
 
-// Torus around y with a tube radius modulated by low-frequency waves.
+// Torus around y with a tube radius modulated by waves.
 core::Mesh noisy_torus(int major_segments, int minor_segments) {
-    core::Mesh m;
-    const double pi = std::numbers::pi;
-    for (int i = 0; i < major_segments; ++i) {
-        const double u = 2.0 * pi * i / major_segments;
-        for (int j = 0; j < minor_segments; ++j) {
-            const double v = 2.0 * pi * j / minor_segments;
-            const double r = 0.35 * (1.0 + 0.12 * std::sin(7.0 * u) * std::sin(3.0 * v) + 0.05 * std::sin(23.0 * u + 5.0 * v));
-            const double rho = 1.0 + r * std::cos(v);
-            m.positions.emplace_back(float(rho * std::cos(u)), float(r * std::sin(v)), float(-rho * std::sin(u)));
-        }
-    }
-    auto at = [&](int i, int j) { return unsigned((i % major_segments) * minor_segments + (j % minor_segments)); };
-    for (int i = 0; i < major_segments; ++i) {
-        for (int j = 0; j < minor_segments; ++j) {
-            m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
-            m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
-        }
-    }
-    return m;
+    return test::wavy_torus(major_segments, minor_segments, 0.12, 0.05);
 }
 
 struct Case {

@@ -47,27 +47,22 @@ Mesh uv_cap(int segments, int rings, double radius, bool full) {
     return m;
 }
 
-}  // namespace
-
-Mesh uv_sphere(int segments, int rings, double radius) { return uv_cap(segments, rings, radius, true); }
-
-Mesh hemisphere(int segments, int rings, double radius) { return uv_cap(segments, rings, radius, false); }
-
-Mesh torus(double major_radius, double minor_radius, int major_segments, int minor_segments) {
+// Torus around y: tube radius tube_radius(u, v) at major angle u and tube angle v, faces in grid
+// order, two per quad, counter-clockwise seen from outside.
+template <typename TubeRadius>
+Mesh torus_grid(double major_radius, int major_segments, int minor_segments, TubeRadius tube_radius) {
     Mesh m;
     const double pi = std::numbers::pi;
     for (int i = 0; i < major_segments; ++i) {
         const double u = 2.0 * pi * i / major_segments;
         for (int j = 0; j < minor_segments; ++j) {
             const double v = 2.0 * pi * j / minor_segments;
-            const double rho = major_radius + minor_radius * std::cos(v);
-            m.positions.emplace_back(float(rho * std::cos(u)), float(minor_radius * std::sin(v)),
-                                     float(-rho * std::sin(u)));
+            const double r = tube_radius(u, v);
+            const double rho = major_radius + r * std::cos(v);
+            m.positions.emplace_back(float(rho * std::cos(u)), float(r * std::sin(v)), float(-rho * std::sin(u)));
         }
     }
-    auto at = [&](int i, int j) {
-        return unsigned((i % major_segments) * minor_segments + (j % minor_segments));
-    };
+    auto at = [&](int i, int j) { return unsigned((i % major_segments) * minor_segments + (j % minor_segments)); };
     for (int i = 0; i < major_segments; ++i) {
         for (int j = 0; j < minor_segments; ++j) {
             m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
@@ -75,6 +70,16 @@ Mesh torus(double major_radius, double minor_radius, int major_segments, int min
         }
     }
     return m;
+}
+
+}  // namespace
+
+Mesh uv_sphere(int segments, int rings, double radius) { return uv_cap(segments, rings, radius, true); }
+
+Mesh hemisphere(int segments, int rings, double radius) { return uv_cap(segments, rings, radius, false); }
+
+Mesh torus(double major_radius, double minor_radius, int major_segments, int minor_segments) {
+    return torus_grid(major_radius, major_segments, minor_segments, [&](double, double) { return minor_radius; });
 }
 
 Mesh cube(double h) {
@@ -138,6 +143,12 @@ Mesh icosphere(int levels) {
         m.triangles = std::move(split);
     }
     return m;
+}
+
+Mesh wavy_torus(int major_segments, int minor_segments, double wave, double ripple) {
+    return torus_grid(1.0, major_segments, minor_segments, [&](double u, double v) {
+        return 0.35 * (1.0 + wave * std::sin(7.0 * u) * std::sin(3.0 * v) + ripple * std::sin(23.0 * u + 5.0 * v));
+    });
 }
 
 }  // namespace inkline::test

@@ -17,6 +17,10 @@ core::Mesh cube(double half_size);
 // Unit icosphere: an icosahedron split `levels` times into four (20 * 4^levels faces), every
 // vertex on the unit sphere. Vertex indices scatter over the surface as subdivision adds them.
 core::Mesh icosphere(int levels);
+// Torus around y (major radius 1, tube radius 0.35) whose tube radius is modulated by two waves of
+// relative amplitudes `wave` (sin 7u sin 3v) and `ripple` (sin(23u + 5v)): folds and
+// self-occlusion everywhere. Faces in grid order, two per quad.
+core::Mesh wavy_torus(int major_segments, int minor_segments, double wave, double ripple);
 // Flat n x n quad grid in the z = 0 plane spanning [-h, h]^2, normals towards +z.
 core::Mesh grid(int n, double half_size);
 
