@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 #include <map>
 #include <optional>
+#include <queue>
+#include <tuple>
 
 namespace inkline::core {
 namespace {
@@ -16,6 +18,9 @@ namespace {
 constexpr double kSideReachPx = 12.0;
 // Samples along that reach, px apart.
 constexpr double kSideSpacingPx = 2.0;
+// A path that joins two parts of last frame's stroke again may run this many times max_gap_px
+// (hidden folds of a zig-zag silhouette run back and forth; the chord is bounded on its own).
+constexpr double kRejoinPathFactor = 4.0;
 
 using Key = std::pair<double, double>;
 Key key_of(const glm::dvec2& p) { return {p.x, p.y}; }
@@ -77,6 +82,22 @@ void append(StrokeGeometry& out, const StrokeGeometry& piece, bool hidden) {
 }
 
 }  // namespace
+
+std::vector<StrokeGeometry> occluded_runs(const std::vector<Polyline>& occluded) {
+    std::vector<StrokeGeometry> out;
+    out.reserve(occluded.size());
+    for (const Polyline& line : occluded) {
+        StrokeGeometry g;
+        g.kind = line.kind;
+        g.visible = line.visible;
+        g.closed = line.closed;
+        g.points_px = line.points_px;
+        g.points_world = line.points_world;
+        g.edges = line.edges;
+        out.push_back(std::move(g));
+    }
+    return out;
+}
 
 GapBridgeOptions gap_bridge_options(double width_max_px) {
     GapBridgeOptions o;
@@ -188,6 +209,279 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
         ++bridged;
     }
     return bridged;
+}
+
+namespace {
+
+// One step of a path between stroke ends: a segment of an occluded part, or a whole short
+// visible stroke.
+struct Arc {
+    size_t to = 0;          // node reached
+    double length = 0.0;    // px
+    size_t source = 0;      // occluded part, or stroke for a fragment
+    size_t segment = 0;     // of the occluded part
+    bool fragment = false;  // a whole visible stroke
+    bool forward = true;    // runs the source in its own direction
+};
+
+// Exact points where paths meet, and the arcs between them.
+class JoinGraph {
+  public:
+    size_t node(const glm::dvec2& p) {
+        const auto [it, added] = nodes_.try_emplace(key_of(p), arcs_.size());
+        if (added) arcs_.emplace_back();
+        return it->second;
+    }
+    std::optional<size_t> find(const glm::dvec2& p) const {
+        const auto it = nodes_.find(key_of(p));
+        if (it == nodes_.end()) return std::nullopt;
+        return it->second;
+    }
+    void link(const glm::dvec2& a, const glm::dvec2& b, double length, Arc arc) {
+        const size_t na = node(a), nb = node(b);
+        arc.length = length;
+        arc.to = nb;
+        arc.forward = true;
+        arcs_[na].push_back(arc);
+        arc.to = na;
+        arc.forward = false;
+        arcs_[nb].push_back(arc);
+    }
+    const std::vector<Arc>& arcs(size_t n) const { return arcs_[n]; }
+    size_t size() const { return arcs_.size(); }
+
+  private:
+    std::map<Key, size_t> nodes_;
+    std::vector<std::vector<Arc>> arcs_;
+};
+
+// Last frame's stroke along one side of a stroke end.
+struct SideMemory {
+    int64_t id = -1;
+    double u = 0.0;       // its u nearest the end
+    double period = 0.0;  // its length when it was a loop
+};
+
+// A stroke end with what last frame drew next to it: every stroke of last frame nearest to at
+// least half of the side's samples (near a junction, the side may lie as near to a neighbour as
+// to its own stroke, so there may be two).
+struct MemoryEnd {
+    size_t stroke;
+    int end;
+    glm::dvec2 p;
+    std::vector<SideMemory> memory;  // by id
+};
+
+// Whether two ends continue one stroke of last frame, next to each other along it: their u
+// there differs by at most the path between them plus what the sides' sample reach allows.
+bool continues(const MemoryEnd& a, const MemoryEnd& b, double path_px) {
+    for (const SideMemory& ma : a.memory) {
+        for (const SideMemory& mb : b.memory) {
+            if (ma.id != mb.id) continue;
+            double du = std::abs(ma.u - mb.u);
+            if (ma.period > 0.0) du = std::min(du, std::abs(ma.period - du));
+            if (du <= path_px + 2.0 * kSideReachPx) return true;
+        }
+    }
+    return false;
+}
+
+// Appends the points that `arc` reaches to path (its last point is where the arc starts).
+void follow(StrokeGeometry& path, const Arc& arc, const std::vector<StrokeGeometry>& strokes,
+            const std::vector<StrokeGeometry>& occluded) {
+    if (!arc.fragment) {
+        const StrokeGeometry& o = occluded[arc.source];
+        const size_t k = arc.forward ? arc.segment + 1 : arc.segment;
+        path.points_px.push_back(o.points_px[k]);
+        path.points_world.push_back(o.points_world[k]);
+        path.edges.push_back(o.edges[arc.segment]);
+        path.hidden.push_back(1);
+        return;
+    }
+    StrokeGeometry f = strokes[arc.source];
+    if (!arc.forward) f.reverse();
+    f.hidden.resize(f.edges.size(), 0);
+    path.points_px.insert(path.points_px.end(), f.points_px.begin() + 1, f.points_px.end());
+    path.points_world.insert(path.points_world.end(), f.points_world.begin() + 1, f.points_world.end());
+    path.edges.insert(path.edges.end(), f.edges.begin(), f.edges.end());
+    path.hidden.insert(path.hidden.end(), f.hidden.begin(), f.hidden.end());
+    path.pure_strokes += f.pure_strokes;
+}
+
+}  // namespace
+
+size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::vector<StrokeGeometry>& occluded,
+                            const std::vector<uint8_t>& occluded_used, const StrokeCoherence& coherence,
+                            const GapBridgeOptions& options) {
+    if (coherence.traces().empty()) return 0;
+    const double max_path = kRejoinPathFactor * options.max_gap_px;
+
+    // Open ends of visible strokes and the stroke of last frame along each.
+    std::vector<MemoryEnd> ends;
+    std::vector<glm::dvec2> queries;
+    std::vector<size_t> first_query;
+    for (size_t s = 0; s < r_strokes.size(); ++s) {
+        const StrokeGeometry& g = r_strokes[s];
+        if (!g.visible || g.closed || g.points_px.size() < 2) continue;
+        for (int e = 0; e < 2; ++e) {
+            ends.push_back({s, e, e == 0 ? g.points_px.front() : g.points_px.back(), {}});
+            first_query.push_back(queries.size());
+            for (const glm::dvec2& p : side_samples(g, e)) queries.push_back(p);
+        }
+    }
+    first_query.push_back(queries.size());
+    std::vector<StrokeCoherence::Nearest> near(queries.size());
+    for (size_t k = 0; k < kLineKindCount; ++k) {
+        std::vector<glm::dvec2> pts;
+        std::vector<size_t> where;
+        for (size_t i = 0; i < ends.size(); ++i) {
+            if (size_t(r_strokes[ends[i].stroke].kind) != k) continue;
+            for (size_t q = first_query[i]; q < first_query[i + 1]; ++q) pts.push_back(queries[q]), where.push_back(q);
+        }
+        if (pts.empty()) continue;
+        const std::vector<StrokeCoherence::Nearest> found = coherence.nearest_visible(pts, LineKind(k));
+        for (size_t j = 0; j < found.size(); ++j) near[where[j]] = found[j];
+    }
+    for (size_t i = 0; i < ends.size(); ++i) {
+        const size_t count = first_query[i + 1] - first_query[i];
+        std::map<int64_t, size_t> votes;
+        for (size_t q = first_query[i]; q < first_query[i + 1]; ++q) {
+            if (near[q].id >= 0) ++votes[near[q].id];
+        }
+        for (const auto& [id, n] : votes) {
+            if (2 * n < count) continue;
+            for (size_t q = first_query[i]; q < first_query[i + 1]; ++q) {
+                if (near[q].id != id) continue;
+                ends[i].memory.push_back({id, near[q].u, near[q].period});  // the sample nearest the end
+                break;
+            }
+        }
+    }
+
+    // Paths run along occluded parts and short visible strokes, between exact points.
+    JoinGraph graph;
+    for (size_t h = 0; h < occluded.size(); ++h) {
+        const StrokeGeometry& o = occluded[h];
+        if (o.visible || (h < occluded_used.size() && occluded_used[h])) continue;
+        for (size_t k = 0; k + 1 < o.points_px.size(); ++k) {
+            graph.link(o.points_px[k], o.points_px[k + 1], glm::length(o.points_px[k + 1] - o.points_px[k]),
+                       {.source = h, .segment = k});
+        }
+    }
+    for (size_t s = 0; s < r_strokes.size(); ++s) {
+        const StrokeGeometry& g = r_strokes[s];
+        if (!g.visible || g.closed || g.points_px.size() < 2) continue;
+        const double length = g.length_px();
+        if (length <= options.max_gap_px)
+            graph.link(g.points_px.front(), g.points_px.back(), length, {.source = s, .fragment = true});
+    }
+    std::vector<std::vector<size_t>> ends_at(graph.size());
+    for (size_t i = 0; i < ends.size(); ++i) {
+        if (ends[i].memory.empty()) continue;
+        const size_t n = graph.node(ends[i].p);
+        if (n >= ends_at.size()) ends_at.resize(n + 1);
+        ends_at[n].push_back(i);
+    }
+
+    // Every pair of ends joinable by memory, with the shortest path between them.
+    struct Join {
+        double length;
+        size_t a, b;
+        std::vector<Arc> path;
+    };
+    std::vector<Join> joins;
+    for (size_t i = 0; i < ends.size(); ++i) {
+        const MemoryEnd& from = ends[i];
+        if (from.memory.empty()) continue;
+        const size_t start = *graph.find(from.p);
+        std::map<size_t, double> dist{{start, 0.0}};
+        std::map<size_t, std::pair<size_t, Arc>> came;  // node -> (previous node, arc taken)
+        using Item = std::pair<double, size_t>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+        open.push({0.0, start});
+        while (!open.empty()) {
+            const auto [d, n] = open.top();
+            open.pop();
+            if (d > dist[n]) continue;
+            for (size_t k = 0; n < ends_at.size() && k < ends_at[n].size(); ++k) {
+                const size_t j = ends_at[n][k];
+                const MemoryEnd& to = ends[j];
+                if (j <= i || to.stroke == from.stroke) continue;
+                if (r_strokes[to.stroke].kind != r_strokes[from.stroke].kind) continue;
+                if (glm::length(to.p - from.p) > options.max_gap_px || !continues(from, to, d)) continue;
+                std::vector<Arc> path;
+                for (size_t m = n; m != start; m = came.at(m).first) path.push_back(came.at(m).second);
+                std::reverse(path.begin(), path.end());
+                joins.push_back({d, i, j, std::move(path)});
+            }
+            for (const Arc& arc : graph.arcs(n)) {
+                if (arc.fragment && arc.source == from.stroke) continue;
+                const double nd = d + arc.length;
+                if (nd > max_path) continue;
+                const auto it = dist.find(arc.to);
+                if (it != dist.end() && it->second <= nd) continue;
+                dist[arc.to] = nd;
+                came[arc.to] = {n, arc};
+                open.push({nd, arc.to});
+            }
+        }
+    }
+    std::sort(joins.begin(), joins.end(),
+              [](const Join& x, const Join& y) { return std::tie(x.length, x.a, x.b) < std::tie(y.length, y.a, y.b); });
+
+    // Shortest joins first; each end, fragment and occluded segment is used once.
+    std::vector<size_t> owner(r_strokes.size());
+    for (size_t s = 0; s < owner.size(); ++s) owner[s] = s;
+    auto find = [&](size_t s) {
+        while (owner[s] != s) s = owner[s] = owner[owner[s]];
+        return s;
+    };
+    std::vector<uint8_t> consumed(r_strokes.size(), 0);
+    std::map<std::pair<size_t, size_t>, bool> segment_taken;
+    size_t joined = 0;
+    for (const Join& join : joins) {
+        const MemoryEnd &ea = ends[join.a], &eb = ends[join.b];
+        if (consumed[ea.stroke] || consumed[eb.stroke]) continue;
+        const size_t sa = find(ea.stroke), sb = find(eb.stroke);
+        if (sa == sb) continue;
+        bool free = true;
+        for (const Arc& arc : join.path) {
+            if (arc.fragment) {
+                // Still a stroke of its own, and not one of the two being joined.
+                free = free && !consumed[arc.source] && find(arc.source) == arc.source && arc.source != sa &&
+                       arc.source != sb;
+            } else {
+                free = free && !segment_taken.contains({arc.source, arc.segment});
+            }
+        }
+        StrokeGeometry& a = r_strokes[sa];
+        StrokeGeometry& b = r_strokes[sb];
+        const bool a_back = a.points_px.back() == ea.p, b_front = b.points_px.front() == eb.p;
+        if (!free || (!a_back && a.points_px.front() != ea.p) || (!b_front && b.points_px.back() != eb.p)) continue;
+        if (!a_back) a.reverse();
+        if (!b_front) b.reverse();
+        StrokeGeometry path;
+        path.pure_strokes = 0;
+        path.points_px.push_back(ea.p);
+        path.points_world.push_back(a.points_world.back());
+        for (const Arc& arc : join.path) {
+            follow(path, arc, r_strokes, occluded);
+            if (arc.fragment) {
+                consumed[arc.source] = 1;
+                owner[arc.source] = sa;
+                r_strokes[arc.source] = StrokeGeometry{};
+            } else {
+                segment_taken[{arc.source, arc.segment}] = true;
+            }
+        }
+        if (path.edges.size() > 0) append(a, path, false);
+        a.ends[1] = b.ends[1];
+        append(a, b, false);
+        owner[sb] = sa;
+        b = StrokeGeometry{};
+        ++joined;
+    }
+    return joined;
 }
 
 }  // namespace inkline::core

@@ -27,6 +27,10 @@ struct GapBridgeOptions {
 // Default bounds from the brush: the gap at most twice the widest line weight.
 GapBridgeOptions gap_bridge_options(double width_max_px);
 
+// The occluded polylines as they are, one geometry each (not split at corners: a gap that folds
+// back on itself, as a zig-zag silhouette's hidden fold does, is still one gap).
+std::vector<StrokeGeometry> occluded_runs(const std::vector<Polyline>& occluded);
+
 // Joins visible strokes (r_strokes, visible == true) through occluded strokes (`occluded`,
 // visible == false) whose two ends are exactly ends of visible strokes of the same kind:
 // the joined stroke keeps the occluded points, marked in StrokeGeometry::hidden, so the exact
@@ -38,5 +42,18 @@ GapBridgeOptions gap_bridge_options(double width_max_px);
 size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vector<StrokeGeometry>& occluded,
                           const StrokeCoherence& coherence, const GapBridgeOptions& options,
                           std::vector<uint8_t>& r_used);
+
+// Strokes that were one stroke last frame, joined again: two visible ends whose sides lie along
+// the same stroke of last frame, next to each other along it (their u there differs by about the
+// path between them), are joined through what lies between them: occluded parts (`occluded`,
+// those not in `occluded_used`) and visible strokes of at most max_gap_px, the shortest such
+// path, at most four times max_gap_px long, between ends at most max_gap_px apart. This is where a
+// zig-zag silhouette's junctions and visibility cuts change from frame to frame: the tangle of
+// tiny pieces there would otherwise split a stroke differently each frame. Occluded segments
+// taken are marked hidden; a stroke merged into another is left empty (no points) in place. Ends
+// of one stroke are never joined (no loop is made). Deterministic. Returns the number of joins.
+size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::vector<StrokeGeometry>& occluded,
+                            const std::vector<uint8_t>& occluded_used, const StrokeCoherence& coherence,
+                            const GapBridgeOptions& options);
 
 }  // namespace inkline::core

@@ -257,16 +257,25 @@ void StrokeCoherence::remember(std::vector<StrokeTrace> traces, uint32_t next_id
     next_id_ = next_id;
 }
 
-std::vector<int64_t> StrokeCoherence::nearest_visible_ids(const std::vector<glm::dvec2>& points_px,
-                                                          LineKind kind) const {
-    std::vector<int64_t> out(points_px.size(), -1);
+std::vector<StrokeCoherence::Nearest> StrokeCoherence::nearest_visible(const std::vector<glm::dvec2>& points_px,
+                                                                       LineKind kind) const {
+    std::vector<Nearest> out(points_px.size());
     if (traces_.empty()) return out;
     const SampleGrid grid(traces_, kMatchRadiusPx);
     for (size_t i = 0; i < points_px.size(); ++i) {
         const SampleGrid::Hit hit =
             grid.nearest(points_px[i], [&](size_t t) { return traces_[t].visible && traces_[t].kind == kind; });
-        if (hit.trace != size_t(-1)) out[i] = int64_t(traces_[hit.trace].id);
+        if (hit.trace == size_t(-1)) continue;
+        const StrokeTrace& t = traces_[hit.trace];
+        out[i] = {int64_t(t.id), t.samples_u[hit.sample], t.closed ? t.length_px : 0.0};
     }
+    return out;
+}
+
+std::vector<int64_t> StrokeCoherence::nearest_visible_ids(const std::vector<glm::dvec2>& points_px,
+                                                          LineKind kind) const {
+    std::vector<int64_t> out;
+    for (const Nearest& n : nearest_visible(points_px, kind)) out.push_back(n.id);
     return out;
 }
 

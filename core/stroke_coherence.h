@@ -75,8 +75,14 @@ class StrokeCoherence {
     // Makes a frame's strokes the reference for the next; next_id is the next unused id.
     void remember(std::vector<StrokeTrace> traces, uint32_t next_id);
 
-    // Id of last frame's visible stroke of the kind with a sample nearest each point, within
-    // kMatchRadiusPx; -1 where there is none.
+    // Last frame's visible sample of the kind nearest a point, within kMatchRadiusPx.
+    struct Nearest {
+        int64_t id = -1;      // its stroke's id; -1 where there is none
+        double u = 0.0;       // its u, px
+        double period = 0.0;  // its stroke's length when that stroke was a loop (u wraps), else 0
+    };
+    std::vector<Nearest> nearest_visible(const std::vector<glm::dvec2>& points_px, LineKind kind) const;
+    // Only the ids of nearest_visible.
     std::vector<int64_t> nearest_visible_ids(const std::vector<glm::dvec2>& points_px, LineKind kind) const;
 
     const std::vector<StrokeTrace>& traces() const { return traces_; }

@@ -59,7 +59,7 @@ struct StrokeStats {
     size_t pure_strokes = 0;           // after splitting at corners, before linking
     size_t corners = 0;                // splits at sharp turns
     size_t links = 0;                  // joins through junctions
-    size_t bridges = 0;                // short occluded gaps drawn across
+    size_t bridges = 0;                // short occluded gaps drawn across, split strokes joined again
     size_t drawn = 0;                  // strokes with an outline
     size_t inherited = 0;              // strokes whose id was present last frame
     double visible_length_px = 0.0;    // exact length of the visible strokes (bridged gaps left out)

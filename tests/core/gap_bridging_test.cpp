@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <glm/geometric.hpp>
 #include <vector>
 
@@ -156,6 +157,76 @@ TEST(GapBridging, SameInputSameResult) {
         EXPECT_EQ(a.strokes[i].points_px, b.strokes[i].points_px);
         EXPECT_EQ(a.strokes[i].hidden, b.strokes[i].hidden);
     }
+}
+
+// A stroke that last frame was one, now cut at a tangle: a 1 px visible fragment between two
+// occluded bits, and a third line leaving the tangle (the junction bridging cannot cross).
+struct Tangle {
+    std::vector<core::StrokeGeometry> strokes{line({0, 0}, {40, 0}, true, 0), line({41, 0}, {42, 0}, true, 60),
+                                              line({43, 0}, {83, 0}, true, 100), line({43, 0}, {43, 30}, true, 200)};
+    std::vector<core::StrokeGeometry> occluded{line({40, 0}, {41, 0}, false, 50), line({42, 0}, {43, 0}, false, 70)};
+};
+
+std::vector<core::StrokeGeometry> rejoin(Tangle t, const core::StrokeCoherence& memory, size_t* r_count = nullptr) {
+    const size_t n = core::rejoin_split_strokes(t.strokes, t.occluded, {}, memory, core::gap_bridge_options(4.8));
+    if (r_count) *r_count = n;
+    std::erase_if(t.strokes, [](const core::StrokeGeometry& g) { return g.points_px.empty(); });
+    return t.strokes;
+}
+
+TEST(StrokeRejoin, StrokeSplitAtATangleIsJoinedAgainThroughIt) {
+    // Last frame: one stroke along the line (id 7) and the line leaving upwards (id 8).
+    const core::StrokeCoherence memory({trace({0, 0.5}, {90, 0.5}, 7), trace({43.5, 0}, {43.5, 30}, 8)}, 9);
+    size_t joins = 0;
+    const std::vector<core::StrokeGeometry> out = rejoin(Tangle{}, memory, &joins);
+    EXPECT_GE(joins, 1u);
+    ASSERT_EQ(out.size(), 2u);
+    const core::StrokeGeometry& g = out[0];
+    EXPECT_EQ(g.points_px.front(), dvec2(0, 0));
+    EXPECT_EQ(g.points_px.back(), dvec2(83, 0));
+    ASSERT_EQ(g.hidden.size(), g.edges.size());
+    for (size_t k = 0; k < g.edges.size(); ++k) {
+        // The occluded bits are marked hidden; the fragment and both sides stay visible.
+        const bool occluded = g.edges[k] == 50 || g.edges[k] == 70;
+        EXPECT_EQ(g.hidden[k], occluded ? 1 : 0) << "edge " << g.edges[k];
+    }
+    EXPECT_EQ(std::count(g.edges.begin(), g.edges.end(), 60u), 1) << "the fragment is taken in once";
+    EXPECT_EQ(out[1].points_px.front(), dvec2(43, 0)) << "the line leaving the tangle stays as it was";
+    EXPECT_EQ(out[1].points_px.back(), dvec2(43, 30));
+}
+
+// Without memory, or where last frame drew two strokes, nothing is joined.
+TEST(StrokeRejoin, OnlyWhatLastFrameDrewAsOneStroke) {
+    EXPECT_EQ(rejoin(Tangle{}, {}).size(), 4u);
+    const core::StrokeCoherence two(
+        {trace({0, 0.5}, {40, 0.5}, 3), trace({44, 0.5}, {90, 0.5}, 4), trace({43.5, 0}, {43.5, 30}, 8)}, 9);
+    const std::vector<core::StrokeGeometry> out = rejoin(Tangle{}, two);
+    EXPECT_TRUE(std::none_of(out.begin(), out.end(), [](const core::StrokeGeometry& g) {
+        return g.points_px.front() == dvec2(0, 0) && g.points_px.back() == dvec2(83, 0);
+    }));
+}
+
+// Two parts of one stroke of last frame that lay far apart along it (a long detour between
+// them) are not its neighbours: they stay apart even where they now nearly touch.
+TEST(StrokeRejoin, PartsFarApartAlongLastFramesStrokeStayApart) {
+    core::StrokeTrace detour;
+    detour.id = 7;
+    const std::vector<dvec2> path{{0, 0.5}, {40, 0.5}, {40, 200}, {44, 200}, {44, 0.5}, {90, 0.5}};
+    double u = 0.0;
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+        const double len = glm::length(path[i + 1] - path[i]);
+        for (double s = 0.0; s < len; s += core::kTraceSpacingPx) {
+            detour.samples_px.push_back(path[i] + (path[i + 1] - path[i]) * (s / len));
+            detour.samples_u.push_back(u + s);
+        }
+        u += len;
+    }
+    detour.length_px = u;
+    const core::StrokeCoherence memory({detour, trace({43.5, 0}, {43.5, 30}, 8)}, 9);
+    const std::vector<core::StrokeGeometry> out = rejoin(Tangle{}, memory);
+    EXPECT_TRUE(std::none_of(out.begin(), out.end(), [](const core::StrokeGeometry& g) {
+        return g.points_px.front() == dvec2(0, 0) && g.points_px.back() == dvec2(83, 0);
+    }));
 }
 
 }  // namespace

@@ -115,14 +115,39 @@ TEST(Strokes, PerPointDataIsComplete) {
     EXPECT_EQ(frame.stats.inherited, 0u) << "the first frame inherits nothing";
 }
 
-// Outlines of a real frame: closed, simple, faithful to the width (area within 3% of the width
-// integral plus round caps) and never sticking out of the centerline's width.
+// Whether two parts of a centerline that lie apart along it (more than twice the widest width)
+// come closer than their half widths: then the brush covers one place twice (a stroke whose two
+// ends overlap where a zig-zag silhouette turns), and no single simple ring can outline it.
+bool brush_overlaps_itself(const std::vector<glm::dvec2>& c, const std::vector<double>& w, bool closed) {
+    std::vector<double> arc(c.size(), 0.0);
+    for (size_t i = 1; i < c.size(); ++i) arc[i] = arc[i - 1] + glm::length(c[i] - c[i - 1]);
+    const double total = closed && !c.empty() ? arc.back() + glm::length(c.front() - c.back()) : arc.back();
+    const double apart = 2.0 * *std::max_element(w.begin(), w.end());
+    for (size_t i = 0; i < c.size(); ++i) {
+        for (size_t j = i + 1; j < c.size(); ++j) {
+            double along = arc[j] - arc[i];
+            if (closed) along = std::min(along, total - along);
+            if (along > apart && glm::length(c[i] - c[j]) < 0.5 * (w[i] + w[j])) return true;
+        }
+    }
+    return false;
+}
+
+// Outlines of real frames (every 10th frame of a turn, strokes joined by memory included):
+// closed, simple where the brush does not cover a place twice, faithful to the width (area
+// within 3% of the width integral plus round caps) and never sticking out of the centerline's
+// width.
 TEST(Strokes, OutlinesOfATorusFrameAreFaithful) {
     TorusTurn torus;
     core::StrokeCoherence coherence;
-    const core::FrameStrokes frame = torus.next(coherence, torus.first_frame() + 10);
-    size_t checked = 0;
-    for (const core::Stroke& s : frame.strokes) {
+    std::vector<core::Stroke> strokes;
+    for (int f = torus.first_frame(); f <= torus.first_frame() + 30; ++f) {
+        core::FrameStrokes frame = torus.next(coherence, f);
+        if ((f - torus.first_frame()) % 10 != 0) continue;
+        for (core::Stroke& s : frame.strokes) strokes.push_back(std::move(s));
+    }
+    size_t checked = 0, simple = 0;
+    for (const core::Stroke& s : strokes) {
         if (!s.drawn) continue;
         const std::vector<glm::dvec2>& c = s.centerline_px;
         const std::vector<double>& w = s.centerline_width;
@@ -136,8 +161,12 @@ TEST(Strokes, OutlinesOfATorusFrameAreFaithful) {
         if (s.length_px() >= 20.0) {
             EXPECT_NEAR(core::outline_area(s.outline), swept, 0.03 * swept);
         }
+        const bool overlaps = brush_overlaps_itself(c, w, s.closed);
+        simple += !overlaps;
         for (const core::Ring& ring : s.outline) {
-            EXPECT_TRUE(core::is_simple(ring));
+            if (!overlaps) {
+                EXPECT_TRUE(core::is_simple(ring));
+            }
             for (const glm::dvec2& p : ring) {
                 ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y));
                 double excess = HUGE_VAL;
@@ -154,6 +183,44 @@ TEST(Strokes, OutlinesOfATorusFrameAreFaithful) {
         ++checked;
     }
     EXPECT_GE(checked, 5u);
+    EXPECT_GE(simple, checked - 3) << "most strokes cover no place twice";
+}
+
+double distance_to_polyline(const glm::dvec2& p, const std::vector<glm::dvec2>& line) {
+    double best = HUGE_VAL;
+    for (size_t i = 0; i + 1 < line.size(); ++i) {
+        const glm::dvec2 a = line[i], ab = line[i + 1] - a;
+        const double len2 = glm::dot(ab, ab);
+        const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+        best = std::min(best, glm::length(p - (a + ab * t)));
+    }
+    return best;
+}
+
+// A gap drawn across (an occluded part inside a visible stroke) is drawn straight from where the
+// line goes behind to where it comes out: the hidden folds of the torus's zig-zag silhouette
+// near its cusps leave neither spikes nor holes in the outline.
+TEST(Strokes, BridgedGapsAreDrawnStraightAcross) {
+    TorusTurn torus;
+    core::StrokeCoherence coherence;
+    const double limit = core::BrushStyle{}.max_deviation_px + 1e-9;
+    size_t folds = 0;
+    for (int f = torus.first_frame(); f < torus.first_frame() + 40; ++f) {
+        const core::FrameStrokes frame = torus.next(coherence, f);
+        for (const core::Stroke& s : frame.strokes) {
+            if (s.hidden.empty() || !s.drawn) continue;
+            // The exact points with every point inside a hidden run left out.
+            std::vector<glm::dvec2> drawn;
+            for (size_t k = 0; k < s.points_px.size(); ++k) {
+                const bool inside = k > 0 && k < s.hidden.size() && s.hidden[k - 1] && s.hidden[k];
+                if (!inside) drawn.push_back(s.points_px[k]);
+                if (inside && distance_to_polyline(s.points_px[k], drawn) > 2.0) ++folds;
+            }
+            SCOPED_TRACE("frame " + std::to_string(f) + " stroke " + std::to_string(s.id));
+            for (const glm::dvec2& p : s.centerline_px) ASSERT_LE(distance_to_polyline(p, drawn), limit);
+        }
+    }
+    EXPECT_GT(folds, 0u) << "the turn has hidden folds to draw across";
 }
 
 TEST(Strokes, SequenceIsDeterministicAndStateIsAValue) {
@@ -215,14 +282,15 @@ TurnFigures measure_torus_turn(bool keep_hidden) {
 }
 
 // Acceptance figures (issue 5 asks for 95% in every frame): most visible length keeps its id
-// from frame to frame, and loop starts barely move. Measured 109 of 119 frames at 95% (102
-// before short occluded gaps were bridged) and a worst frame of 77.4%: frames fall short where
-// a line comes into view (frame 53: the hole's inner silhouette, hidden the frame before, which
-// this output does not carry) or where a junction splits a stroke (only one part keeps the id).
+// from frame to frame, and loop starts barely move. Measured 114 of 119 frames at 95% (109
+// before strokes split at a tangle were joined again by memory, 102 before short occluded gaps
+// were bridged) and a worst frame of 77.4%: frames fall short where a line comes into view
+// (frame 53: the hole's inner silhouette, hidden the frame before, which this output does not
+// carry) or where a junction splits a stroke (only one part keeps the id).
 TEST(Strokes, CoherentOverATorusTurn) {
     const TurnFigures r = measure_torus_turn(false);
     EXPECT_GE(r.overall, 0.98);
-    EXPECT_GE(r.at_95, 109u) << "frames where new lines appear fall short";
+    EXPECT_GE(r.at_95, 114u) << "frames where new lines appear fall short";
     EXPECT_GE(r.worst, 0.77);
     EXPECT_LE(r.median_move, 2.0);
 }
