@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <queue>
+#include <set>
 #include <tuple>
 
 namespace inkline::core {
@@ -437,7 +438,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
         return s;
     };
     std::vector<uint8_t> consumed(r_strokes.size(), 0);
-    std::map<std::pair<size_t, size_t>, bool> segment_taken;
+    std::set<std::pair<size_t, size_t>> segment_taken;
     size_t joined = 0;
     for (const Join& join : joins) {
         const MemoryEnd &ea = ends[join.a], &eb = ends[join.b];
@@ -471,7 +472,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
                 owner[arc.source] = sa;
                 r_strokes[arc.source] = StrokeGeometry{};
             } else {
-                segment_taken[{arc.source, arc.segment}] = true;
+                segment_taken.insert({arc.source, arc.segment});
             }
         }
         if (path.edges.size() > 0) append(a, path, false);

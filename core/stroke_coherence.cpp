@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 #include <tuple>
 
+#include "core/stroke_path.h"
+
 namespace inkline::core {
 namespace {
 
@@ -152,18 +154,11 @@ double median(std::vector<double> v) {
     return v[mid];
 }
 
-double distance_to_segment_px(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b) {
-    const glm::dvec2 ab = b - a;
-    const double len2 = glm::dot(ab, ab);
-    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-    return glm::length(p - (a + ab * t));
-}
-
 // Distance from p to a closed polyline.
 double distance_to_loop(const glm::dvec2& p, const std::vector<glm::dvec2>& loop) {
     double best = HUGE_VAL;
     for (size_t i = 0; i < loop.size(); ++i)
-        best = std::min(best, distance_to_segment_px(p, loop[i], loop[(i + 1) % loop.size()]));
+        best = std::min(best, distance_to_segment(p, loop[i], loop[(i + 1) % loop.size()]));
     return best;
 }
 
@@ -197,7 +192,7 @@ std::optional<glm::dvec2> loop_start(const StrokeCandidate& cand, const StrokeTr
         const glm::dvec2 a = cand.samples_px[i], b = cand.samples_px[(i + 1) % n];
         if (std::min(glm::length(a - trace.start_px), glm::length(b - trace.start_px)) > slide + kTraceSpacingPx) {
             // Far from last frame's start: only the fallback (nearest point) can lie here.
-            const double d = distance_to_segment_px(trace.start_px, a, b);
+            const double d = distance_to_segment(trace.start_px, a, b);
             if (d < nearest_d) nearest_d = d, nearest = a;
             continue;
         }

@@ -19,6 +19,7 @@
 #include "core/features.h"
 #include "core/mesh_frames.h"
 #include "core/scene.h"
+#include "core/stroke_path.h"
 #include "core/visibility.h"
 
 namespace inkline {
@@ -188,12 +189,7 @@ TEST(Strokes, OutlinesOfATorusFrameAreFaithful) {
 
 double distance_to_polyline(const glm::dvec2& p, const std::vector<glm::dvec2>& line) {
     double best = HUGE_VAL;
-    for (size_t i = 0; i + 1 < line.size(); ++i) {
-        const glm::dvec2 a = line[i], ab = line[i + 1] - a;
-        const double len2 = glm::dot(ab, ab);
-        const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-        best = std::min(best, glm::length(p - (a + ab * t)));
-    }
+    for (size_t i = 0; i + 1 < line.size(); ++i) best = std::min(best, core::distance_to_segment(p, line[i], line[i + 1]));
     return best;
 }
 
