@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "core/gap_bridging.h"
 
+#include "core/stroke_path.h"
+
 #include <algorithm>
 #include <array>
 #include <glm/geometric.hpp>
@@ -13,15 +15,12 @@
 namespace inkline::core {
 namespace {
 
-// Last frame's stroke on each side of a gap is judged from the samples of this frame's stroke
-// over this length (px) next to the gap: far enough from the gap that the nearest old sample
-// belongs to the side's own stroke, not to the one across the gap.
-constexpr double kSideReachPx = 12.0;
-// Samples along that reach, px apart.
-constexpr double kSideSpacingPx = 2.0;
 // A path that joins two parts of last frame's stroke again may run this many times max_gap_px
 // (hidden folds of a zig-zag silhouette run back and forth; the chord is bounded on its own).
 constexpr double kRejoinPathFactor = 4.0;
+// Two sides that come this close (px) within kSideReachPx of their ends run over each other: a
+// fold, not two lines that merely end near each other.
+constexpr double kFoldTouchPx = 1.0;
 
 using Key = std::pair<double, double>;
 Key key_of(const glm::dvec2& p) { return {p.x, p.y}; }
@@ -30,25 +29,6 @@ struct EndRef {
     size_t stroke;
     int end;  // 0: first point, 1: last point
 };
-
-// Points of g from the end `end` inward, every kSideSpacingPx over kSideReachPx (the end itself
-// left out: it lies on the gap).
-std::vector<glm::dvec2> side_samples(const StrokeGeometry& g, int end) {
-    std::vector<glm::dvec2> pts = g.points_px;
-    if (end == 1) std::reverse(pts.begin(), pts.end());
-    std::vector<glm::dvec2> out;
-    double arc = 0.0, next = kSideSpacingPx;
-    for (size_t i = 0; i + 1 < pts.size() && next <= kSideReachPx; ++i) {
-        const double len = glm::length(pts[i + 1] - pts[i]);
-        while (next <= arc + len && next <= kSideReachPx) {
-            out.push_back(pts[i] + (pts[i + 1] - pts[i]) * ((next - arc) / len));
-            next += kSideSpacingPx;
-        }
-        arc += len;
-    }
-    if (out.empty() && pts.size() >= 2) out.push_back(0.5 * (pts.front() + pts.back()));
-    return out;
-}
 
 // The id most of the side's samples lie nearest to (-1 when none lies near any); ties go to the
 // lower id.
@@ -63,6 +43,20 @@ int64_t majority(const std::vector<int64_t>& ids) {
         if (n > most) best = id, most = n;
     }
     return best;
+}
+
+// The least distance (px) between a's side at end_a and b's side at end_b: from a's side samples
+// to b's segments within kSideReachPx of its end.
+double side_distance(const StrokeGeometry& a, int end_a, const StrokeGeometry& b, int end_b) {
+    const std::vector<glm::dvec2> samples = side_samples(a.points_px, end_a);
+    const size_t n = b.points_px.size();
+    auto at = [&](size_t k) { return b.points_px[end_b == 0 ? k : n - 1 - k]; };
+    double least = HUGE_VAL, arc = 0.0;
+    for (size_t k = 0; k + 1 < n && arc <= kSideReachPx; ++k) {
+        for (const glm::dvec2& q : samples) least = std::min(least, distance_to_segment(q, at(k), at(k + 1)));
+        arc += glm::length(at(k + 1) - at(k));
+    }
+    return least;
 }
 
 // Appends `piece` (its first point equal to out's last) to out; hidden marks every segment of
@@ -105,6 +99,8 @@ GapBridgeOptions gap_bridge_options(double width_max_px) {
     o.max_gap_px = 2.0 * width_max_px;
     o.new_gap_px = 0.5 * o.max_gap_px;
     o.split_gap_px = 0.25 * o.max_gap_px;
+    o.max_fold_px = 3.0 * o.max_gap_px;
+    o.max_tee_rest_px = 2.5 * o.max_gap_px;
     return o;
 }
 
@@ -147,9 +143,9 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
         if (!a || !b || (a->stroke == b->stroke && a->end == b->end)) continue;
         gaps.push_back({h, *a, *b, chord});
         const size_t first = queries.size();
-        for (const glm::dvec2& p : side_samples(r_strokes[a->stroke], a->end)) queries.push_back(p);
+        for (const glm::dvec2& p : side_samples(r_strokes[a->stroke].points_px, a->end)) queries.push_back(p);
         const size_t mid = queries.size();
-        for (const glm::dvec2& p : side_samples(r_strokes[b->stroke], b->end)) queries.push_back(p);
+        for (const glm::dvec2& p : side_samples(r_strokes[b->stroke].points_px, b->end)) queries.push_back(p);
         spans.push_back({first, mid, queries.size()});
     }
     if (gaps.empty()) return 0;
@@ -256,13 +252,6 @@ class JoinGraph {
     std::vector<std::vector<Arc>> arcs_;
 };
 
-// Last frame's stroke along one side of a stroke end.
-struct SideMemory {
-    int64_t id = -1;
-    double u = 0.0;       // its u nearest the end
-    double period = 0.0;  // its length when it was a loop
-};
-
 // A stroke end with what last frame drew next to it: every stroke of last frame nearest to at
 // least half of the side's samples (near a junction, the side may lie as near to a neighbour as
 // to its own stroke, so there may be two).
@@ -272,20 +261,6 @@ struct MemoryEnd {
     glm::dvec2 p;
     std::vector<SideMemory> memory;  // by id
 };
-
-// Whether two ends continue one stroke of last frame, next to each other along it: their u
-// there differs by at most the path between them plus what the sides' sample reach allows.
-bool continues(const MemoryEnd& a, const MemoryEnd& b, double path_px) {
-    for (const SideMemory& ma : a.memory) {
-        for (const SideMemory& mb : b.memory) {
-            if (ma.id != mb.id) continue;
-            double du = std::abs(ma.u - mb.u);
-            if (ma.period > 0.0) du = std::min(du, std::abs(ma.period - du));
-            if (du <= path_px + 2.0 * kSideReachPx) return true;
-        }
-    }
-    return false;
-}
 
 // Appends the points that `arc` reaches to path (its last point is where the arc starts).
 void follow(StrokeGeometry& path, const Arc& arc, const std::vector<StrokeGeometry>& strokes,
@@ -317,47 +292,21 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
     if (coherence.traces().empty()) return 0;
     const double max_path = kRejoinPathFactor * options.max_gap_px;
 
-    // Open ends of visible strokes and the stroke of last frame along each.
+    // Open ends of visible strokes and the strokes of last frame along each.
     std::vector<MemoryEnd> ends;
-    std::vector<glm::dvec2> queries;
-    std::vector<size_t> first_query;
+    std::vector<std::vector<glm::dvec2>> sides;
+    std::vector<LineKind> kinds;
     for (size_t s = 0; s < r_strokes.size(); ++s) {
         const StrokeGeometry& g = r_strokes[s];
         if (!g.visible || g.closed || g.points_px.size() < 2) continue;
         for (int e = 0; e < 2; ++e) {
             ends.push_back({s, e, e == 0 ? g.points_px.front() : g.points_px.back(), {}});
-            first_query.push_back(queries.size());
-            for (const glm::dvec2& p : side_samples(g, e)) queries.push_back(p);
+            sides.push_back(side_samples(g.points_px, e));
+            kinds.push_back(g.kind);
         }
     }
-    first_query.push_back(queries.size());
-    std::vector<StrokeCoherence::Nearest> near(queries.size());
-    for (size_t k = 0; k < kLineKindCount; ++k) {
-        std::vector<glm::dvec2> pts;
-        std::vector<size_t> where;
-        for (size_t i = 0; i < ends.size(); ++i) {
-            if (size_t(r_strokes[ends[i].stroke].kind) != k) continue;
-            for (size_t q = first_query[i]; q < first_query[i + 1]; ++q) pts.push_back(queries[q]), where.push_back(q);
-        }
-        if (pts.empty()) continue;
-        const std::vector<StrokeCoherence::Nearest> found = coherence.nearest_visible(pts, LineKind(k));
-        for (size_t j = 0; j < found.size(); ++j) near[where[j]] = found[j];
-    }
-    for (size_t i = 0; i < ends.size(); ++i) {
-        const size_t count = first_query[i + 1] - first_query[i];
-        std::map<int64_t, size_t> votes;
-        for (size_t q = first_query[i]; q < first_query[i + 1]; ++q) {
-            if (near[q].id >= 0) ++votes[near[q].id];
-        }
-        for (const auto& [id, n] : votes) {
-            if (2 * n < count) continue;
-            for (size_t q = first_query[i]; q < first_query[i + 1]; ++q) {
-                if (near[q].id != id) continue;
-                ends[i].memory.push_back({id, near[q].u, near[q].period});  // the sample nearest the end
-                break;
-            }
-        }
-    }
+    std::vector<std::vector<SideMemory>> memory = coherence.side_memory(sides, kinds);
+    for (size_t i = 0; i < ends.size(); ++i) ends[i].memory = std::move(memory[i]);
 
     // Paths run along occluded parts and short visible strokes, between exact points.
     JoinGraph graph;
@@ -389,6 +338,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
         double length;
         size_t a, b;
         std::vector<Arc> path;
+        bool fold = false;  // straight across a fold, no exact path
     };
     std::vector<Join> joins;
     for (size_t i = 0; i < ends.size(); ++i) {
@@ -409,7 +359,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
                 const MemoryEnd& to = ends[j];
                 if (j <= i || to.stroke == from.stroke) continue;
                 if (r_strokes[to.stroke].kind != r_strokes[from.stroke].kind) continue;
-                if (glm::length(to.p - from.p) > options.max_gap_px || !continues(from, to, d)) continue;
+                if (glm::length(to.p - from.p) > options.max_gap_px || !continuation_fit(from.memory, to.memory, d, SideHeadings::kAny)) continue;
                 std::vector<Arc> path;
                 for (size_t m = n; m != start; m = came.at(m).first) path.push_back(came.at(m).second);
                 std::reverse(path.begin(), path.end());
@@ -427,10 +377,25 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
             }
         }
     }
-    std::sort(joins.begin(), joins.end(),
-              [](const Join& x, const Join& y) { return std::tie(x.length, x.a, x.b) < std::tie(y.length, y.a, y.b); });
+    // Folds: ends whose sides run back over each other, as where a zig-zag silhouette folds back
+    // along itself for longer than an exact path is searched, joined straight across.
+    for (size_t i = 0; i < ends.size(); ++i) {
+        for (size_t j = i + 1; j < ends.size(); ++j) {
+            const MemoryEnd &a = ends[i], &b = ends[j];
+            const double chord = glm::length(a.p - b.p);
+            if (chord > options.max_fold_px || a.stroke == b.stroke) continue;
+            if (r_strokes[a.stroke].kind != r_strokes[b.stroke].kind) continue;
+            if (!continuation_fit(a.memory, b.memory, chord, SideHeadings::kOpposite)) continue;
+            if (side_distance(r_strokes[a.stroke], a.end, r_strokes[b.stroke], b.end) > kFoldTouchPx) continue;
+            joins.push_back({chord, i, j, {}, true});
+        }
+    }
+    std::sort(joins.begin(), joins.end(), [](const Join& x, const Join& y) {
+        return std::tie(x.fold, x.length, x.a, x.b) < std::tie(y.fold, y.length, y.a, y.b);
+    });
 
-    // Shortest joins first; each end, fragment and occluded segment is used once.
+    // Exact paths first, then folds; shortest first; each end, fragment and occluded segment is
+    // used once.
     std::vector<size_t> owner(r_strokes.size());
     for (size_t s = 0; s < owner.size(); ++s) owner[s] = s;
     auto find = [&](size_t s) {
@@ -475,11 +440,177 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
                 segment_taken.insert({arc.source, arc.segment});
             }
         }
+        if (join.fold) {
+            // One segment, drawn across like an occluded one; it lies along the stroke's last edge.
+            path.points_px.push_back(eb.p);
+            path.points_world.push_back(b.points_world.front());
+            path.edges.push_back(a.edges.back());
+            path.hidden.push_back(1);
+        }
         if (path.edges.size() > 0) append(a, path, false);
         a.ends[1] = b.ends[1];
         append(a, b, false);
         owner[sb] = sa;
         b = StrokeGeometry{};
+        ++joined;
+    }
+    return joined;
+}
+
+namespace {
+
+// Points [begin, end] of a stroke as a stroke of their own: cut ends are junctions.
+StrokeGeometry part_of(const StrokeGeometry& g, size_t begin, size_t end) {
+    StrokeGeometry out;
+    out.kind = g.kind;
+    out.visible = g.visible;
+    out.points_px.assign(g.points_px.begin() + std::ptrdiff_t(begin), g.points_px.begin() + std::ptrdiff_t(end) + 1);
+    out.points_world.assign(g.points_world.begin() + std::ptrdiff_t(begin),
+                            g.points_world.begin() + std::ptrdiff_t(end) + 1);
+    out.edges.assign(g.edges.begin() + std::ptrdiff_t(begin), g.edges.begin() + std::ptrdiff_t(end));
+    if (!g.hidden.empty()) {
+        std::vector<uint8_t> h = g.hidden;
+        h.resize(g.edges.size(), 0);
+        out.hidden.assign(h.begin() + std::ptrdiff_t(begin), h.begin() + std::ptrdiff_t(end));
+    }
+    out.ends = {begin == 0 ? g.ends[0] : StrokeEnd::kJunction,
+                end + 1 == g.points_px.size() ? g.ends[1] : StrokeEnd::kJunction};
+    return out;
+}
+
+// Interior points of open visible strokes on a grid of kSideSpacingPx cells.
+class InteriorGrid {
+  public:
+    explicit InteriorGrid(const std::vector<StrokeGeometry>& strokes) : strokes_(strokes) {
+        for (size_t s = 0; s < strokes.size(); ++s) {
+            const StrokeGeometry& g = strokes[s];
+            if (!g.visible || g.closed) continue;
+            for (size_t k = 1; k + 1 < g.points_px.size(); ++k) entries_.push_back({key(cell(g.points_px[k])), s, k});
+        }
+        std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+            return std::tie(a.key, a.stroke, a.point) < std::tie(b.key, b.stroke, b.point);
+        });
+    }
+
+    struct Hit {
+        size_t stroke = size_t(-1), point = 0;
+        double distance = HUGE_VAL;
+    };
+    // The interior point of a stroke other than `self`, of the kind, nearest p within
+    // kSideSpacingPx; ties go to the lower (stroke, point).
+    Hit nearest(const glm::dvec2& p, size_t self, LineKind kind) const {
+        Hit best;
+        const glm::ivec2 c = cell(p);
+        for (int y = c.y - 1; y <= c.y + 1; ++y) {
+            for (int x = c.x - 1; x <= c.x + 1; ++x) {
+                const int64_t k = key({x, y});
+                auto it = std::lower_bound(entries_.begin(), entries_.end(), k,
+                                           [](const Entry& e, int64_t v) { return e.key < v; });
+                for (; it != entries_.end() && it->key == k; ++it) {
+                    if (it->stroke == self || strokes_[it->stroke].kind != kind) continue;
+                    const double d = glm::length(strokes_[it->stroke].points_px[it->point] - p);
+                    if (d <= kSideSpacingPx && d < best.distance) best = {it->stroke, it->point, d};
+                }
+            }
+        }
+        return best;
+    }
+
+  private:
+    struct Entry {
+        int64_t key;
+        size_t stroke, point;
+    };
+    static glm::ivec2 cell(const glm::dvec2& p) {
+        return {int(std::floor(std::clamp(p.x, -1e8, 1e8) / kSideSpacingPx)),
+                int(std::floor(std::clamp(p.y, -1e8, 1e8) / kSideSpacingPx))};
+    }
+    static int64_t key(const glm::ivec2& c) { return (int64_t(c.x) << 32) ^ int64_t(uint32_t(c.y)); }
+
+    const std::vector<StrokeGeometry>& strokes_;
+    std::vector<Entry> entries_;
+};
+
+}  // namespace
+
+size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeCoherence& coherence,
+                           const GapBridgeOptions& options) {
+    if (coherence.traces().empty()) return 0;
+    // Candidate T-junctions: an open end typed C, and the nearest interior point of another
+    // visible stroke of its kind.
+    struct Tee {
+        size_t stroke;  // the ending stroke
+        int end;
+        size_t other;  // the stroke it ends on
+        size_t at;     // the interior point of `other` where that is cut
+        double jump;   // px from the end to that point
+    };
+    std::vector<Tee> tees;
+    {
+        const InteriorGrid grid(r_strokes);
+        for (size_t s = 0; s < r_strokes.size(); ++s) {
+            const StrokeGeometry& g = r_strokes[s];
+            if (!g.visible || g.closed || g.points_px.size() < 2) continue;
+            for (int e = 0; e < 2; ++e) {
+                if (g.ends[size_t(e)] != StrokeEnd::kJunction) continue;
+                const InteriorGrid::Hit hit = grid.nearest(e == 0 ? g.points_px.front() : g.points_px.back(), s, g.kind);
+                if (hit.stroke != size_t(-1)) tees.push_back({s, e, hit.stroke, hit.point, hit.distance});
+            }
+        }
+    }
+    if (tees.empty()) return 0;
+
+    // Last frame's strokes along the three sides of each: the ending stroke, and the crossing
+    // stroke toward its first and toward its last point.
+    std::vector<std::vector<glm::dvec2>> sides;
+    std::vector<LineKind> kinds;
+    for (const Tee& t : tees) {
+        const std::vector<glm::dvec2>& x = r_strokes[t.other].points_px;
+        sides.push_back(side_samples(r_strokes[t.stroke].points_px, t.end));
+        sides.push_back(side_samples({x.begin(), x.begin() + std::ptrdiff_t(t.at) + 1}, 1));
+        sides.push_back(side_samples({x.begin() + std::ptrdiff_t(t.at), x.end()}, 0));
+        kinds.insert(kinds.end(), 3, r_strokes[t.stroke].kind);
+    }
+    const std::vector<std::vector<SideMemory>> memory = coherence.side_memory(sides, kinds);
+
+    size_t joined = 0;
+    for (size_t i = 0; i < tees.size(); ++i) {
+        const Tee& t = tees[i];
+        // The part of the crossing stroke that last frame's stroke continued into from the
+        // ending one, more closely than the crossing stroke continued through itself.
+        const std::optional<double> fit_before = continuation_fit(memory[3 * i], memory[3 * i + 1], t.jump, SideHeadings::kOpposite);
+        const std::optional<double> fit_after = continuation_fit(memory[3 * i], memory[3 * i + 2], t.jump, SideHeadings::kOpposite);
+        const std::optional<double> fit_through = continuation_fit(memory[3 * i + 1], memory[3 * i + 2], 0.0, SideHeadings::kOpposite);
+        if (!fit_before && !fit_after) continue;
+        const bool keep_before = fit_before && (!fit_after || *fit_before <= *fit_after);
+        if (fit_through && *fit_through <= (keep_before ? *fit_before : *fit_after)) continue;
+
+        // Strokes change as tees are joined: this one only while both are still as found.
+        StrokeGeometry& g = r_strokes[t.stroke];
+        StrokeGeometry& x = r_strokes[t.other];
+        if (g.points_px.size() < 2 || x.closed || t.at + 1 >= x.points_px.size()) continue;
+        const glm::dvec2 p = t.end == 0 ? g.points_px.front() : g.points_px.back();
+        if (g.ends[size_t(t.end)] != StrokeEnd::kJunction || glm::length(x.points_px[t.at] - p) != t.jump) continue;
+
+        StrokeGeometry kept = keep_before ? part_of(x, 0, t.at) : part_of(x, t.at, x.points_px.size() - 1);
+        StrokeGeometry rest = keep_before ? part_of(x, t.at, x.points_px.size() - 1) : part_of(x, 0, t.at);
+        if (rest.length_px() > options.max_tee_rest_px) continue;
+        if (!keep_before) kept.reverse();  // now it ends at the cut
+        StrokeGeometry ending = std::move(g);
+        if (t.end == 1) ending.reverse();  // now it starts at the junction
+
+        // kept -> the jump, drawn across like an occluded segment -> ending.
+        StrokeGeometry jump;
+        jump.pure_strokes = 0;
+        jump.points_px = {kept.points_px.back(), ending.points_px.front()};
+        jump.points_world = {kept.points_world.back(), ending.points_world.front()};
+        jump.edges = {ending.edges.front()};
+        append(kept, jump, true);
+        kept.ends[1] = ending.ends[1];
+        append(kept, ending, false);
+        x = std::move(kept);
+        g = StrokeGeometry{};
+        r_strokes.push_back(std::move(rest));
         ++joined;
     }
     return joined;

@@ -22,9 +22,15 @@ struct GapBridgeOptions {
     // Last frame split here (two strokes met at the gap): the gap stays unless it closes to this
     // (px), well below max_gap_px, so the split does not flicker either.
     double split_gap_px = 2.4;
+    // Strokes split where a zig-zag silhouette folds back along itself are joined again straight
+    // across the fold when their ends are at most this far apart (px).
+    double max_fold_px = 28.8;
+    // At a T-junction, the part cut off the crossing stroke is at most this long (px).
+    double max_tee_rest_px = 24.0;
 };
 
-// Default bounds from the brush: the gap at most twice the widest line weight.
+// Default bounds from the brush: the gap at most twice the widest line weight, a fold three
+// times that, the part cut off at a T-junction two and a half times.
 GapBridgeOptions gap_bridge_options(double width_max_px);
 
 // The occluded polylines as they are, one geometry each (not split at corners: a gap that folds
@@ -55,5 +61,15 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
 size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::vector<StrokeGeometry>& occluded,
                             const std::vector<uint8_t>& occluded_used, const StrokeCoherence& coherence,
                             const GapBridgeOptions& options);
+
+// A stroke that ends on another stroke's side (a T-junction, typed C), where last frame's stroke
+// turned from it into that other stroke: a zig-zag silhouette's fold now hides the turn, and the
+// other stroke runs on past it. The other stroke is cut at its point nearest the end (at most
+// kSideSpacingPx away); the part that last frame's stroke continued into is joined to the ending
+// stroke across that short jump (marked hidden), and the rest, at most max_tee_rest_px long,
+// becomes a stroke of its own. Only where last frame's stroke fits the new pair more closely
+// than the two parts of the cut stroke. Deterministic. Returns the number of joins.
+size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeCoherence& coherence,
+                           const GapBridgeOptions& options);
 
 }  // namespace inkline::core

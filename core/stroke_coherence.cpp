@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <map>
 #include <tuple>
 
 #include "core/stroke_path.h"
@@ -263,6 +264,86 @@ std::vector<StrokeCoherence::Nearest> StrokeCoherence::nearest_visible(const std
         if (hit.trace == size_t(-1)) continue;
         const StrokeTrace& t = traces_[hit.trace];
         out[i] = {int64_t(t.id), t.samples_u[hit.sample], t.closed ? t.length_px : 0.0};
+    }
+    return out;
+}
+
+std::vector<glm::dvec2> side_samples(const std::vector<glm::dvec2>& points_px, int end) {
+    std::vector<glm::dvec2> pts = points_px;
+    if (end == 1) std::reverse(pts.begin(), pts.end());
+    std::vector<glm::dvec2> out;
+    double arc = 0.0, next = kSideSpacingPx;
+    for (size_t i = 0; i + 1 < pts.size() && next <= kSideReachPx; ++i) {
+        const double len = glm::length(pts[i + 1] - pts[i]);
+        while (next <= arc + len && next <= kSideReachPx) {
+            out.push_back(pts[i] + (pts[i + 1] - pts[i]) * ((next - arc) / len));
+            next += kSideSpacingPx;
+        }
+        arc += len;
+    }
+    if (out.empty() && pts.size() >= 2) out.push_back(0.5 * (pts.front() + pts.back()));
+    return out;
+}
+
+namespace {
+
+// The shorter way from u0 to u1 along a stroke (signed, px): on a loop, u wraps at period.
+double u_step(double u0, double u1, double period) {
+    double du = u1 - u0;
+    if (period > 0.0) du -= period * std::round(du / period);
+    return du;
+}
+
+// Which way u runs from a side's end inward: +1, -1, or 0 where it barely changes.
+int heading(const SideMemory& m) {
+    const double du = u_step(m.u, m.u_far, m.period);
+    return std::abs(du) < kSideSpacingPx ? 0 : (du > 0.0 ? 1 : -1);
+}
+
+}  // namespace
+
+std::optional<double> continuation_fit(const std::vector<SideMemory>& a, const std::vector<SideMemory>& b,
+                                       double path_px, SideHeadings headings) {
+    std::optional<double> best;
+    for (const SideMemory& ma : a) {
+        for (const SideMemory& mb : b) {
+            if (ma.id != mb.id) continue;
+            if (std::abs(u_step(ma.u, mb.u, ma.period)) > path_px + 2.0 * kSideReachPx) continue;
+            if (headings == SideHeadings::kOpposite && (heading(ma) == 0 || heading(ma) != -heading(mb))) continue;
+            const double fit = ma.distance + mb.distance;
+            if (!best || fit < *best) best = fit;
+        }
+    }
+    return best;
+}
+
+std::vector<std::vector<SideMemory>> StrokeCoherence::side_memory(const std::vector<std::vector<glm::dvec2>>& sides,
+                                                                  const std::vector<LineKind>& kinds) const {
+    std::vector<std::vector<SideMemory>> out(sides.size());
+    if (traces_.empty()) return out;
+    const SampleGrid grid(traces_, kMatchRadiusPx);
+    for (size_t i = 0; i < sides.size(); ++i) {
+        // The nearest sample for each point, in order from the end inward.
+        std::vector<SampleGrid::Hit> hits;
+        std::map<int64_t, size_t> votes;
+        for (const glm::dvec2& p : sides[i]) {
+            hits.push_back(grid.nearest(p, [&](size_t t) { return traces_[t].visible && traces_[t].kind == kinds[i]; }));
+            if (hits.back().trace != size_t(-1)) ++votes[traces_[hits.back().trace].id];
+        }
+        for (const auto& [id, n] : votes) {
+            if (2 * n < hits.size()) continue;
+            SideMemory m{.id = id};
+            size_t seen = 0;
+            for (const SampleGrid::Hit& hit : hits) {
+                if (hit.trace == size_t(-1) || traces_[hit.trace].id != id) continue;
+                const StrokeTrace& t = traces_[hit.trace];
+                if (seen++ == 0) m.u = t.samples_u[hit.sample], m.period = t.closed ? t.length_px : 0.0;
+                m.u_far = t.samples_u[hit.sample];
+                m.distance += hit.distance;
+            }
+            m.distance /= double(seen);
+            out[i].push_back(m);
+        }
     }
     return out;
 }

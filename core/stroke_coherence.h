@@ -24,6 +24,13 @@ inline constexpr double kTraceSpacingPx = 2.0;
 // A stroke takes an old id only when they overlap over at least this fraction of the shorter.
 inline constexpr double kMinOverlapFraction = 0.25;
 
+// Last frame's strokes along one side of a stroke end are judged from the stroke's points over
+// this length (px) next to the end: far enough that the nearest old sample belongs to the side's
+// own stroke, not to one across a gap or junction.
+inline constexpr double kSideReachPx = 12.0;
+// Samples along that reach, px apart.
+inline constexpr double kSideSpacingPx = 2.0;
+
 // What the next frame needs of one stroke.
 struct StrokeTrace {
     uint32_t id = 0;
@@ -59,6 +66,34 @@ struct StrokeMatch {
     std::optional<glm::dvec2> start_px;  // loop: where on the candidate's samples to start
 };
 
+// A stroke of last frame along one side of a stroke end.
+struct SideMemory {
+    int64_t id = -1;
+    double u = 0.0;         // its u at the side's sample nearest the end, px
+    double u_far = 0.0;     // its u at the side's sample farthest from the end
+    double period = 0.0;    // its length when it was a loop (u wraps), else 0
+    double distance = 0.0;  // mean distance (px) of the side's samples nearest it
+};
+
+// The points that judge one side of a stroke end: every kSideSpacingPx from the end (`end` 0:
+// first point, 1: last) inward over kSideReachPx, the end itself left out; the midpoint of a
+// stroke too short for any.
+std::vector<glm::dvec2> side_samples(const std::vector<glm::dvec2>& points_px, int end);
+
+// What continuation_fit asks of the ways u runs along two sides, from their ends inward. Where
+// two sides continue one stroke, it runs opposite ways; a branch beside one side runs with it.
+enum class SideHeadings : uint8_t {
+    kAny,
+    kOpposite,  // clearly (by more than kSideSpacingPx over the side), and opposite ways
+};
+
+// Whether two sides continue one stroke of last frame, next to each other along it: its u at
+// the two differs by at most the path between them (px) plus what the sides' reach allows, and
+// runs along them as `headings` asks. How closely they lie along it: the sum of the sides' mean
+// distances (px), the least over the strokes both lie along; none where they do not continue one.
+std::optional<double> continuation_fit(const std::vector<SideMemory>& a, const std::vector<SideMemory>& b,
+                                       double path_px, SideHeadings headings);
+
 class StrokeCoherence {
   public:
     StrokeCoherence() = default;
@@ -82,6 +117,11 @@ class StrokeCoherence {
         double period = 0.0;  // its stroke's length when that stroke was a loop (u wraps), else 0
     };
     std::vector<Nearest> nearest_visible(const std::vector<glm::dvec2>& points_px, LineKind kind) const;
+    // For each side (its side_samples, and the kind of its stroke): every visible stroke of last
+    // frame that is nearest to at least half of the samples, by id. Near a junction a side may
+    // lie as near to a neighbour as to its own stroke, so there may be two.
+    std::vector<std::vector<SideMemory>> side_memory(const std::vector<std::vector<glm::dvec2>>& sides,
+                                                     const std::vector<LineKind>& kinds) const;
     // Only the ids of nearest_visible.
     std::vector<int64_t> nearest_visible_ids(const std::vector<glm::dvec2>& points_px, LineKind kind) const;
 

@@ -269,6 +269,7 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
         const GapBridgeOptions bridge = gap_bridge_options(style.width_max_px);
         out.stats.bridges = bridge_hidden_gaps(pure.strokes, occluded, r_coherence, bridge, used);
         out.stats.bridges += rejoin_split_strokes(pure.strokes, occluded, used, r_coherence, bridge);
+        out.stats.bridges += join_at_t_junctions(pure.strokes, r_coherence, bridge);
         std::erase_if(pure.strokes, [](const StrokeGeometry& g) { return g.points_px.empty(); });
     }
 

@@ -38,6 +38,23 @@ core::StrokeTrace trace(dvec2 a, dvec2 b, uint32_t id) {
     return t;
 }
 
+// Last frame remembered a stroke along this path, with these ids, u running from its start.
+core::StrokeTrace trace_along(const std::vector<dvec2>& path, uint32_t id) {
+    core::StrokeTrace t;
+    t.id = id;
+    double u = 0.0;
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+        const double len = glm::length(path[i + 1] - path[i]);
+        for (double s = 0.0; s < len; s += core::kTraceSpacingPx) {
+            t.samples_px.push_back(path[i] + (path[i + 1] - path[i]) * (s / len));
+            t.samples_u.push_back(u + s);
+        }
+        u += len;
+    }
+    t.length_px = u;
+    return t;
+}
+
 struct Bridged {
     std::vector<core::StrokeGeometry> strokes;  // empty ones (merged away) removed
     std::vector<uint8_t> used;
@@ -209,24 +226,106 @@ TEST(StrokeRejoin, OnlyWhatLastFrameDrewAsOneStroke) {
 // Two parts of one stroke of last frame that lay far apart along it (a long detour between
 // them) are not its neighbours: they stay apart even where they now nearly touch.
 TEST(StrokeRejoin, PartsFarApartAlongLastFramesStrokeStayApart) {
-    core::StrokeTrace detour;
-    detour.id = 7;
-    const std::vector<dvec2> path{{0, 0.5}, {40, 0.5}, {40, 200}, {44, 200}, {44, 0.5}, {90, 0.5}};
-    double u = 0.0;
-    for (size_t i = 0; i + 1 < path.size(); ++i) {
-        const double len = glm::length(path[i + 1] - path[i]);
-        for (double s = 0.0; s < len; s += core::kTraceSpacingPx) {
-            detour.samples_px.push_back(path[i] + (path[i + 1] - path[i]) * (s / len));
-            detour.samples_u.push_back(u + s);
-        }
-        u += len;
-    }
-    detour.length_px = u;
+    const core::StrokeTrace detour = trace_along({{0, 0.5}, {40, 0.5}, {40, 200}, {44, 200}, {44, 0.5}, {90, 0.5}}, 7);
     const core::StrokeCoherence memory({detour, trace({43.5, 0}, {43.5, 30}, 8)}, 9);
     const std::vector<core::StrokeGeometry> out = rejoin(Tangle{}, memory);
     EXPECT_TRUE(std::none_of(out.begin(), out.end(), [](const core::StrokeGeometry& g) {
         return g.points_px.front() == dvec2(0, 0) && g.points_px.back() == dvec2(83, 0);
     }));
+}
+
+
+std::vector<core::StrokeGeometry> rejoin(std::vector<core::StrokeGeometry> strokes, const core::StrokeCoherence& memory,
+                                         size_t* r_count = nullptr) {
+    const size_t n = core::rejoin_split_strokes(strokes, {}, {}, memory, core::gap_bridge_options(4.8));
+    if (r_count) *r_count = n;
+    std::erase_if(strokes, [](const core::StrokeGeometry& g) { return g.points_px.empty(); });
+    return strokes;
+}
+
+// A zig-zag silhouette folds back along itself: the line runs right to x = 50, back to x = 38,
+// and right again. The fold's edges are not silhouette edges this frame, so two strokes run over
+// each other, their ends 12 px apart, farther than any gap is bridged.
+TEST(StrokeRejoin, StrokesSplitAtAFoldAreJoinedAcrossIt) {
+    const std::vector<core::StrokeGeometry> fold{line({0, 0}, {50, 0}, true, 0), line({38, 0.5}, {100, 0.5}, true, 100)};
+    const core::StrokeCoherence memory({trace({0, 0.25}, {100, 0.25}, 7)}, 8);
+    size_t joins = 0;
+    const std::vector<core::StrokeGeometry> out = rejoin(fold, memory, &joins);
+    EXPECT_EQ(joins, 1u);
+    ASSERT_EQ(out.size(), 1u);
+    const core::StrokeGeometry& g = out[0];
+    EXPECT_EQ(g.points_px.front(), dvec2(0, 0));
+    EXPECT_EQ(g.points_px.back(), dvec2(100, 0.5));
+    ASSERT_EQ(g.hidden.size(), g.edges.size());
+    EXPECT_EQ(std::count(g.hidden.begin(), g.hidden.end(), uint8_t(1)), 1) << "the jump across the fold";
+    const auto jump = size_t(std::find(g.hidden.begin(), g.hidden.end(), uint8_t(1)) - g.hidden.begin());
+    EXPECT_EQ(g.points_px[jump], dvec2(50, 0));
+    EXPECT_EQ(g.points_px[jump + 1], dvec2(38, 0.5));
+    EXPECT_EQ(g.points_px.size(), fold[0].points_px.size() + fold[1].points_px.size()) << "every exact point kept";
+}
+
+// A line that leaves the fold's end running the same way as the stroke beside it is a branch,
+// not the stroke's continuation; and without memory nothing is joined.
+TEST(StrokeRejoin, ABranchBesideAStrokeIsNotAFold) {
+    const std::vector<core::StrokeGeometry> branch{line({0, 0}, {50, 0}, true, 0), line({38, 0.5}, {0, 0.5}, true, 100)};
+    const core::StrokeCoherence memory({trace({0, 0.25}, {100, 0.25}, 7)}, 8);
+    EXPECT_EQ(rejoin(branch, memory).size(), 2u);
+    const std::vector<core::StrokeGeometry> fold{line({0, 0}, {50, 0}, true, 0), line({38, 0.5}, {100, 0.5}, true, 100)};
+    EXPECT_EQ(rejoin(fold, {}).size(), 2u);
+}
+
+// A T-junction: a stroke ends 1 px beside another one's interior. Last frame, one stroke (id 7)
+// ran along the left part of the crossing line and turned up into the ending stroke; the right
+// part of the crossing line was a stroke of its own (id 9).
+struct Tee {
+    std::vector<core::StrokeGeometry> strokes{line({0, 0}, {50, 0}, true, 0), line({30, 1}, {30, 40}, true, 100)};
+    Tee() {
+        strokes[1].ends = {core::StrokeEnd::kJunction, core::StrokeEnd::kFree};
+    }
+};
+
+std::vector<core::StrokeGeometry> join_tees(std::vector<core::StrokeGeometry> strokes,
+                                            const core::StrokeCoherence& memory, size_t* r_count = nullptr) {
+    const size_t n = core::join_at_t_junctions(strokes, memory, core::gap_bridge_options(4.8));
+    if (r_count) *r_count = n;
+    std::erase_if(strokes, [](const core::StrokeGeometry& g) { return g.points_px.empty(); });
+    return strokes;
+}
+
+TEST(StrokeTee, StrokeEndingOnAnotherIsJoinedToThePartLastFrameContinued) {
+    const core::StrokeCoherence memory({trace_along({{0, 0}, {30, 0}, {30, 40}}, 7), trace({31, 0}, {50, 0}, 9)}, 10);
+    size_t joins = 0;
+    const std::vector<core::StrokeGeometry> out = join_tees(Tee{}.strokes, memory, &joins);
+    EXPECT_EQ(joins, 1u);
+    ASSERT_EQ(out.size(), 2u);
+    const auto turn = std::find_if(out.begin(), out.end(), [](const core::StrokeGeometry& g) {
+        return g.points_px.front() == dvec2(0, 0) || g.points_px.back() == dvec2(0, 0);
+    });
+    ASSERT_NE(turn, out.end());
+    core::StrokeGeometry g = *turn;
+    if (g.points_px.front() != dvec2(0, 0)) g.reverse();
+    EXPECT_EQ(g.points_px.back(), dvec2(30, 40));
+    ASSERT_EQ(g.hidden.size(), g.edges.size());
+    EXPECT_EQ(std::count(g.hidden.begin(), g.hidden.end(), uint8_t(1)), 1) << "the 1 px jump";
+    const auto jump = size_t(std::find(g.hidden.begin(), g.hidden.end(), uint8_t(1)) - g.hidden.begin());
+    EXPECT_EQ(g.points_px[jump], dvec2(30, 0));
+    EXPECT_EQ(g.points_px[jump + 1], dvec2(30, 1));
+    EXPECT_EQ(g.ends[1], core::StrokeEnd::kFree);
+
+    const core::StrokeGeometry& rest = turn == out.begin() ? out[1] : out[0];
+    EXPECT_EQ(rest.points_px.front(), dvec2(30, 0)) << "the rest of the crossing line, cut where the stroke ends";
+    EXPECT_EQ(rest.points_px.back(), dvec2(50, 0));
+    EXPECT_EQ(rest.ends[0], core::StrokeEnd::kJunction);
+}
+
+// Where last frame's stroke ran straight along the crossing line, or without memory, the
+// crossing line stays whole.
+TEST(StrokeTee, CrossingLineLastFrameDrewWholeStaysWhole) {
+    const core::StrokeCoherence straight({trace({0, 0}, {50, 0}, 7), trace({30, 2}, {30, 40}, 8)}, 9);
+    const std::vector<core::StrokeGeometry> out = join_tees(Tee{}.strokes, straight);
+    ASSERT_EQ(out.size(), 2u);
+    EXPECT_EQ(out[0].points_px.size(), Tee{}.strokes[0].points_px.size());
+    EXPECT_EQ(join_tees(Tee{}.strokes, {}).size(), 2u);
 }
 
 }  // namespace

@@ -278,15 +278,16 @@ TurnFigures measure_torus_turn(bool keep_hidden) {
 }
 
 // Acceptance figures (issue 5 asks for 95% in every frame): most visible length keeps its id
-// from frame to frame, and loop starts barely move. Measured 114 of 119 frames at 95% (109
-// before strokes split at a tangle were joined again by memory, 102 before short occluded gaps
-// were bridged) and a worst frame of 77.4%: frames fall short where a line comes into view
+// from frame to frame, and loop starts barely move. Measured 115 of 119 frames at 95% (114
+// before strokes split at a fold or T-junction were joined again, 109 before strokes split at a
+// tangle were joined again by memory, 102 before short occluded gaps were bridged) and a worst
+// frame of 77.4%: frames fall short where a line comes into view
 // (frame 53: the hole's inner silhouette, hidden the frame before, which this output does not
 // carry) or where a junction splits a stroke (only one part keeps the id).
 TEST(Strokes, CoherentOverATorusTurn) {
     const TurnFigures r = measure_torus_turn(false);
     EXPECT_GE(r.overall, 0.98);
-    EXPECT_GE(r.at_95, 114u) << "frames where new lines appear fall short";
+    EXPECT_GE(r.at_95, 115u) << "frames where new lines appear fall short";
     EXPECT_GE(r.worst, 0.77);
     EXPECT_LE(r.median_move, 2.0);
 }
