@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "core/gap_bridging.h"
 
-#include "core/stroke_path.h"
-
 #include <algorithm>
 #include <array>
 #include <glm/geometric.hpp>
@@ -11,6 +9,9 @@
 #include <queue>
 #include <set>
 #include <tuple>
+
+#include "core/internal/point_grid.h"
+#include "core/stroke_path.h"
 
 namespace inkline::core {
 namespace {
@@ -481,15 +482,13 @@ StrokeGeometry part_of(const StrokeGeometry& g, size_t begin, size_t end) {
 // Interior points of open visible strokes on a grid of kSideSpacingPx cells.
 class InteriorGrid {
   public:
-    explicit InteriorGrid(const std::vector<StrokeGeometry>& strokes) : strokes_(strokes) {
+    explicit InteriorGrid(const std::vector<StrokeGeometry>& strokes) : strokes_(strokes), grid_(kSideSpacingPx) {
         for (size_t s = 0; s < strokes.size(); ++s) {
             const StrokeGeometry& g = strokes[s];
             if (!g.visible || g.closed) continue;
-            for (size_t k = 1; k + 1 < g.points_px.size(); ++k) entries_.push_back({key(cell(g.points_px[k])), s, k});
+            for (size_t k = 1; k + 1 < g.points_px.size(); ++k) grid_.add(g.points_px[k], {s, k});
         }
-        std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
-            return std::tie(a.key, a.stroke, a.point) < std::tie(b.key, b.stroke, b.point);
-        });
+        grid_.sort();
     }
 
     struct Hit {
@@ -497,38 +496,21 @@ class InteriorGrid {
         double distance = HUGE_VAL;
     };
     // The interior point of a stroke other than `self`, of the kind, nearest p within
-    // kSideSpacingPx; ties go to the lower (stroke, point).
+    // kSideSpacingPx.
     Hit nearest(const glm::dvec2& p, size_t self, LineKind kind) const {
         Hit best;
-        const glm::ivec2 c = cell(p);
-        for (int y = c.y - 1; y <= c.y + 1; ++y) {
-            for (int x = c.x - 1; x <= c.x + 1; ++x) {
-                const int64_t k = key({x, y});
-                auto it = std::lower_bound(entries_.begin(), entries_.end(), k,
-                                           [](const Entry& e, int64_t v) { return e.key < v; });
-                for (; it != entries_.end() && it->key == k; ++it) {
-                    if (it->stroke == self || strokes_[it->stroke].kind != kind) continue;
-                    const double d = glm::length(strokes_[it->stroke].points_px[it->point] - p);
-                    if (d <= kSideSpacingPx && d < best.distance) best = {it->stroke, it->point, d};
-                }
-            }
-        }
+        grid_.around(p, [&](const std::pair<size_t, size_t>& sk) {
+            const auto [stroke, point] = sk;
+            if (stroke == self || strokes_[stroke].kind != kind) return;
+            const double d = glm::length(strokes_[stroke].points_px[point] - p);
+            if (d <= kSideSpacingPx && d < best.distance) best = {stroke, point, d};
+        });
         return best;
     }
 
   private:
-    struct Entry {
-        int64_t key;
-        size_t stroke, point;
-    };
-    static glm::ivec2 cell(const glm::dvec2& p) {
-        return {int(std::floor(std::clamp(p.x, -1e8, 1e8) / kSideSpacingPx)),
-                int(std::floor(std::clamp(p.y, -1e8, 1e8) / kSideSpacingPx))};
-    }
-    static int64_t key(const glm::ivec2& c) { return (int64_t(c.x) << 32) ^ int64_t(uint32_t(c.y)); }
-
     const std::vector<StrokeGeometry>& strokes_;
-    std::vector<Entry> entries_;
+    internal::PointGrid<std::pair<size_t, size_t>> grid_;  // (stroke, point)
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <map>
 #include <tuple>
 
+#include "core/internal/point_grid.h"
 #include "core/stroke_path.h"
 
 namespace inkline::core {
@@ -22,18 +23,14 @@ constexpr double kStartLookahead = 30.0;
 // single crossing of last frame's outline does not count as standing still.
 constexpr double kStartMotionWindowPx = 24.0;
 
-// Last frame's samples on a grid of radius-sized cells, sorted for deterministic lookups.
+// Last frame's samples on a grid of radius-sized cells.
 class SampleGrid {
   public:
-    SampleGrid(const std::vector<StrokeTrace>& traces, double radius) : traces_(traces), radius_(radius) {
+    SampleGrid(const std::vector<StrokeTrace>& traces, double radius) : traces_(traces), radius_(radius), grid_(radius) {
         for (size_t t = 0; t < traces.size(); ++t) {
-            for (size_t s = 0; s < traces[t].samples_px.size(); ++s) {
-                entries_.push_back({key(cell(traces[t].samples_px[s])), t, s});
-            }
+            for (size_t s = 0; s < traces[t].samples_px.size(); ++s) grid_.add(traces[t].samples_px[s], {t, s});
         }
-        std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
-            return std::tie(a.key, a.trace, a.sample) < std::tie(b.key, b.trace, b.sample);
-        });
+        grid_.sort();
     }
 
     struct Hit {
@@ -46,39 +43,21 @@ class SampleGrid {
     template <typename Filter>
     Hit nearest(const glm::dvec2& p, Filter use) const {
         Hit best;
-        const glm::ivec2 c = cell(p);
-        for (int y = c.y - 1; y <= c.y + 1; ++y) {
-            for (int x = c.x - 1; x <= c.x + 1; ++x) {
-                const int64_t k = key({x, y});
-                auto it = std::lower_bound(entries_.begin(), entries_.end(), k,
-                                           [](const Entry& e, int64_t v) { return e.key < v; });
-                for (; it != entries_.end() && it->key == k; ++it) {
-                    if (!use(it->trace)) continue;
-                    const double d = glm::length(traces_[it->trace].samples_px[it->sample] - p);
-                    const bool better =
-                        d < best.distance ||
-                        (d == best.distance && std::tie(it->trace, it->sample) < std::tie(best.trace, best.sample));
-                    if (d <= radius_ && better) best = {it->trace, it->sample, d};
-                }
-            }
-        }
+        grid_.around(p, [&](const std::pair<size_t, size_t>& ts) {
+            const auto [trace, sample] = ts;
+            if (!use(trace)) return;
+            const double d = glm::length(traces_[trace].samples_px[sample] - p);
+            const bool better =
+                d < best.distance || (d == best.distance && std::tie(trace, sample) < std::tie(best.trace, best.sample));
+            if (d <= radius_ && better) best = {trace, sample, d};
+        });
         return best;
     }
 
   private:
-    struct Entry {
-        int64_t key;
-        size_t trace, sample;
-    };
-    glm::ivec2 cell(const glm::dvec2& p) const {
-        return {int(std::floor(std::clamp(p.x, -1e8, 1e8) / radius_)),
-                int(std::floor(std::clamp(p.y, -1e8, 1e8) / radius_))};
-    }
-    static int64_t key(const glm::ivec2& c) { return (int64_t(c.x) << 32) ^ int64_t(uint32_t(c.y)); }
-
     const std::vector<StrokeTrace>& traces_;
     double radius_;
-    std::vector<Entry> entries_;
+    internal::PointGrid<std::pair<size_t, size_t>> grid_;  // (trace, sample)
 };
 
 // Strokes of one kind match; a hidden part that comes into view (or a visible one that goes

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+// Items at image points on a uniform grid of square cells, sorted by cell and then by item, so
+// that lookups visit them in an order that depends on the input alone.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <glm/vec2.hpp>
+#include <tuple>
+#include <vector>
+
+namespace inkline::core::internal {
+
+template <typename Item>  // ordered by operator<
+class PointGrid {
+  public:
+    explicit PointGrid(double cell_px) : cell_px_(cell_px) {}
+
+    void add(const glm::dvec2& p, const Item& item) { entries_.push_back({key(cell(p)), item}); }
+    // After the last add, before the first lookup.
+    void sort() {
+        std::sort(entries_.begin(), entries_.end(),
+                  [](const Entry& a, const Entry& b) { return std::tie(a.key, a.item) < std::tie(b.key, b.item); });
+    }
+
+    // Calls visit(item) for every item in p's cell and the eight around it: all items within one
+    // cell size of p, and some farther.
+    template <typename Visit>
+    void around(const glm::dvec2& p, Visit visit) const {
+        const glm::ivec2 c = cell(p);
+        for (int y = c.y - 1; y <= c.y + 1; ++y) {
+            for (int x = c.x - 1; x <= c.x + 1; ++x) {
+                const int64_t k = key({x, y});
+                auto it = std::lower_bound(entries_.begin(), entries_.end(), k,
+                                           [](const Entry& e, int64_t v) { return e.key < v; });
+                for (; it != entries_.end() && it->key == k; ++it) visit(it->item);
+            }
+        }
+    }
+
+  private:
+    struct Entry {
+        int64_t key;
+        Item item;
+    };
+    glm::ivec2 cell(const glm::dvec2& p) const {
+        return {int(std::floor(std::clamp(p.x, -1e8, 1e8) / cell_px_)),
+                int(std::floor(std::clamp(p.y, -1e8, 1e8) / cell_px_))};
+    }
+    static int64_t key(const glm::ivec2& c) { return (int64_t(c.x) << 32) ^ int64_t(uint32_t(c.y)); }
+
+    double cell_px_;
+    std::vector<Entry> entries_;
+};
+
+}  // namespace inkline::core::internal
