@@ -184,11 +184,18 @@ struct Tangle {
     std::vector<core::StrokeGeometry> occluded{line({40, 0}, {41, 0}, false, 50), line({42, 0}, {43, 0}, false, 70)};
 };
 
-std::vector<core::StrokeGeometry> rejoin(Tangle t, const core::StrokeCoherence& memory, size_t* r_count = nullptr) {
-    const size_t n = core::rejoin_split_strokes(t.strokes, t.occluded, {}, memory, core::gap_bridge_options(4.8));
+// The strokes after rejoin_split_strokes, those merged away (left without points) removed.
+std::vector<core::StrokeGeometry> rejoin(std::vector<core::StrokeGeometry> strokes,
+                                         const std::vector<core::StrokeGeometry>& occluded,
+                                         const core::StrokeCoherence& memory, size_t* r_count = nullptr) {
+    const size_t n = core::rejoin_split_strokes(strokes, occluded, {}, memory, core::gap_bridge_options(4.8));
     if (r_count) *r_count = n;
-    std::erase_if(t.strokes, [](const core::StrokeGeometry& g) { return g.points_px.empty(); });
-    return t.strokes;
+    std::erase_if(strokes, [](const core::StrokeGeometry& g) { return g.points_px.empty(); });
+    return strokes;
+}
+
+std::vector<core::StrokeGeometry> rejoin(const Tangle& t, const core::StrokeCoherence& memory, size_t* r_count = nullptr) {
+    return rejoin(t.strokes, t.occluded, memory, r_count);
 }
 
 TEST(StrokeRejoin, StrokeSplitAtATangleIsJoinedAgainThroughIt) {
@@ -235,14 +242,6 @@ TEST(StrokeRejoin, PartsFarApartAlongLastFramesStrokeStayApart) {
 }
 
 
-std::vector<core::StrokeGeometry> rejoin(std::vector<core::StrokeGeometry> strokes, const core::StrokeCoherence& memory,
-                                         size_t* r_count = nullptr) {
-    const size_t n = core::rejoin_split_strokes(strokes, {}, {}, memory, core::gap_bridge_options(4.8));
-    if (r_count) *r_count = n;
-    std::erase_if(strokes, [](const core::StrokeGeometry& g) { return g.points_px.empty(); });
-    return strokes;
-}
-
 // A zig-zag silhouette folds back along itself: the line runs right to x = 50, back to x = 38,
 // and right again. The fold's edges are not silhouette edges this frame, so two strokes run over
 // each other, their ends 12 px apart, farther than any gap is bridged.
@@ -250,7 +249,7 @@ TEST(StrokeRejoin, StrokesSplitAtAFoldAreJoinedAcrossIt) {
     const std::vector<core::StrokeGeometry> fold{line({0, 0}, {50, 0}, true, 0), line({38, 0.5}, {100, 0.5}, true, 100)};
     const core::StrokeCoherence memory({trace({0, 0.25}, {100, 0.25}, 7)}, 8);
     size_t joins = 0;
-    const std::vector<core::StrokeGeometry> out = rejoin(fold, memory, &joins);
+    const std::vector<core::StrokeGeometry> out = rejoin(fold, {}, memory, &joins);
     EXPECT_EQ(joins, 1u);
     ASSERT_EQ(out.size(), 1u);
     const core::StrokeGeometry& g = out[0];
@@ -269,9 +268,9 @@ TEST(StrokeRejoin, StrokesSplitAtAFoldAreJoinedAcrossIt) {
 TEST(StrokeRejoin, ABranchBesideAStrokeIsNotAFold) {
     const std::vector<core::StrokeGeometry> branch{line({0, 0}, {50, 0}, true, 0), line({38, 0.5}, {0, 0.5}, true, 100)};
     const core::StrokeCoherence memory({trace({0, 0.25}, {100, 0.25}, 7)}, 8);
-    EXPECT_EQ(rejoin(branch, memory).size(), 2u);
+    EXPECT_EQ(rejoin(branch, {}, memory).size(), 2u);
     const std::vector<core::StrokeGeometry> fold{line({0, 0}, {50, 0}, true, 0), line({38, 0.5}, {100, 0.5}, true, 100)};
-    EXPECT_EQ(rejoin(fold, {}).size(), 2u);
+    EXPECT_EQ(rejoin(fold, {}, {}).size(), 2u);
 }
 
 // A T-junction: a stroke ends 1 px beside another one's interior. Last frame, one stroke (id 7)
