@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <map>
 #include <optional>
 #include <queue>
@@ -288,8 +289,7 @@ void follow(StrokeGeometry& path, const Arc& arc, const std::vector<StrokeGeomet
 }  // namespace
 
 size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::vector<StrokeGeometry>& occluded,
-                            const std::vector<uint8_t>& occluded_used, const StrokeCoherence& coherence,
-                            const GapBridgeOptions& options) {
+                            OccludedUse& r_use, const StrokeCoherence& coherence, const GapBridgeOptions& options) {
     if (coherence.traces().empty()) return 0;
     const double max_path = kRejoinPathFactor * options.max_gap_px;
 
@@ -313,7 +313,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
     JoinGraph graph;
     for (size_t h = 0; h < occluded.size(); ++h) {
         const StrokeGeometry& o = occluded[h];
-        if (o.visible || (h < occluded_used.size() && occluded_used[h])) continue;
+        if (o.visible || (h < r_use.runs.size() && r_use.runs[h])) continue;
         for (size_t k = 0; k + 1 < o.points_px.size(); ++k) {
             graph.link(o.points_px[k], o.points_px[k + 1], glm::length(o.points_px[k + 1] - o.points_px[k]),
                        {.source = h, .segment = k});
@@ -404,7 +404,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
         return s;
     };
     std::vector<uint8_t> consumed(r_strokes.size(), 0);
-    std::set<std::pair<size_t, size_t>> segment_taken;
+    std::set<std::pair<size_t, size_t>>& segment_taken = r_use.segments;
     size_t joined = 0;
     for (const Join& join : joins) {
         const MemoryEnd &ea = ends[join.a], &eb = ends[join.b];
@@ -576,7 +576,7 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
 
         StrokeGeometry kept = keep_before ? part_of(x, 0, t.at) : part_of(x, t.at, x.points_px.size() - 1);
         StrokeGeometry rest = keep_before ? part_of(x, t.at, x.points_px.size() - 1) : part_of(x, 0, t.at);
-        if (rest.length_px() > options.max_tee_rest_px) continue;
+        if (rest.visible_length_px() > options.max_tee_rest_px) continue;
         if (!keep_before) kept.reverse();  // now it ends at the cut
         StrokeGeometry ending = std::move(g);
         if (t.end == 1) ending.reverse();  // now it starts at the junction
@@ -596,6 +596,106 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
         ++joined;
     }
     return joined;
+}
+
+namespace {
+
+// The turn (deg) at point k of pts: between the chords to the nearest points at least `scale_px`
+// away before and after it; nullopt where either side is shorter.
+std::optional<double> coarse_turn_deg(const std::vector<glm::dvec2>& pts, size_t k, double scale_px) {
+    size_t b = k, f = k;
+    while (b > 0 && glm::length(pts[b] - pts[k]) < scale_px) --b;
+    while (f + 1 < pts.size() && glm::length(pts[f] - pts[k]) < scale_px) ++f;
+    const glm::dvec2 in = pts[k] - pts[b], out = pts[f] - pts[k];
+    if (glm::length(in) < scale_px || glm::length(out) < scale_px) return std::nullopt;
+    const double c = glm::dot(in, out) / (glm::length(in) * glm::length(out));
+    return glm::degrees(std::acos(std::clamp(c, -1.0, 1.0)));
+}
+
+}  // namespace
+
+size_t split_at_reversals(std::vector<StrokeGeometry>& r_strokes, double scale_px, double angle_deg) {
+    size_t cuts = 0;
+    const size_t count = r_strokes.size();
+    for (size_t s = 0; s < count; ++s) {
+        if (r_strokes[s].closed || r_strokes[s].points_px.size() < 3) continue;
+        // The points the stroke is drawn through (a bridged gap's inner points left out).
+        const StrokeGeometry& g = r_strokes[s];
+        const std::vector<size_t> drawn = g.drawn_indices();
+        std::vector<glm::dvec2> pts;
+        for (size_t k : drawn) pts.push_back(g.points_px[k]);
+        // The sharpest point of each run of points turning more than angle_deg.
+        std::vector<size_t> at;
+        double best = 0.0;
+        size_t best_k = 0;
+        for (size_t i = 0; i <= pts.size(); ++i) {
+            const std::optional<double> turn = i < pts.size() ? coarse_turn_deg(pts, i, scale_px) : std::nullopt;
+            if (turn && *turn > angle_deg) {
+                if (*turn > best) best = *turn, best_k = drawn[i];
+            } else if (best > 0.0) {
+                at.push_back(best_k);
+                best = 0.0;
+            }
+        }
+        if (at.empty()) continue;
+        StrokeGeometry whole = std::move(r_strokes[s]);
+        size_t begin = 0;
+        for (size_t i = 0; i <= at.size(); ++i) {
+            const size_t end = i < at.size() ? at[i] : whole.points_px.size() - 1;
+            StrokeGeometry piece = part_of(whole, begin, end);
+            if (begin > 0) piece.ends[0] = StrokeEnd::kCorner;
+            if (i < at.size()) piece.ends[1] = StrokeEnd::kCorner;
+            if (i == 0) {
+                r_strokes[s] = std::move(piece);
+            } else {
+                r_strokes.push_back(std::move(piece));
+            }
+            begin = end;
+        }
+        cuts += at.size();
+    }
+    return cuts;
+}
+
+std::vector<Polyline> occluded_left(const std::vector<Polyline>& occluded, const OccludedUse& use) {
+    std::vector<Polyline> out;
+    for (size_t h = 0; h < occluded.size(); ++h) {
+        const Polyline& line = occluded[h];
+        if (h < use.runs.size() && use.runs[h]) continue;
+        const auto first = use.segments.lower_bound({h, 0});
+        if (first == use.segments.end() || first->first != h) {
+            out.push_back(line);
+            continue;
+        }
+        // Runs of untaken segments; a loop cut open starts after its first taken segment.
+        const size_t n = line.edges.size();
+        auto taken = [&](size_t k) { return use.segments.contains({h, k}); };
+        Polyline piece;
+        auto flush = [&] {
+            if (!piece.edges.empty()) out.push_back(std::move(piece));
+            piece = Polyline{};
+        };
+        const size_t start = line.closed ? first->second + 1 : 0;
+        for (size_t i = 0; i < n; ++i) {
+            const size_t k = (start + i) % n;
+            if (taken(k)) {
+                flush();
+                continue;
+            }
+            if (piece.edges.empty()) {
+                piece.id = line.id;
+                piece.kind = line.kind;
+                piece.visible = line.visible;
+                piece.points_px.push_back(line.points_px[k]);
+                piece.points_world.push_back(line.points_world[k]);
+            }
+            piece.points_px.push_back(line.points_px[k + 1]);
+            piece.points_world.push_back(line.points_world[k + 1]);
+            piece.edges.push_back(line.edges[k]);
+        }
+        flush();
+    }
+    return out;
 }
 
 }  // namespace inkline::core

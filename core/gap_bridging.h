@@ -5,6 +5,8 @@
 // (new ids, ends popping); bridged where last frame drew one stroke, it stays one.
 #pragma once
 
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "core/pure_strokes.h"
@@ -37,13 +39,21 @@ GapBridgeOptions gap_bridge_options(double width_max_px);
 // back on itself, as a zig-zag silhouette's hidden fold does, is still one gap).
 std::vector<StrokeGeometry> occluded_runs(const std::vector<Polyline>& occluded);
 
+// What the joins took of the occluded parts: whole parts bridged as gaps, and single segments of
+// the paths that joined split strokes again.
+struct OccludedUse {
+    std::vector<uint8_t> runs;                         // per occluded part: 1 when bridged whole
+    std::set<std::pair<size_t, size_t>> segments;      // (occluded part, segment) taken by a path
+};
+
 // Joins visible strokes (r_strokes, visible == true) through occluded strokes (`occluded`,
 // visible == false) whose two ends are exactly ends of visible strokes of the same kind:
 // the joined stroke keeps the occluded points, marked in StrokeGeometry::hidden, so the exact
 // geometry stays honest. Which gaps are bridged depends on last frame's strokes (coherence):
 // where both sides continue one stroke of last frame, up to max_gap_px; where they continued two,
-// up to split_gap_px; elsewhere up to new_gap_px. A gap between one stroke's own ends stays. Occluded strokes used as bridges are marked in
-// r_used (sized to occluded); a stroke merged into another is left empty (no points) in place.
+// up to split_gap_px; elsewhere up to new_gap_px. A gap between one stroke's own ends stays.
+// Occluded strokes used as bridges are marked in r_used (sized to occluded); a stroke merged into
+// another is left empty (no points) in place.
 // Deterministic. Returns the number of gaps bridged.
 size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vector<StrokeGeometry>& occluded,
                           const StrokeCoherence& coherence, const GapBridgeOptions& options,
@@ -52,15 +62,15 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
 // Strokes that were one stroke last frame, joined again: two visible ends whose sides lie along
 // the same stroke of last frame, next to each other along it (their u there differs by about the
 // path between them), are joined through what lies between them: occluded parts (`occluded`,
-// those not in `occluded_used`) and visible strokes of at most max_gap_px, the shortest such
-// path, at most four times max_gap_px long, between ends at most max_gap_px apart. This is where a
+// those not bridged whole) and visible strokes of at most max_gap_px, the shortest such
+// path, at most four times max_gap_px long, between ends at most max_gap_px apart. Parts bridged
+// whole (r_use.runs) are not taken again; segments taken are added to r_use.segments. This is where a
 // zig-zag silhouette's junctions and visibility cuts change from frame to frame: the tangle of
 // tiny pieces there would otherwise split a stroke differently each frame. Occluded segments
 // taken are marked hidden; a stroke merged into another is left empty (no points) in place. Ends
 // of one stroke are never joined (no loop is made). Deterministic. Returns the number of joins.
 size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::vector<StrokeGeometry>& occluded,
-                            const std::vector<uint8_t>& occluded_used, const StrokeCoherence& coherence,
-                            const GapBridgeOptions& options);
+                            OccludedUse& r_use, const StrokeCoherence& coherence, const GapBridgeOptions& options);
 
 // A stroke that ends on another stroke's side (a T-junction, typed C), where last frame's stroke
 // turned from it into that other stroke: a zig-zag silhouette's fold now hides the turn, and the
@@ -71,5 +81,17 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
 // than the two parts of the cut stroke. Deterministic. Returns the number of joins.
 size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeCoherence& coherence,
                            const GapBridgeOptions& options);
+
+// Open strokes cut where they turn back on themselves at a coarse scale: where the chords to the
+// nearest points at least scale_px before and after a point turn by more than angle_deg (the
+// sharpest point of each such run). Joins see only a few pixels of each side, and a zig-zag
+// tangle hides the turn at the pixel scale, so a hairpin may be joined through in one frame and
+// not the next. The cut ends are corners (A). Returns the number of cuts.
+size_t split_at_reversals(std::vector<StrokeGeometry>& r_strokes, double scale_px, double angle_deg);
+
+// The occluded polylines less what the joins took (r_use): each untouched polyline as it is, the
+// rest of a partly taken one as its runs of untaken segments. With hidden lines in the output,
+// these are the hidden lines.
+std::vector<Polyline> occluded_left(const std::vector<Polyline>& occluded, const OccludedUse& use);
 
 }  // namespace inkline::core

@@ -394,6 +394,24 @@ double StrokeGeometry::length_px() const {
     return len;
 }
 
+double StrokeGeometry::visible_length_px() const {
+    double len = 0.0;
+    for (size_t i = 1; i < points_px.size(); ++i) {
+        if (i - 1 >= hidden.size() || !hidden[i - 1]) len += glm::length(points_px[i] - points_px[i - 1]);
+    }
+    return len;
+}
+
+std::vector<size_t> StrokeGeometry::drawn_indices() const {
+    std::vector<size_t> out;
+    for (size_t k = 0; k < points_px.size(); ++k) {
+        const bool hidden_before = k > 0 && k - 1 < hidden.size() && hidden[k - 1];
+        const bool hidden_after = k < hidden.size() && hidden[k];
+        if (!hidden_before || !hidden_after) out.push_back(k);
+    }
+    return out;
+}
+
 void StrokeGeometry::reverse() {
     std::reverse(points_px.begin(), points_px.end());
     std::reverse(points_world.begin(), points_world.end());

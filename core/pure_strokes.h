@@ -59,6 +59,12 @@ struct StrokeGeometry {
     std::vector<uint8_t> hidden;
 
     double length_px() const;
+    // The length less the occluded segments (hidden) the stroke is drawn across.
+    double visible_length_px() const;
+    // Indices of the exact points the stroke is drawn through: a bridged gap is drawn straight
+    // across, its occluded inner points left out. A zig-zag silhouette's hidden folds would
+    // otherwise be drawn as spikes, and leave holes where the outline folds over itself.
+    std::vector<size_t> drawn_indices() const;
     // Runs the stroke the other way: points, edges, hidden marks and end types.
     void reverse();
 };

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <map>
 #include <tuple>
+#include <type_traits>
 
 #include "core/internal/point_grid.h"
 #include "core/stroke_path.h"
@@ -15,6 +16,10 @@ namespace {
 
 // Matching rounds; each doubles the radius of the one before.
 constexpr int kMatchRounds = 3;
+// A side whose samples span at least this (px) has a direction: last frame's samples count for it
+// only where they run within acos(kSideAlongCos) of it, either way.
+constexpr double kSideDirectionPx = 6.0;
+constexpr double kSideAlongCos = 0.5;
 // Loop starts are placed to 1/8 of the sample spacing.
 constexpr int kStartSubdivisions = 8;
 // A loop start moves to a steadier place when the move pays off within this many frames.
@@ -45,7 +50,11 @@ class SampleGrid {
         Hit best;
         grid_.around(p, [&](const std::pair<size_t, size_t>& ts) {
             const auto [trace, sample] = ts;
-            if (!use(trace)) return;
+            if constexpr (std::is_invocable_v<Filter, size_t, size_t>) {
+                if (!use(trace, sample)) return;
+            } else {
+                if (!use(trace)) return;
+            }
             const double d = glm::length(traces_[trace].samples_px[sample] - p);
             const bool better =
                 d < best.distance || (d == best.distance && std::tie(trace, sample) < std::tie(best.trace, best.sample));
@@ -251,16 +260,23 @@ std::vector<glm::dvec2> side_samples(const std::vector<glm::dvec2>& points_px, i
     std::vector<glm::dvec2> pts = points_px;
     if (end == 1) std::reverse(pts.begin(), pts.end());
     std::vector<glm::dvec2> out;
-    double arc = 0.0, next = kSideSpacingPx;
+    if (pts.size() < 2) return out;
+    // Where the stroke first gets each kSideSpacingPx farther from its end: a zig-zag tangle
+    // that runs back and forth near the end is passed over, not sampled.
+    const glm::dvec2 origin = pts.front();
+    double next = kSideSpacingPx;
     for (size_t i = 0; i + 1 < pts.size() && next <= kSideReachPx; ++i) {
-        const double len = glm::length(pts[i + 1] - pts[i]);
-        while (next <= arc + len && next <= kSideReachPx) {
-            out.push_back(pts[i] + (pts[i + 1] - pts[i]) * ((next - arc) / len));
+        const glm::dvec2 a = pts[i], d = pts[i + 1] - pts[i];
+        // Solve |a + t d - origin| = next for the larger root t in [0, 1], while one exists.
+        while (next <= kSideReachPx && glm::length(pts[i + 1] - origin) >= next) {
+            const glm::dvec2 f = a - origin;
+            const double qa = glm::dot(d, d), qb = 2.0 * glm::dot(f, d), qc = glm::dot(f, f) - next * next;
+            const double t = qa > 0.0 ? (-qb + std::sqrt(std::max(0.0, qb * qb - 4.0 * qa * qc))) / (2.0 * qa) : 1.0;
+            out.push_back(a + d * std::clamp(t, 0.0, 1.0));
             next += kSideSpacingPx;
         }
-        arc += len;
     }
-    if (out.empty() && pts.size() >= 2) out.push_back(0.5 * (pts.front() + pts.back()));
+    if (out.empty()) out.push_back(0.5 * (pts.front() + pts.back()));
     return out;
 }
 
@@ -305,8 +321,20 @@ std::vector<std::vector<SideMemory>> StrokeCoherence::side_memory(const std::vec
         // The nearest sample for each point, in order from the end inward.
         std::vector<SampleGrid::Hit> hits;
         std::map<int64_t, size_t> votes;
+        // Only samples of last frame running along the side: at a sharp corner, the other branch
+        // lies as near.
+        const glm::dvec2 along = sides[i].empty() ? glm::dvec2(0.0) : sides[i].back() - sides[i].front();
+        const double reach = glm::length(along);
+        auto along_side = [&](size_t t, size_t s) {
+            const StrokeTrace& trace = traces_[t];
+            if (!trace.visible || trace.kind != kinds[i]) return false;
+            const std::vector<glm::dvec2>& q = trace.samples_px;
+            if (reach < kSideDirectionPx || q.size() < 2) return true;
+            const glm::dvec2 tangent = q[std::min(s + 1, q.size() - 1)] - q[s > 0 ? s - 1 : 0];
+            return std::abs(glm::dot(along, tangent)) >= kSideAlongCos * reach * glm::length(tangent);
+        };
         for (const glm::dvec2& p : sides[i]) {
-            hits.push_back(grid.nearest(p, [&](size_t t) { return traces_[t].visible && traces_[t].kind == kinds[i]; }));
+            hits.push_back(grid.nearest(p, along_side));
             if (hits.back().trace != size_t(-1)) ++votes[traces_[hits.back().trace].id];
         }
         for (const auto& [id, n] : votes) {
@@ -338,22 +366,33 @@ std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidat
     std::vector<StrokeMatch> matches(candidates.size());
     std::vector<uint8_t> candidate_done(candidates.size(), 0), trace_taken(traces_.size(), 0);
     // Close matches first; what is left is matched again over a wider radius, for lines that
-    // sweep fast (a silhouette turning edge-on).
-    for (int round = 0; round < kMatchRounds; ++round) {
-        const SampleGrid grid(traces_, kMatchRadiusPx * double(1 << round));
-        // Same visibility first, then largest overlaps first; ties by candidate, then trace, so
-        // the result is deterministic.
-        std::vector<Pair> pairs = overlaps(candidates, traces_, grid, candidate_done, trace_taken);
-        std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
-            return std::tie(a.cross, b.score, a.candidate, a.trace) < std::tie(b.cross, a.score, b.candidate, b.trace);
-        });
-        for (const Pair& p : pairs) {
-            if (candidate_done[p.candidate] || trace_taken[p.trace]) continue;
-            candidate_done[p.candidate] = trace_taken[p.trace] = 1;
-            StrokeMatch& m = matches[p.candidate];
-            m.id = traces_[p.trace].id;
-            m.inherited = true;
-            propagate(candidates[p.candidate], traces_[p.trace], p.trace, grid, m);
+    // sweep fast (a silhouette turning edge-on). Every round keeps the visibility before any
+    // round lets it change: a line coming into view can sweep fast too, and a small hidden piece
+    // near last frame's stroke must not take its id in a close round.
+    std::vector<SampleGrid> grids;
+    grids.reserve(kMatchRounds);
+    for (int round = 0; round < kMatchRounds; ++round) grids.emplace_back(traces_, kMatchRadiusPx * double(1 << round));
+    const auto hidden = [](const auto& x) { return !x.visible; };
+    const bool mixed = std::any_of(candidates.begin(), candidates.end(), hidden) ||
+                       std::any_of(traces_.begin(), traces_.end(), hidden);
+    for (const bool cross : {false, true}) {
+        if (cross && !mixed) break;
+        for (const SampleGrid& grid : grids) {
+            // Largest overlaps first; ties by candidate, then trace, so the result is
+            // deterministic.
+            std::vector<Pair> pairs = overlaps(candidates, traces_, grid, candidate_done, trace_taken);
+            if (!cross) std::erase_if(pairs, [](const Pair& p) { return p.cross; });
+            std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+                return std::tie(a.cross, b.score, a.candidate, a.trace) < std::tie(b.cross, a.score, b.candidate, b.trace);
+            });
+            for (const Pair& p : pairs) {
+                if (candidate_done[p.candidate] || trace_taken[p.trace]) continue;
+                candidate_done[p.candidate] = trace_taken[p.trace] = 1;
+                StrokeMatch& m = matches[p.candidate];
+                m.id = traces_[p.trace].id;
+                m.inherited = true;
+                propagate(candidates[p.candidate], traces_[p.trace], p.trace, grid, m);
+            }
         }
     }
     uint32_t next = next_id_;

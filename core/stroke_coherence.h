@@ -103,7 +103,8 @@ class StrokeCoherence {
     // Matches this frame's strokes to the last frame's: each candidate takes the id of the
     // stroke it overlaps most (image length along shared mesh edges plus length lying within
     // kMatchRadiusPx), one candidate per id, largest overlaps first, then again over twice and
-    // four times the radius for what is left; the rest get fresh ids in candidate order.
+    // four times the radius for what is left; only then are pairs whose visibility changed
+    // matched, in the same rounds. The rest get fresh ids in candidate order.
     // Deterministic for given inputs and state. Does not change the state.
     std::vector<StrokeMatch> match(const std::vector<StrokeCandidate>& candidates) const;
 

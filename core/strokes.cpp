@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <optional>
@@ -18,6 +19,9 @@ namespace {
 // A loop start this close (px) to an exact point starts there instead of splitting a segment.
 constexpr double kOnPointPx = 1e-6;
 
+// Strokes turning back by more than this (deg) over max_fold_px are cut (split_at_reversals).
+constexpr double kReversalDeg = 120.0;
+
 // Frames with fewer strokes build them on the calling thread; starting another costs more.
 constexpr size_t kMinParallelStrokes = 16;
 
@@ -26,19 +30,6 @@ StrokePathOptions path_options(const BrushStyle& style) {
     options.smooth_px = style.smooth_px;
     options.max_deviation_px = style.max_deviation_px;
     return options;
-}
-
-// Exact points a stroke is drawn through: a bridged gap is drawn straight across, its occluded
-// points left out. A zig-zag silhouette's hidden folds would otherwise be drawn as spikes, and
-// leave holes where the outline folds over itself.
-std::vector<size_t> drawn_indices(const StrokeGeometry& g) {
-    std::vector<size_t> out;
-    for (size_t k = 0; k < g.points_px.size(); ++k) {
-        const bool hidden_before = k > 0 && k - 1 < g.hidden.size() && g.hidden[k - 1];
-        const bool hidden_after = k < g.hidden.size() && g.hidden[k];
-        if (!hidden_before || !hidden_after) out.push_back(k);
-    }
-    return out;
 }
 
 template <typename T>
@@ -63,7 +54,7 @@ std::vector<double> drawn_parameter(const std::vector<size_t>& drawn, size_t cou
 }
 
 StrokePath drawn_path(const StrokeGeometry& g, const BrushStyle& style) {
-    return build_stroke_path(pick(g.points_px, drawn_indices(g)), g.closed, path_options(style));
+    return build_stroke_path(pick(g.points_px, g.drawn_indices()), g.closed, path_options(style));
 }
 
 // Samples about kTraceSpacingPx apart: indices into the path's samples.
@@ -186,7 +177,7 @@ Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint
     stroke.visible = g.visible;
     stroke.closed = g.closed;
     stroke.ends = g.ends;
-    const std::vector<size_t> drawn = drawn_indices(g);
+    const std::vector<size_t> drawn = g.drawn_indices();
     const StrokePath path = path_built ? std::move(*path_built) : drawn_path(g, style);
     const std::vector<double> facing = pick(lighting.facing(g.points_world, g.edges), drawn);
     const BrushSamples brush = brush_samples(path, facing, g.ends, style);
@@ -253,24 +244,45 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
                            const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence) {
     FrameStrokes out;
     out.frame = frame.frame;
-    PureStrokes pure = build_pure_strokes(frame.strokes, {style.turn_angle_deg});
+    // Visible lines are stroked alike whether or not hidden lines are output: with hidden lines
+    // (visible == false in frame.strokes) those are set aside here as set_aside_occluded would,
+    // and what the visible strokes do not take of them is stroked on its own.
+    std::vector<Polyline> shown_lines, hidden_lines;
+    const bool hidden_out = std::any_of(frame.strokes.begin(), frame.strokes.end(),
+                                        [](const Polyline& line) { return !line.visible; });
+    if (hidden_out) {
+        for (const Polyline& line : frame.strokes) (line.visible ? shown_lines : hidden_lines).push_back(line);
+    }
+    const std::vector<Polyline>& shown = hidden_out ? shown_lines : frame.strokes;
+    const std::vector<Polyline>& occluded_lines = hidden_out ? hidden_lines : frame.occluded;
+
+    const PureStrokeOptions pure_options{style.turn_angle_deg};
+    PureStrokes pure = build_pure_strokes(shown, pure_options);
     out.stats.polylines = frame.strokes.size();
     out.stats.pure_strokes = pure.pure_strokes;
     out.stats.corners = pure.corners;
     out.stats.links = pure.links;
 
     // Short occluded gaps bridged, and strokes split at a tangle joined again, with last frame's
-    // strokes as memory. Only where occluded parts are not output (frame.occluded): with hidden lines the hidden part is a stroke of
-    // its own, and taking it into the visible one measured worse (torus turn with hidden lines:
-    // 112 instead of 117 frames at 95%).
-    if (!frame.occluded.empty()) {
-        const std::vector<StrokeGeometry> occluded = occluded_runs(frame.occluded);
-        std::vector<uint8_t> used;
-        const GapBridgeOptions bridge = gap_bridge_options(style.width_max_px);
-        out.stats.bridges = bridge_hidden_gaps(pure.strokes, occluded, r_coherence, bridge, used);
-        out.stats.bridges += rejoin_split_strokes(pure.strokes, occluded, used, r_coherence, bridge);
+    // strokes as memory.
+    const GapBridgeOptions bridge = gap_bridge_options(style.width_max_px);
+    OccludedUse use;
+    if (!occluded_lines.empty()) {
+        const std::vector<StrokeGeometry> occluded = occluded_runs(occluded_lines);
+        out.stats.bridges = bridge_hidden_gaps(pure.strokes, occluded, r_coherence, bridge, use.runs);
+        out.stats.bridges += rejoin_split_strokes(pure.strokes, occluded, use, r_coherence, bridge);
         out.stats.bridges += join_at_t_junctions(pure.strokes, r_coherence, bridge);
         std::erase_if(pure.strokes, [](const StrokeGeometry& g) { return g.points_px.empty(); });
+    }
+    // Hairpins cut at their tips, whether or not a join ran through them. Beyond a fold's
+    // length, a turn back is no fold.
+    out.stats.corners += split_at_reversals(pure.strokes, bridge.max_fold_px, kReversalDeg);
+    if (hidden_out) {
+        PureStrokes hidden = build_pure_strokes(occluded_left(occluded_lines, use), pure_options);
+        std::move(hidden.strokes.begin(), hidden.strokes.end(), std::back_inserter(pure.strokes));
+        out.stats.pure_strokes += hidden.pure_strokes;
+        out.stats.corners += hidden.corners;
+        out.stats.links += hidden.links;
     }
 
     // Ids, direction and u from the previous frame. Each stroke's centerline, and below its

@@ -55,6 +55,18 @@ core::StrokeTrace trace_along(const std::vector<dvec2>& path, uint32_t id) {
     return t;
 }
 
+// A visible stroke through these points, a point every px, on edges first_edge...
+core::StrokeGeometry through(const std::vector<dvec2>& path, uint32_t first_edge) {
+    core::StrokeGeometry g = line(path[0], path[1], true, first_edge);
+    for (size_t i = 1; i + 1 < path.size(); ++i) {
+        const core::StrokeGeometry next = line(path[i], path[i + 1], true, first_edge + uint32_t(g.edges.size()));
+        g.points_px.insert(g.points_px.end(), next.points_px.begin() + 1, next.points_px.end());
+        g.points_world.insert(g.points_world.end(), next.points_world.begin() + 1, next.points_world.end());
+        g.edges.insert(g.edges.end(), next.edges.begin(), next.edges.end());
+    }
+    return g;
+}
+
 struct Bridged {
     std::vector<core::StrokeGeometry> strokes;  // empty ones (merged away) removed
     std::vector<uint8_t> used;
@@ -188,7 +200,8 @@ struct Tangle {
 std::vector<core::StrokeGeometry> rejoin(std::vector<core::StrokeGeometry> strokes,
                                          const std::vector<core::StrokeGeometry>& occluded,
                                          const core::StrokeCoherence& memory, size_t* r_count = nullptr) {
-    const size_t n = core::rejoin_split_strokes(strokes, occluded, {}, memory, core::gap_bridge_options(4.8));
+    core::OccludedUse use;
+    const size_t n = core::rejoin_split_strokes(strokes, occluded, use, memory, core::gap_bridge_options(4.8));
     if (r_count) *r_count = n;
     std::erase_if(strokes, [](const core::StrokeGeometry& g) { return g.points_px.empty(); });
     return strokes;
@@ -325,6 +338,70 @@ TEST(StrokeTee, CrossingLineLastFrameDrewWholeStaysWhole) {
     ASSERT_EQ(out.size(), 2u);
     EXPECT_EQ(out[0].points_px.size(), Tee{}.strokes[0].points_px.size());
     EXPECT_EQ(join_tees(Tee{}.strokes, {}).size(), 2u);
+}
+
+TEST(StrokeReversal, AHairpinIsCutAtItsTip) {
+    // Out 80 px along x and back 6 px below: two strokes meeting at the tip, corners there.
+    std::vector<core::StrokeGeometry> strokes{through({{0, 0}, {80, 0}, {0, 6}}, 0)};
+    strokes[0].ends = {core::StrokeEnd::kFree, core::StrokeEnd::kFree};
+    EXPECT_EQ(core::split_at_reversals(strokes, 28.8, 120.0), 1u);
+    ASSERT_EQ(strokes.size(), 2u);
+    const core::StrokeGeometry &out = strokes[0], &back = strokes[1];
+    EXPECT_EQ(out.points_px.front(), dvec2(0, 0));
+    EXPECT_EQ(back.points_px.back(), dvec2(0, 6));
+    EXPECT_EQ(out.points_px.back(), back.points_px.front());
+    EXPECT_LE(glm::length(out.points_px.back() - dvec2(80, 0)), 2.0) << "cut at the tip";
+    EXPECT_EQ(out.ends[0], core::StrokeEnd::kFree);
+    EXPECT_EQ(out.ends[1], core::StrokeEnd::kCorner);
+    EXPECT_EQ(back.ends[0], core::StrokeEnd::kCorner);
+    EXPECT_EQ(back.ends[1], core::StrokeEnd::kFree);
+    EXPECT_EQ(out.edges.size() + back.edges.size(), 80u + 81u);
+}
+
+TEST(StrokeReversal, FoldsCornersAndLoopsStayWhole) {
+    std::vector<core::StrokeGeometry> strokes{
+        through({{0, 0}, {60, 0}, {45, 2}, {120, 2}}, 0),     // a fold 15 px back, shorter than the scale
+        through({{0, 50}, {60, 50}, {60, 110}}, 1000),       // a right-angle corner
+        through({{0, 200}, {80, 200}, {0, 206}, {0, 200}}, 2000),  // a thin loop
+    };
+    strokes[2].closed = true;
+    const std::vector<core::StrokeGeometry> before = strokes;
+    EXPECT_EQ(core::split_at_reversals(strokes, 28.8, 120.0), 0u);
+    ASSERT_EQ(strokes.size(), before.size());
+    for (size_t i = 0; i < strokes.size(); ++i) EXPECT_EQ(strokes[i].points_px, before[i].points_px) << i;
+}
+
+TEST(OccludedLeft, WhatTheJoinsTookIsLeftOut) {
+    auto polyline = [](std::vector<dvec2> pts, bool closed) {
+        core::Polyline p;
+        p.visible = false;
+        p.closed = closed;
+        for (const dvec2& q : pts) p.points_px.push_back(q), p.points_world.push_back(glm::dvec3(q, 0.0));
+        for (size_t k = 0; k + 1 < pts.size(); ++k) p.edges.push_back(uint32_t(10 * pts.size() + k));
+        return p;
+    };
+    const std::vector<core::Polyline> occluded{
+        polyline({{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}, {5, 0}}, false),  // segment 2 taken
+        polyline({{0, 5}, {1, 5}, {2, 5}}, false),                          // bridged whole
+        polyline({{0, 9}, {1, 9}, {1, 10}, {0, 10}, {0, 9}}, true),         // a loop, segment 0 taken
+        polyline({{7, 7}, {8, 8}}, false),                                   // untouched
+    };
+    core::OccludedUse use;
+    use.runs = {0, 1, 0, 0};
+    use.segments = {{0, 2}, {2, 0}};
+    const std::vector<core::Polyline> left = core::occluded_left(occluded, use);
+    ASSERT_EQ(left.size(), 4u);
+    EXPECT_EQ(left[0].points_px, (std::vector<dvec2>{{0, 0}, {1, 0}, {2, 0}}));
+    EXPECT_EQ(left[1].points_px, (std::vector<dvec2>{{3, 0}, {4, 0}, {5, 0}}));
+    EXPECT_EQ(left[1].edges, (std::vector<uint32_t>{63, 64}));
+    EXPECT_EQ(left[2].points_px, (std::vector<dvec2>{{1, 9}, {1, 10}, {0, 10}, {0, 9}})) << "opened after the cut";
+    EXPECT_FALSE(left[2].closed);
+    EXPECT_EQ(left[3].points_px, occluded[3].points_px);
+    for (const core::Polyline& p : left) {
+        EXPECT_FALSE(p.visible);
+        EXPECT_EQ(p.points_world.size(), p.points_px.size());
+        EXPECT_EQ(p.edges.size() + 1, p.points_px.size());
+    }
 }
 
 }  // namespace

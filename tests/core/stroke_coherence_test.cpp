@@ -127,6 +127,28 @@ TEST(StrokeCoherence, SameVisibilityComesFirst) {
     EXPECT_EQ(m[1].id, 2u);
 }
 
+TEST(StrokeCoherence, SameVisibilityComesFirstOverEveryRadius) {
+    // A visible line sweeping fast (16 px since last frame: only the wider radius finds it) and
+    // a small hidden piece right on last frame's line: the visible line keeps the id.
+    const core::StrokeCoherence state({trace(candidate({0, 0}, {200, 0}, 0), 4, 0.0)}, 5);
+    core::StrokeCandidate piece = candidate({100, 1}, {110, 1}, 600, 1);
+    piece.visible = false;
+    const auto m = state.match({candidate({0, 16}, {200, 16}, 500), piece});
+    EXPECT_EQ(m[0].id, 4u);
+    EXPECT_EQ(m[1].id, 5u);
+}
+
+TEST(StrokeCoherence, SideSamplesPassOverATangleAtTheEnd) {
+    // The stroke runs back and forth near its end (a zig-zag tangle), then away along x: its
+    // side is sampled where it first gets 2, 4, ... 12 px from the end.
+    const std::vector<dvec2> zigzag{{0, 0}, {3, 0}, {1, 0}, {3.5, 0}, {0.5, 0}, {20, 0}};
+    const std::vector<dvec2> side = core::side_samples(zigzag, 0);
+    ASSERT_EQ(side.size(), 6u);
+    for (size_t i = 0; i < side.size(); ++i) EXPECT_NEAR(side[i].x, 2.0 * double(i + 1), 1e-9) << i;
+    std::vector<dvec2> reversed(zigzag.rbegin(), zigzag.rend());
+    EXPECT_EQ(core::side_samples(reversed, 1), side);
+}
+
 TEST(StrokeCoherence, LoopStartStaysPut) {
     // A square loop seen twice: the start stays where it was.
     core::StrokeCandidate loop;
