@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Renders the two coherence sequences of issue 5 to polylines JSON and measures them:
-# the torus sample and a mesh of your choice, each turning 3 degrees per frame (120 frames),
-# 1024 x 1024, default brush.
+# Renders the two coherence sequences to polylines JSON and measures them: the torus sample
+# and a mesh of your choice, each turning 3 degrees per frame (120 frames), 1024 x 1024,
+# default brush; each once as it is and once with hidden lines kept (--hidden), where a line
+# that comes into view shows the id it had while hidden.
 #
 #   bash bench/coherence/render.sh [BUILD_DIR] [MESH] [OUT_DIR]
 #
@@ -18,13 +19,23 @@ inkline="$build/cli/inkline"
 [ -x "$inkline" ] || { echo "build $inkline first (cmake --build $build)" >&2; exit 1; }
 mkdir -p "$out"
 
-echo "== torus sample, 3 degrees per frame"
+# measure NAME SCENE: renders SCENE without and with hidden lines under $out/NAME and
+# $out/NAME-hidden, and measures both.
+measure() {
+  local name=$1 scene=$2
+  echo "== $name, 3 degrees per frame"
+  rm -rf "${out:?}/$name/json" "${out:?}/$name-hidden"
+  "$inkline" render "$scene" -q --json "$out/$name/json/f_%04d.json"
+  python3 "$here/coherence.py" "$out/$name/json" --worst 3
+  echo "== $name, 3 degrees per frame, --hidden"
+  "$inkline" render "$scene" -q --hidden --json "$out/$name-hidden/json/f_%04d.json"
+  python3 "$here/coherence.py" "$out/$name-hidden/json" --worst 3
+}
+
 rm -rf "$out/torus"
-"$inkline" render "$here/torus_3deg.json" -q --json "$out/torus/json/f_%04d.json"
-python3 "$here/coherence.py" "$out/torus/json" --worst 3
+measure torus "$here/torus_3deg.json"
 
 if [ -n "$mesh" ]; then
-  echo "== $(basename "$mesh"), 3 degrees per frame"
   rm -rf "$out/mesh"
   mkdir -p "$out/mesh"
   # The default turntable's camera (core::default_turntable_scene), over 120 frames.
@@ -42,7 +53,6 @@ json.dump({"version": 1, "mesh": mesh, "frames": [1, 120], "image": {"width": 10
            "camera": {"eye": eye, "target": center, "fov_y_deg": 35,
                       "orbit": {"axis": [0, 1, 0], "degrees": 360}}}, sys.stdout, indent=2)
 ' "$(realpath "$mesh")" > "$out/mesh/scene.json"
-  "$inkline" render "$out/mesh/scene.json" -q --json "$out/mesh/json/f_%04d.json"
-  python3 "$here/coherence.py" "$out/mesh/json" --worst 3
+  measure mesh "$out/mesh/scene.json"
 fi
 echo "JSON under $out"
