@@ -42,25 +42,6 @@ std::optional<glm::dvec2> intersect(const glm::dvec2& a, const glm::dvec2& b, co
     return a + r * t;
 }
 
-// Unit tangents by central differences, skipping repeated points.
-std::vector<glm::dvec2> tangents(std::span<const glm::dvec2> c, bool closed) {
-    const auto n = std::ptrdiff_t(c.size());
-    std::vector<glm::dvec2> t(c.size(), glm::dvec2(1.0, 0.0));
-    auto at = [&](std::ptrdiff_t i) {
-        return c[size_t(closed ? ((i % n) + n) % n : std::clamp<std::ptrdiff_t>(i, 0, n - 1))];
-    };
-    for (std::ptrdiff_t i = 0; i < n; ++i) {
-        for (std::ptrdiff_t k = 1; k < n; ++k) {
-            const glm::dvec2 d = at(i + k) - at(i - k);
-            if (glm::length(d) > kSamePointPx) {
-                t[size_t(i)] = glm::normalize(d);
-                break;
-            }
-        }
-    }
-    return t;
-}
-
 struct Side {
     std::vector<glm::dvec2> points;
     std::vector<double> arc;  // centerline arc of each point's source, for the fold search
@@ -147,7 +128,7 @@ std::vector<Ring> build_outline(std::span<const glm::dvec2> c, std::span<const d
     const size_t n = c.size();
     if (n < 2 || w.size() != n) return rings;
     const double step = glm::radians(std::max(options.join_step_deg, 1.0));
-    const std::vector<glm::dvec2> t = tangents(c, closed);
+    const std::vector<glm::dvec2> t = centerline_tangents(c, closed);
     const double reach = *std::max_element(w.begin(), w.end()) + kFoldReachPx;
     const std::vector<glm::dvec2> left = remove_folds(offset_side(c, w, t, closed, 1.0, step), reach);
     const std::vector<glm::dvec2> right = remove_folds(offset_side(c, w, t, closed, -1.0, step), reach);
@@ -175,6 +156,24 @@ std::vector<Ring> build_outline(std::span<const glm::dvec2> c, std::span<const d
     }
     std::erase_if(rings, [](const Ring& r) { return r.size() < 3; });
     return rings;
+}
+
+std::vector<glm::dvec2> centerline_tangents(std::span<const glm::dvec2> c, bool closed) {
+    const auto n = std::ptrdiff_t(c.size());
+    std::vector<glm::dvec2> t(c.size(), glm::dvec2(1.0, 0.0));
+    auto at = [&](std::ptrdiff_t i) {
+        return c[size_t(closed ? ((i % n) + n) % n : std::clamp<std::ptrdiff_t>(i, 0, n - 1))];
+    };
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+        for (std::ptrdiff_t k = 1; k < n; ++k) {
+            const glm::dvec2 d = at(i + k) - at(i - k);
+            if (glm::length(d) > kSamePointPx) {
+                t[size_t(i)] = glm::normalize(d);
+                break;
+            }
+        }
+    }
+    return t;
 }
 
 double signed_area(const Ring& ring) {

@@ -23,6 +23,11 @@ struct OutlineOptions {
 std::vector<Ring> build_outline(std::span<const glm::dvec2> centerline, std::span<const double> width, bool closed,
                                 const OutlineOptions& options);
 
+// Unit tangents of a centerline by central differences over the nearest distinct neighbours
+// (wrapping round a loop); the outline's normals are their perpendiculars, and a preview drawn
+// along the same centerline uses the same ones.
+std::vector<glm::dvec2> centerline_tangents(std::span<const glm::dvec2> centerline, bool closed);
+
 // Signed area (shoelace), px^2; positive for counter-clockwise in a y-up frame.
 double signed_area(const Ring& ring);
 

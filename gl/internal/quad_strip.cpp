@@ -2,6 +2,7 @@
 #include "gl/internal/quad_strip.h"
 
 #include "core/error.h"
+#include "core/outline.h"
 
 #include <glm/geometric.hpp>
 
@@ -24,25 +25,6 @@ struct Sample {
     double u = 0.0;
     double width = 0.0;
 };
-
-// Unit tangents by central differences over the nearest distinct neighbours, as the outline's.
-std::vector<glm::dvec2> tangents(const std::vector<Sample>& c, bool closed) {
-    const auto n = std::ptrdiff_t(c.size());
-    std::vector<glm::dvec2> t(c.size(), glm::dvec2(1.0, 0.0));
-    auto at = [&](std::ptrdiff_t i) {
-        return c[size_t(closed ? ((i % n) + n) % n : std::clamp<std::ptrdiff_t>(i, 0, n - 1))].p;
-    };
-    for (std::ptrdiff_t i = 0; i < n; ++i) {
-        for (std::ptrdiff_t k = 1; k < n; ++k) {
-            const glm::dvec2 d = at(i + k) - at(i - k);
-            if (glm::length(d) > kSamePointPx) {
-                t[size_t(i)] = glm::normalize(d);
-                break;
-            }
-        }
-    }
-    return t;
-}
 
 // A half-disc fan of radius `half` around `centre`, bulging along `out` (a unit vector, the
 // tangent at the end or its opposite), its rim points on the circle as the outline's cap.
@@ -82,7 +64,9 @@ QuadStrip quad_strip(const core::Stroke& stroke, const QuadStripOptions& options
     }
     if (strip.closed && c.size() > 2 && glm::length(c.front().p - c.back().p) <= kSamePointPx) c.pop_back();
     if (c.size() < 2) return strip;
-    const std::vector<glm::dvec2> t = tangents(c, strip.closed);
+    std::vector<glm::dvec2> points(c.size());
+    std::transform(c.begin(), c.end(), points.begin(), [](const Sample& sample) { return sample.p; });
+    const std::vector<glm::dvec2> t = core::centerline_tangents(points, strip.closed);
 
     // Two vertices per sample, a quad between neighbours; a loop repeats its first pair at the
     // end with s and u one loop further on, so texture coordinates run on across the seam.
