@@ -6,36 +6,53 @@
 
 #include <cairo.h>
 
-namespace inkline::output {
+#include <memory>
+#include <string>
 
-std::string png_image(const Drawing& drawing) {
-    cairo_surface_t* surface =
-        cairo_image_surface_create(CAIRO_FORMAT_ARGB32, drawing.image.width, drawing.image.height);
-    cairo_t* cr = cairo_create(surface);
-    internal::paint_drawing(cr, drawing);
-    cairo_destroy(cr);
+namespace inkline::output {
+namespace {
+
+using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+
+// A blank ARGB32 image surface, or an InternalError naming Cairo's reason.
+Surface image_surface(int width, int height) {
+    Surface surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height), cairo_surface_destroy);
+    const cairo_status_t status = cairo_surface_status(surface.get());
+    if (status != CAIRO_STATUS_SUCCESS) {
+        throw InternalError(std::string("PNG image surface: ") + cairo_status_to_string(status));
+    }
+    return surface;
+}
+
+std::string encode_png(const Surface& surface) {
     std::string bytes;
-    const cairo_status_t status = cairo_surface_write_to_png_stream(surface, internal::append_to_string, &bytes);
-    cairo_surface_destroy(surface);
+    const cairo_status_t status =
+        cairo_surface_write_to_png_stream(surface.get(), internal::append_to_string, &bytes);
     if (status != CAIRO_STATUS_SUCCESS) {
         throw InternalError(std::string("PNG encoding failed: ") + cairo_status_to_string(status));
     }
     return bytes;
 }
 
+}  // namespace
+
+std::string png_image(const Drawing& drawing) {
+    const Surface surface = image_surface(drawing.image.width, drawing.image.height);
+    {
+        const std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
+        internal::paint_drawing(cr.get(), drawing);
+    }
+    return encode_png(surface);
+}
+
 std::string png_from_rgba(int width, int height, std::span<const uint8_t> rgba) {
     INKLINE_CHECK(width > 0 && height > 0);
     INKLINE_CHECK_EQ(rgba.size(), size_t(width) * size_t(height) * 4);
-    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
-    if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
-        const cairo_status_t status = cairo_surface_status(surface);
-        cairo_surface_destroy(surface);
-        throw InternalError(std::string("PNG image surface: ") + cairo_status_to_string(status));
-    }
+    const Surface surface = image_surface(width, height);
     // Cairo's ARGB32 is premultiplied, one native-endian 32-bit word per pixel.
-    cairo_surface_flush(surface);
-    unsigned char* data = cairo_image_surface_get_data(surface);
-    const int stride = cairo_image_surface_get_stride(surface);
+    cairo_surface_flush(surface.get());
+    unsigned char* data = cairo_image_surface_get_data(surface.get());
+    const int stride = cairo_image_surface_get_stride(surface.get());
     for (int y = 0; y < height; ++y) {
         auto* row = reinterpret_cast<uint32_t*>(data + size_t(y) * size_t(stride));
         for (int x = 0; x < width; ++x) {
@@ -45,14 +62,8 @@ std::string png_from_rgba(int width, int height, std::span<const uint8_t> rgba) 
             row[x] = a << 24 | premultiply(p[0]) << 16 | premultiply(p[1]) << 8 | premultiply(p[2]);
         }
     }
-    cairo_surface_mark_dirty(surface);
-    std::string bytes;
-    const cairo_status_t status = cairo_surface_write_to_png_stream(surface, internal::append_to_string, &bytes);
-    cairo_surface_destroy(surface);
-    if (status != CAIRO_STATUS_SUCCESS) {
-        throw InternalError(std::string("PNG encoding failed: ") + cairo_status_to_string(status));
-    }
-    return bytes;
+    cairo_surface_mark_dirty(surface.get());
+    return encode_png(surface);
 }
 
 }  // namespace inkline::output
