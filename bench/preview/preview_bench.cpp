@@ -26,8 +26,7 @@
 #include "gl/brush_tip.h"
 #include "gl/context.h"
 #include "gl/preview.h"
-
-#include <cairo.h>
+#include "tests/support/raster.h"
 
 #include <algorithm>
 #include <chrono>
@@ -45,6 +44,7 @@ namespace core = inkline::core;
 namespace gl = inkline::gl;
 namespace output = inkline::output;
 namespace fs = std::filesystem;
+namespace test = inkline::test;
 
 double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -54,44 +54,6 @@ double median(std::vector<double> v) {
     if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
     return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-// Ink coverage (alpha above one half) of an encoded PNG, decoded by Cairo.
-std::vector<uint8_t> coverage(const std::string& png) {
-    struct Reader {
-        const std::string& bytes;
-        size_t at = 0;
-    } reader{png};
-    auto read = [](void* closure, unsigned char* data, unsigned int length) {
-        auto* r = static_cast<Reader*>(closure);
-        if (r->at + length > r->bytes.size()) return CAIRO_STATUS_READ_ERROR;
-        std::copy_n(r->bytes.data() + r->at, length, data);
-        r->at += length;
-        return CAIRO_STATUS_SUCCESS;
-    };
-    cairo_surface_t* s = cairo_image_surface_create_from_png_stream(read, &reader);
-    const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
-    const int stride = cairo_image_surface_get_stride(s);
-    const unsigned char* data = cairo_image_surface_get_data(s);
-    std::vector<uint8_t> ink(size_t(w) * size_t(h));
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-            uint32_t p = 0;
-            std::copy_n(data + size_t(y) * size_t(stride) + 4 * size_t(x), 4, reinterpret_cast<unsigned char*>(&p));
-            ink[size_t(y) * size_t(w) + size_t(x)] = (p >> 24) > 127;
-        }
-    }
-    cairo_surface_destroy(s);
-    return ink;
-}
-
-double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-    size_t both = 0, either = 0;
-    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
-        both += a[i] && b[i];
-        either += a[i] || b[i];
-    }
-    return either ? double(both) / double(either) : 1.0;
 }
 
 void write(const fs::path& path, const std::string& bytes) {
@@ -199,7 +161,8 @@ int run(const Args& args) {
         const output::Drawing drawing = output::brush_drawing(lines, strokes, style, false);
         const std::string cairo = output::png_image(drawing);
         cairo_total.push_back(ms_since(start));
-        overlap.push_back(iou(coverage(png), coverage(cairo)));
+        overlap.push_back(
+            test::iou(test::png_coverage(png, test::Ink::kAlpha), test::png_coverage(cairo, test::Ink::kAlpha)));
 
         if (!args.out.empty()) {
             write(fs::path(args.out) / core::format_frame("preview_%04d.png", frame), png);

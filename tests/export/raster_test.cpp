@@ -10,10 +10,10 @@
 #include "core/topology.h"
 #include "tests/support/obj.h"
 #include "tests/support/pipeline.h"
+#include "tests/support/raster.h"
 #include "tests/support/run.h"
 #include "tests/support/shapes.h"
 
-#include <cairo.h>
 #include <gtest/gtest.h>
 
 namespace inkline {
@@ -21,36 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Ink coverage of a PNG: alpha above one half for transparent images, or darker than mid-grey
+// Ink coverage of a PNG: alpha above one half for transparent pixels, or darker than mid-grey
 // over an opaque background.
-std::vector<uint8_t> coverage(const fs::path& png) {
-    cairo_surface_t* s = cairo_image_surface_create_from_png(png.c_str());
-    EXPECT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS) << png;
-    const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
-    const int stride = cairo_image_surface_get_stride(s);
-    const unsigned char* data = cairo_image_surface_get_data(s);
-    const bool has_alpha = cairo_image_surface_get_format(s) == CAIRO_FORMAT_ARGB32;
-    std::vector<uint8_t> ink(size_t(w) * size_t(h));
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-            const uint32_t p = *reinterpret_cast<const uint32_t*>(data + y * stride + 4 * x);
-            const int a = int(p >> 24), g = int((p >> 8) & 0xff);
-            ink[size_t(y) * size_t(w) + size_t(x)] = has_alpha && a < 255 ? a > 127 : g < 128;
-        }
-    }
-    cairo_surface_destroy(s);
-    return ink;
-}
-
-double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-    EXPECT_EQ(a.size(), b.size());
-    size_t both = 0, either = 0;
-    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
-        both += a[i] && b[i];
-        either += a[i] || b[i];
-    }
-    return either ? double(both) / double(either) : 1.0;
-}
+std::vector<uint8_t> coverage(const fs::path& png) { return test::png_file_coverage(png, test::Ink::kAlphaOrDark); }
 
 class Raster : public ::testing::Test {
   protected:
@@ -77,7 +50,7 @@ TEST_F(Raster, SvgIsWellFormedAndRendersLikeCairo) {
     const test::RunResult rsvg =
         test::run_shell("rsvg-convert " + (dir / "f.svg").string() + " -o " + (dir / "rsvg.png").string());
     ASSERT_EQ(rsvg.code, 0) << rsvg.output;
-    EXPECT_GE(iou(coverage(dir / "rsvg.png"), coverage(dir / "f.png")), 0.98);
+    EXPECT_GE(test::iou(coverage(dir / "rsvg.png"), coverage(dir / "f.png")), 0.98);
 }
 
 TEST_F(Raster, BrushOutlinesRenderAlikeInSvgAndCairo) {
@@ -95,7 +68,7 @@ TEST_F(Raster, BrushOutlinesRenderAlikeInSvgAndCairo) {
     test::write_text(dir / "f.svg", output::svg_document(d, {}));
     test::write_text(dir / "f.png", output::png_image(d));
     ASSERT_EQ(test::run_shell("rsvg-convert " + (dir / "f.svg").string() + " -o " + (dir / "rsvg.png").string()).code, 0);
-    EXPECT_GE(iou(coverage(dir / "rsvg.png"), coverage(dir / "f.png")), 0.98);
+    EXPECT_GE(test::iou(coverage(dir / "rsvg.png"), coverage(dir / "f.png")), 0.98);
 }
 
 TEST_F(Raster, PdfHasOnePagePerFrameAndRendersLikeCairo) {
@@ -116,7 +89,7 @@ TEST_F(Raster, PdfHasOnePagePerFrameAndRendersLikeCairo) {
     const test::RunResult ppm = test::run_shell("pdftoppm -png -r 96 -f 1 -l 1 -singlefile " + (dir / "seq.pdf").string() +
                                                 " " + (dir / "page").string());
     ASSERT_EQ(ppm.code, 0) << ppm.output;
-    EXPECT_GE(iou(coverage(dir / "page.png"), coverage(dir / "f.png")), 0.98);
+    EXPECT_GE(test::iou(coverage(dir / "page.png"), coverage(dir / "f.png")), 0.98);
 }
 
 TEST_F(Raster, PageSizesFitTheImage) {

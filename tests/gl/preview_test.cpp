@@ -13,14 +13,13 @@
 #include "gl/depth_visibility.h"
 #include "tests/gl/context_or_skip.h"
 #include "tests/support/pipeline.h"
+#include "tests/support/raster.h"
 #include "tests/support/shapes.h"
 
-#include <cairo.h>
 #include <glm/ext/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstring>
 #include <string>
 
 namespace inkline {
@@ -65,43 +64,7 @@ std::vector<uint8_t> coverage(const gl::PreviewImage& image) {
 }
 
 // Alpha above one half in an encoded PNG (Cairo decodes it to premultiplied ARGB32).
-std::vector<uint8_t> coverage(const std::string& png) {
-    struct Reader {
-        const std::string& bytes;
-        size_t at = 0;
-    } reader{png};
-    auto read = [](void* closure, unsigned char* data, unsigned int length) {
-        auto* r = static_cast<Reader*>(closure);
-        if (r->at + length > r->bytes.size()) return CAIRO_STATUS_READ_ERROR;
-        std::memcpy(data, r->bytes.data() + r->at, length);
-        r->at += length;
-        return CAIRO_STATUS_SUCCESS;
-    };
-    cairo_surface_t* s = cairo_image_surface_create_from_png_stream(read, &reader);
-    EXPECT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
-    const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
-    const int stride = cairo_image_surface_get_stride(s);
-    const unsigned char* data = cairo_image_surface_get_data(s);
-    std::vector<uint8_t> ink(size_t(w) * size_t(h));
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-            const uint32_t p = *reinterpret_cast<const uint32_t*>(data + y * stride + 4 * x);
-            ink[size_t(y) * size_t(w) + size_t(x)] = (p >> 24) > 127;
-        }
-    }
-    cairo_surface_destroy(s);
-    return ink;
-}
-
-double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
-    EXPECT_EQ(a.size(), b.size());
-    size_t both = 0, either = 0;
-    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
-        both += a[i] && b[i];
-        either += a[i] || b[i];
-    }
-    return either ? double(both) / double(either) : 1.0;
-}
+std::vector<uint8_t> coverage(const std::string& png) { return test::png_coverage(png, test::Ink::kAlpha); }
 
 std::string cairo_png(const Frame& f) {
     return output::png_image(output::brush_drawing(f.lines, f.strokes, {}, false));
@@ -148,7 +111,7 @@ TEST(Preview, InkCoverageMatchesCairoOutlines) {
         const gl::PreviewImage image = preview(gl::Backend::kAuto, frame, gl::default_brush_tip());
         ASSERT_EQ(image.width, frame.lines.image.width);
         const std::vector<uint8_t> cairo = coverage(cairo_png(frame));
-        const double overlap = iou(coverage(image), cairo);
+        const double overlap = test::iou(coverage(image), cairo);
         size_t ink = 0;
         for (uint8_t c : cairo) ink += c;
         ASSERT_GT(ink, 1000u) << name << ": the frame has lines";
