@@ -44,29 +44,9 @@ double cpu_ms() {
     return 1e3 * double(t.tv_sec) + 1e-6 * double(t.tv_nsec);
 }
 
-// Pushes a unit sphere out by Gaussian bumps of random height and width at `count` points.
+// A unit sphere pushed out by `count` Gaussian bumps of random height and width.
 core::Mesh bumpy(core::Mesh m, int count, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> height(0.02, 0.08), width(0.08, 0.25);
-    struct Bump {
-        glm::dvec3 centre;
-        double height, inv_width2;
-    };
-    std::vector<Bump> bumps;
-    for (int k = 0; k < count; ++k) {
-        const double y = 1.0 - 2.0 * (k + 0.5) / count;
-        const double phi = k * std::numbers::pi * (3.0 - std::sqrt(5.0));
-        const double rho = std::sqrt(1.0 - y * y);
-        const double w = width(rng);
-        bumps.push_back({{rho * std::cos(phi), y, rho * std::sin(phi)}, height(rng), 1.0 / (w * w)});
-    }
-    for (glm::vec3& p : m.positions) {
-        const glm::dvec3 dir = glm::normalize(glm::dvec3(p));
-        double r = 1.0;
-        for (const Bump& b : bumps) r += b.height * std::exp(-2.0 * (1.0 - glm::dot(dir, b.centre)) * b.inv_width2);
-        p = glm::vec3(dir * r);
-    }
-    return m;
+    return test::bumpy_sphere(std::move(m), {.count = count, .seed = seed});
 }
 
 // Random radial jitter of about a fifth of an edge: a rough surface, silhouettes everywhere.

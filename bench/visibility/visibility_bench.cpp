@@ -33,8 +33,6 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
-#include <numbers>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -53,28 +51,13 @@ double ms_since(Clock::time_point start) {
 // A unit sphere pushed out by Gaussian bumps at `count` points and jittered radially by up to
 // `rough`: bumps hide parts of each other's silhouettes, jitter adds short silhouette loops.
 core::Mesh bumpy_sphere(int levels, int count, double rough, uint32_t seed) {
-    core::Mesh m = test::icosphere(levels);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> height(0.05, 0.2), width(0.1, 0.3), jitter(-rough, rough);
-    struct Bump {
-        glm::dvec3 centre;
-        double height, inv_width2;
-    };
-    std::vector<Bump> bumps;
-    for (int k = 0; k < count; ++k) {
-        const double y = 1.0 - 2.0 * (k + 0.5) / count;
-        const double phi = k * std::numbers::pi * (3.0 - std::sqrt(5.0));
-        const double rho = std::sqrt(1.0 - y * y);
-        const double w = width(rng);
-        bumps.push_back({{rho * std::cos(phi), y, rho * std::sin(phi)}, height(rng), 1.0 / (w * w)});
-    }
-    for (glm::vec3& p : m.positions) {
-        const glm::dvec3 dir = glm::normalize(glm::dvec3(p));
-        double r = 1.0 + jitter(rng);
-        for (const Bump& b : bumps) r += b.height * std::exp(-2.0 * (1.0 - glm::dot(dir, b.centre)) * b.inv_width2);
-        p = glm::vec3(dir * r);
-    }
-    return m;
+    return test::bumpy_sphere(test::icosphere(levels), {.count = count,
+                                                        .seed = seed,
+                                                        .height_min = 0.05,
+                                                        .height_max = 0.2,
+                                                        .width_min = 0.1,
+                                                        .width_max = 0.3,
+                                                        .jitter = rough});
 }
 
 // Torus around y with a tube radius modulated by waves.

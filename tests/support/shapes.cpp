@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -141,6 +142,33 @@ Mesh icosphere(int levels) {
             split.emplace_back(mid.x, mid.y, mid.z);
         }
         m.triangles = std::move(split);
+    }
+    return m;
+}
+
+Mesh bumpy_sphere(Mesh m, const Bumps& b) {
+    std::mt19937 rng(b.seed);
+    std::uniform_real_distribution<double> height(b.height_min, b.height_max), width(b.width_min, b.width_max);
+    struct Bump {
+        glm::dvec3 centre;
+        double height, inv_width2;
+    };
+    std::vector<Bump> bumps;
+    for (int k = 0; k < b.count; ++k) {
+        const double y = 1.0 - 2.0 * (k + 0.5) / b.count;
+        const double phi = k * std::numbers::pi * (3.0 - std::sqrt(5.0));
+        const double rho = std::sqrt(1.0 - y * y);
+        const double w = width(rng);
+        bumps.push_back({{rho * std::cos(phi), y, rho * std::sin(phi)}, height(rng), 1.0 / (w * w)});
+    }
+    std::uniform_real_distribution<double> jitter(-b.jitter, b.jitter);
+    for (glm::vec3& p : m.positions) {
+        const glm::dvec3 dir = glm::normalize(glm::dvec3(p));
+        double r = 1.0 + (b.jitter > 0.0 ? jitter(rng) : 0.0);
+        for (const Bump& bump : bumps) {
+            r += bump.height * std::exp(-2.0 * (1.0 - glm::dot(dir, bump.centre)) * bump.inv_width2);
+        }
+        p = glm::vec3(dir * r);
     }
     return m;
 }

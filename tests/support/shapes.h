@@ -4,6 +4,8 @@
 
 #include "core/mesh.h"
 
+#include <cstdint>
+
 namespace inkline::test {
 
 // UV sphere centred at the origin, poles on +-y, closed with triangle fans at the poles.
@@ -17,6 +19,17 @@ core::Mesh cube(double half_size);
 // Unit icosphere: an icosahedron split `levels` times into four (20 * 4^levels faces), every
 // vertex on the unit sphere. Vertex indices scatter over the surface as subdivision adds them.
 core::Mesh icosphere(int levels);
+// What bumpy_sphere raises on a unit sphere: `count` Gaussian bumps spread evenly over it (a
+// Fibonacci lattice), each with a height and a width drawn uniformly from their ranges, seeded.
+struct Bumps {
+    int count = 40;
+    uint32_t seed = 1;
+    double height_min = 0.02, height_max = 0.08;
+    double width_min = 0.08, width_max = 0.25;
+    double jitter = 0.0;  // each vertex's radius then moves by up to this much, at random
+};
+// A unit sphere mesh (every vertex on it, as icosphere gives) pushed out by bumps.
+core::Mesh bumpy_sphere(core::Mesh unit_sphere, const Bumps& bumps);
 // Torus around y (major radius 1, tube radius 0.35) whose tube radius is modulated by two waves of
 // relative amplitudes `wave` (sin 7u sin 3v) and `ripple` (sin(23u + 5v)): folds and
 // self-occlusion everywhere. Faces in grid order, two per quad.
