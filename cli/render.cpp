@@ -94,16 +94,6 @@ bool is_scene_file(const std::string& path) {
     return ext == ".json" || ext == ".JSON";
 }
 
-// World-space bounds of object-space bounds under a transform (its eight corners).
-core::Bounds transform_bounds(const core::Bounds& b, const glm::dmat4& world_from_object) {
-    core::Bounds out;
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
-        out.add(glm::dvec3(world_from_object * glm::dvec4(corner, 1.0)));
-    }
-    return out;
-}
-
 bool inside(const core::Bounds& b, const glm::dvec3& p) {
     return glm::all(glm::greaterThanEqual(p, b.min)) && glm::all(glm::lessThanEqual(p, b.max));
 }
@@ -218,7 +208,7 @@ class Sequence {
 
         const glm::dmat4 world_from_object = core::world_from_object_at(scene_, frame);
         const core::Bounds object_bounds = core::bounds_of(mesh.positions);
-        result.camera = core::camera_at(scene_, frame, transform_bounds(object_bounds, world_from_object));
+        result.camera = core::camera_at(scene_, frame, core::transformed(object_bounds, world_from_object));
         const core::Projection projection(result.camera, scene_.image, world_from_object);
         if (!warned_inside_ && inside(object_bounds, projection.eye_object())) {
             warned_inside_ = true;

@@ -23,6 +23,16 @@ Bounds bounds_of(const std::vector<glm::vec3>& positions) {
     return b;
 }
 
+Bounds transformed(const Bounds& b, const glm::dmat4& transform) {
+    Bounds out;
+    if (!b.valid) return out;
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
+        out.add(glm::dvec3(transform * glm::dvec4(corner, 1.0)));
+    }
+    return out;
+}
+
 glm::dvec3 face_normal(const std::vector<glm::vec3>& positions, const glm::uvec3& tri) {
     const glm::dvec3 a(positions[tri.x]);
     const glm::dvec3 b(positions[tri.y]);

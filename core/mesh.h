@@ -2,6 +2,7 @@
 // A triangle mesh as plain arrays: positions in object space and counter-clockwise triangles.
 #pragma once
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -26,6 +27,10 @@ struct Bounds {
 };
 
 Bounds bounds_of(const std::vector<glm::vec3>& positions);
+
+// Bounds of a box's eight corners under a transform: they hold every point of the box moved by
+// it (what a camera fits its near and far planes to, from a mesh's object-space bounds).
+Bounds transformed(const Bounds& b, const glm::dmat4& transform);
 
 // Unnormalised face normal (cross product of two edges), in double precision.
 glm::dvec3 face_normal(const std::vector<glm::vec3>& positions, const glm::uvec3& tri);

@@ -90,16 +90,6 @@ double peak_rss_mb() {
     std::exit(2);
 }
 
-// World-space bounds of object-space bounds under a transform, as the CLI fits near and far.
-core::Bounds transform_bounds(const core::Bounds& b, const glm::dmat4& world_from_object) {
-    core::Bounds out;
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
-        out.add(glm::dvec3(world_from_object * glm::dvec4(corner, 1.0)));
-    }
-    return out;
-}
-
 const char* const kStages[] = {"extract", "chain", "visibility", "strokes", "svg"};
 
 int run(int argc, char** argv) {
@@ -154,7 +144,7 @@ int run(int argc, char** argv) {
             lines.light = scene.light;
             const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
             lines.camera =
-                core::camera_at(scene, frame, transform_bounds(core::bounds_of(mesh.positions), world_from_object));
+                core::camera_at(scene, frame, core::transformed(core::bounds_of(mesh.positions), world_from_object));
             const core::Projection projection(lines.camera, scene.image, world_from_object);
             std::map<std::string, Laps::Lap> stage;
 

@@ -133,10 +133,8 @@ int run(const Args& args) {
         lines.image = scene.image;
         lines.light = scene.light;
         const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
-        core::Bounds world;
-        for (const glm::vec3& p : mesh.positions)
-            world.add(glm::dvec3(world_from_object * glm::dvec4(glm::dvec3(p), 1.0)));
-        lines.camera = core::camera_at(scene, frame, world);
+        lines.camera =
+            core::camera_at(scene, frame, core::transformed(core::bounds_of(mesh.positions), world_from_object));
         const core::Projection projection(lines.camera, scene.image, world_from_object);
         const core::FeatureEdges features =
             core::extract_feature_edges(mesh, table, projection.eye_object(), scene.lines);

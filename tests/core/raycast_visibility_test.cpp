@@ -129,17 +129,6 @@ TEST(RaycastVisibility, AgreesWithExactOnAnalyticShapes) {
     }
 }
 
-// World-space bounds of object-space bounds under a transform, as the CLI fits the camera.
-core::Bounds transform_bounds(const core::Bounds& b, const glm::dmat4& world_from_object) {
-    core::Bounds out;
-    for (int i = 0; i < 8; ++i) {
-        const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
-                                (i & 4) ? b.max.z : b.min.z);
-        out.add(glm::dvec3(world_from_object * glm::dvec4(corner, 1.0)));
-    }
-    return out;
-}
-
 TEST(RaycastVisibility, AgreesWithExactOnTheTorusSampleFrames) {
     SKIP_WITHOUT_EMBREE();
     const core::Scene scene = core::load_scene(INKLINE_SAMPLES "/torus/scene.json");
@@ -153,7 +142,7 @@ TEST(RaycastVisibility, AgreesWithExactOnTheTorusSampleFrames) {
         SCOPED_TRACE(frame);
         const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
         const core::Camera camera =
-            core::camera_at(scene, frame, transform_bounds(core::bounds_of(mesh.positions), world_from_object));
+            core::camera_at(scene, frame, core::transformed(core::bounds_of(mesh.positions), world_from_object));
         const core::Projection projection(camera, scene.image, world_from_object);
         expect_agreement(mesh, table, projection, scene.lines, exact, raycast);
     }

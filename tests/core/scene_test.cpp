@@ -2,6 +2,7 @@
 #include "core/scene.h"
 
 #include "core/error.h"
+#include "core/mesh.h"
 #include "tests/support/obj.h"
 
 #include <glm/geometric.hpp>
@@ -116,6 +117,23 @@ TEST(Scene, ObjectRotationAboutItsCenter) {
     const glm::dvec4 p = m * glm::dvec4(2, 0, 0, 1);
     EXPECT_NEAR(p.x, 1.0, 1e-12);  // 90 degrees about (1,0,0): (2,0,0) -> (1,1,0)
     EXPECT_NEAR(p.y, 1.0, 1e-12);
+}
+
+TEST(Scene, TransformedBoundsHoldTheTurnedBox) {
+    core::Bounds box;
+    box.add({-1.0, -2.0, -3.0});
+    box.add({1.0, 2.0, 3.0});
+    // A quarter turn about z and a shift: x and y swap extents, z stays.
+    glm::dmat4 m(0.0);
+    m[0] = {0.0, 1.0, 0.0, 0.0};
+    m[1] = {-1.0, 0.0, 0.0, 0.0};
+    m[2] = {0.0, 0.0, 1.0, 0.0};
+    m[3] = {10.0, 0.0, 0.0, 1.0};
+    const core::Bounds out = core::transformed(box, m);
+    ASSERT_TRUE(out.valid);
+    EXPECT_EQ(out.min, glm::dvec3(8.0, -1.0, -3.0));
+    EXPECT_EQ(out.max, glm::dvec3(12.0, 1.0, 3.0));
+    EXPECT_FALSE(core::transformed(core::Bounds{}, m).valid) << "nothing in, nothing out";
 }
 
 }  // namespace
