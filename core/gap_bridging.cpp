@@ -565,7 +565,6 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
         const std::optional<double> fit_through = continuation_fit(memory[3 * i + 1], memory[3 * i + 2], 0.0, SideHeadings::kOpposite);
         if (!fit_before && !fit_after) continue;
         const bool keep_before = fit_before && (!fit_after || *fit_before <= *fit_after);
-        if (fit_through && *fit_through <= (keep_before ? *fit_before : *fit_after)) continue;
 
         // Strokes change as tees are joined: this one only while both are still as found.
         StrokeGeometry& g = r_strokes[t.stroke];
@@ -577,6 +576,15 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
         StrokeGeometry kept = keep_before ? part_of(x, 0, t.at) : part_of(x, t.at, x.points_px.size() - 1);
         StrokeGeometry rest = keep_before ? part_of(x, t.at, x.points_px.size() - 1) : part_of(x, 0, t.at);
         if (rest.visible_length_px() > options.max_tee_rest_px) continue;
+        // Where last frame's stroke ran on through the crossing stroke more closely, the crossing
+        // stroke stays whole; unless the rest leads on from the junction beside the ending stroke,
+        // along last frame's stroke, and stops sooner: a stub beside the branch it took.
+        if (fit_through && *fit_through <= (keep_before ? *fit_before : *fit_after)) {
+            const bool stub = continuation_fit(memory[3 * i], memory[3 * i + (keep_before ? 2 : 1)], t.jump,
+                                               SideHeadings::kSame) &&
+                              rest.visible_length_px() < g.visible_length_px();
+            if (!stub) continue;
+        }
         if (!keep_before) kept.reverse();  // now it ends at the cut
         StrokeGeometry ending = std::move(g);
         if (t.end == 1) ending.reverse();  // now it starts at the junction

@@ -78,7 +78,9 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
 // kSideSpacingPx away); the part that last frame's stroke continued into is joined to the ending
 // stroke across that short jump (marked hidden), and the rest, at most max_tee_rest_px long,
 // becomes a stroke of its own. Only where last frame's stroke fits the new pair more closely
-// than the two parts of the cut stroke. Deterministic. Returns the number of joins.
+// than the two parts of the cut stroke, or where the rest is a stub beside the ending stroke:
+// leading on from the junction the same way along last frame's stroke, and stopping sooner.
+// Deterministic. Returns the number of joins.
 size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeCoherence& coherence,
                            const GapBridgeOptions& options);
 

@@ -305,6 +305,7 @@ std::optional<double> continuation_fit(const std::vector<SideMemory>& a, const s
             if (ma.id != mb.id) continue;
             if (std::abs(u_step(ma.u, mb.u, ma.period)) > path_px + 2.0 * kSideReachPx) continue;
             if (headings == SideHeadings::kOpposite && (heading(ma) == 0 || heading(ma) != -heading(mb))) continue;
+            if (headings == SideHeadings::kSame && (heading(ma) == 0 || heading(ma) != heading(mb))) continue;
             const double fit = ma.distance + mb.distance;
             if (!best || fit < *best) best = fit;
         }

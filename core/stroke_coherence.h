@@ -85,6 +85,7 @@ std::vector<glm::dvec2> side_samples(const std::vector<glm::dvec2>& points_px, i
 enum class SideHeadings : uint8_t {
     kAny,
     kOpposite,  // clearly (by more than kSideSpacingPx over the side), and opposite ways
+    kSame,      // clearly, and the same way: side by side, both leading on from one place
 };
 
 // Whether two sides continue one stroke of last frame, next to each other along it: its u at

@@ -340,6 +340,35 @@ TEST(StrokeTee, CrossingLineLastFrameDrewWholeStaysWhole) {
     EXPECT_EQ(join_tees(Tee{}.strokes, {}).size(), 2u);
 }
 
+// Last frame's stroke ran on past the junction and turned off along the branch. The crossing
+// stroke's stub goes on straight beside the branch's start, nearer last frame's line there, and
+// stops: the branch is joined, the stub left off. A branch that stops sooner than the stub is not.
+TEST(StrokeTee, AStubBesideTheBranchLastFrameTookIsLeftOff) {
+    const core::StrokeCoherence memory({trace_along({{0, 0}, {45, 0}, {80, 40}}, 7)}, 8);
+    auto tee = [](const std::vector<dvec2>& branch) {
+        std::vector<core::StrokeGeometry> strokes{line({0, 0}, {45, 0}, true, 0), through(branch, 100)};
+        strokes[1].ends = {core::StrokeEnd::kJunction, core::StrokeEnd::kFree};
+        return strokes;
+    };
+    size_t joins = 0;
+    std::vector<core::StrokeGeometry> out = join_tees(tee({{30, 1}, {42, 3}, {80, 40}}), memory, &joins);
+    EXPECT_EQ(joins, 1u);
+    ASSERT_EQ(out.size(), 2u);
+    for (core::StrokeGeometry& g : out) {
+        if (g.points_px.front().x > g.points_px.back().x) g.reverse();
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.length_px() > b.length_px(); });
+    EXPECT_EQ(out[0].points_px.front(), dvec2(0, 0));
+    EXPECT_EQ(out[0].points_px.back(), dvec2(80, 40)) << "the branch joined";
+    EXPECT_EQ(out[1].points_px.front(), dvec2(30, 0));
+    EXPECT_EQ(out[1].points_px.back(), dvec2(45, 0)) << "the stub on its own";
+
+    out = join_tees(tee({{30, 1}, {38, 2}}), memory, &joins);
+    EXPECT_EQ(joins, 0u);
+    ASSERT_EQ(out.size(), 2u);
+    EXPECT_EQ(out[0].points_px.size(), 46u) << "the crossing stroke stays whole";
+}
+
 TEST(StrokeReversal, AHairpinIsCutAtItsTip) {
     // Out 80 px along x and back 6 px below: two strokes meeting at the tip, corners there.
     std::vector<core::StrokeGeometry> strokes{through({{0, 0}, {80, 0}, {0, 6}}, 0)};
