@@ -23,6 +23,9 @@ constexpr double kRejoinPathFactor = 4.0;
 // Two sides that come this close (px) within kSideReachPx of their ends run over each other: a
 // fold, not two lines that merely end near each other.
 constexpr double kFoldTouchPx = 1.0;
+// A stroke that ends this close (px) to another's interior point ends on it: a T-junction. More
+// than kSideSpacingPx, as an end on a line may fall between points of it spaced a few px apart.
+constexpr double kTeeReachPx = 3.0;
 
 using Key = std::pair<double, double>;
 Key key_of(const glm::dvec2& p) { return {p.x, p.y}; }
@@ -479,10 +482,10 @@ StrokeGeometry part_of(const StrokeGeometry& g, size_t begin, size_t end) {
     return out;
 }
 
-// Interior points of open visible strokes on a grid of kSideSpacingPx cells.
+// Interior points of open visible strokes on a grid of kTeeReachPx cells.
 class InteriorGrid {
   public:
-    explicit InteriorGrid(const std::vector<StrokeGeometry>& strokes) : strokes_(strokes), grid_(kSideSpacingPx) {
+    explicit InteriorGrid(const std::vector<StrokeGeometry>& strokes) : strokes_(strokes), grid_(kTeeReachPx) {
         for (size_t s = 0; s < strokes.size(); ++s) {
             const StrokeGeometry& g = strokes[s];
             if (!g.visible || g.closed) continue;
@@ -496,14 +499,14 @@ class InteriorGrid {
         double distance = HUGE_VAL;
     };
     // The interior point of a stroke other than `self`, of the kind, nearest p within
-    // kSideSpacingPx.
+    // kTeeReachPx.
     Hit nearest(const glm::dvec2& p, size_t self, LineKind kind) const {
         Hit best;
         grid_.around(p, [&](const std::pair<size_t, size_t>& sk) {
             const auto [stroke, point] = sk;
             if (stroke == self || strokes_[stroke].kind != kind) return;
             const double d = glm::length(strokes_[stroke].points_px[point] - p);
-            if (d <= kSideSpacingPx && d < best.distance) best = {stroke, point, d};
+            if (d <= kTeeReachPx && d < best.distance) best = {stroke, point, d};
         });
         return best;
     }

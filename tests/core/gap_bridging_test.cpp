@@ -340,6 +340,32 @@ TEST(StrokeTee, CrossingLineLastFrameDrewWholeStaysWhole) {
     EXPECT_EQ(join_tees(Tee{}.strokes, {}).size(), 2u);
 }
 
+TEST(StrokeTee, AnEndBetweenTheCrossingStrokesPointsIsOnIt) {
+    // The crossing stroke has a point every 5 px; the branch ends 1 px beside it, midway between
+    // two of them (2.7 px from either).
+    core::StrokeGeometry crossing;
+    crossing.visible = true;
+    for (int i = 0; i <= 10; ++i) {
+        crossing.points_px.push_back(dvec2(5.0 * i, 0.0));
+        crossing.points_world.push_back(glm::dvec3(5.0 * i, 0.0, 0.0));
+        if (i < 10) crossing.edges.push_back(uint32_t(i));
+    }
+    std::vector<core::StrokeGeometry> strokes{crossing, line({32.5, 1}, {32.5, 40}, true, 100)};
+    strokes[1].ends = {core::StrokeEnd::kJunction, core::StrokeEnd::kFree};
+    const core::StrokeCoherence memory({trace_along({{0, 0}, {32.5, 0}, {32.5, 40}}, 7), trace({34, 0}, {50, 0}, 9)}, 10);
+    size_t joins = 0;
+    const std::vector<core::StrokeGeometry> out = join_tees(strokes, memory, &joins);
+    EXPECT_EQ(joins, 1u);
+    ASSERT_EQ(out.size(), 2u);
+    const auto turn = std::find_if(out.begin(), out.end(), [](const core::StrokeGeometry& g) {
+        return g.points_px.front() == dvec2(0, 0) || g.points_px.back() == dvec2(0, 0);
+    });
+    ASSERT_NE(turn, out.end());
+    core::StrokeGeometry g = *turn;
+    if (g.points_px.front() != dvec2(0, 0)) g.reverse();
+    EXPECT_EQ(g.points_px.back(), dvec2(32.5, 40)) << "joined into the branch";
+}
+
 // Last frame's stroke ran on past the junction and turned off along the branch. The crossing
 // stroke's stub goes on straight beside the branch's start, nearer last frame's line there, and
 // stops: the branch is joined, the stub left off. A branch that stops sooner than the stub is not.
