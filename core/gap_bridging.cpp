@@ -498,17 +498,26 @@ class InteriorGrid {
         size_t stroke = size_t(-1), point = 0;
         double distance = HUGE_VAL;
     };
-    // The interior point of a stroke other than `self`, of the kind, nearest p within
-    // kTeeReachPx.
-    Hit nearest(const glm::dvec2& p, size_t self, LineKind kind) const {
-        Hit best;
+    // For each stroke other than `self`, of the kind, with an interior point within kTeeReachPx
+    // of p: the nearest such point. Nearest first.
+    std::vector<Hit> near(const glm::dvec2& p, size_t self, LineKind kind) const {
+        std::vector<Hit> hits;
         grid_.around(p, [&](const std::pair<size_t, size_t>& sk) {
             const auto [stroke, point] = sk;
             if (stroke == self || strokes_[stroke].kind != kind) return;
             const double d = glm::length(strokes_[stroke].points_px[point] - p);
-            if (d <= kTeeReachPx && d < best.distance) best = {stroke, point, d};
+            if (d > kTeeReachPx) return;
+            const auto same = std::find_if(hits.begin(), hits.end(), [&](const Hit& h) { return h.stroke == stroke; });
+            if (same == hits.end()) {
+                hits.push_back({stroke, point, d});
+            } else if (std::tie(d, point) < std::tie(same->distance, same->point)) {
+                *same = {stroke, point, d};
+            }
         });
-        return best;
+        std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
+            return std::tie(a.distance, a.stroke) < std::tie(b.distance, b.stroke);
+        });
+        return hits;
     }
 
   private:
@@ -521,8 +530,9 @@ class InteriorGrid {
 size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeCoherence& coherence,
                            const GapBridgeOptions& options) {
     if (coherence.traces().empty()) return 0;
-    // Candidate T-junctions: an open end typed C, and the nearest interior point of another
-    // visible stroke of its kind.
+    // Candidate T-junctions: an open end typed C, and for each other visible stroke of its kind
+    // that passes by, its nearest interior point (in a tangle, the nearest stroke may be a
+    // fragment, and the line the end meets one a little farther).
     struct Tee {
         size_t stroke;  // the ending stroke
         int end;
@@ -538,8 +548,8 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
             if (!g.visible || g.closed || g.points_px.size() < 2) continue;
             for (int e = 0; e < 2; ++e) {
                 if (g.ends[size_t(e)] != StrokeEnd::kJunction) continue;
-                const InteriorGrid::Hit hit = grid.nearest(e == 0 ? g.points_px.front() : g.points_px.back(), s, g.kind);
-                if (hit.stroke != size_t(-1)) tees.push_back({s, e, hit.stroke, hit.point, hit.distance});
+                for (const InteriorGrid::Hit& hit : grid.near(e == 0 ? g.points_px.front() : g.points_px.back(), s, g.kind))
+                    tees.push_back({s, e, hit.stroke, hit.point, hit.distance});
             }
         }
     }

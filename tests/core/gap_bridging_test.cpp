@@ -366,6 +366,24 @@ TEST(StrokeTee, AnEndBetweenTheCrossingStrokesPointsIsOnIt) {
     EXPECT_EQ(g.points_px.back(), dvec2(32.5, 40)) << "joined into the branch";
 }
 
+TEST(StrokeTee, AFragmentNearerTheEndDoesNotHideTheCrossingStroke) {
+    // A 2 px fragment of a tangle lies between the branch's end and the crossing stroke.
+    std::vector<core::StrokeGeometry> strokes = Tee{}.strokes;
+    strokes.push_back(line({29, 1.5}, {31, 1.5}, true, 200));
+    strokes.back().ends = {core::StrokeEnd::kJunction, core::StrokeEnd::kJunction};
+    const core::StrokeCoherence memory({trace_along({{0, 0}, {30, 0}, {30, 40}}, 7), trace({31, 0}, {50, 0}, 9)}, 10);
+    size_t joins = 0;
+    const std::vector<core::StrokeGeometry> out = join_tees(strokes, memory, &joins);
+    EXPECT_EQ(joins, 1u);
+    const auto turn = std::find_if(out.begin(), out.end(), [](const core::StrokeGeometry& g) {
+        return g.points_px.front() == dvec2(0, 0) || g.points_px.back() == dvec2(0, 0);
+    });
+    ASSERT_NE(turn, out.end());
+    core::StrokeGeometry g = *turn;
+    if (g.points_px.front() != dvec2(0, 0)) g.reverse();
+    EXPECT_EQ(g.points_px.back(), dvec2(30, 40)) << "joined into the branch";
+}
+
 // Last frame's stroke ran on past the junction and turned off along the branch. The crossing
 // stroke's stub goes on straight beside the branch's start, nearer last frame's line there, and
 // stops: the branch is joined, the stub left off. A branch that stops sooner than the stub is not.
