@@ -555,16 +555,22 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
     }
     if (tees.empty()) return 0;
 
-    // Last frame's strokes along the three sides of each: the ending stroke, and the crossing
-    // stroke toward its first and toward its last point.
+    // Last frame's strokes along the three sides of each: the ending stroke (once for all its
+    // end's candidates), and the crossing stroke toward its first and toward its last point.
     std::vector<std::vector<glm::dvec2>> sides;
     std::vector<LineKind> kinds;
-    for (const Tee& t : tees) {
+    std::vector<std::array<size_t, 3>> side_of(tees.size());
+    for (size_t i = 0; i < tees.size(); ++i) {
+        const Tee& t = tees[i];
         const std::vector<glm::dvec2>& x = r_strokes[t.other].points_px;
-        sides.push_back(side_samples(r_strokes[t.stroke].points_px, t.end));
+        const bool same_end = i > 0 && tees[i - 1].stroke == t.stroke && tees[i - 1].end == t.end;
+        if (!same_end) sides.push_back(side_samples(r_strokes[t.stroke].points_px, t.end));
+        side_of[i][0] = same_end ? side_of[i - 1][0] : sides.size() - 1;
         sides.push_back(side_samples({x.begin(), x.begin() + std::ptrdiff_t(t.at) + 1}, 1));
+        side_of[i][1] = sides.size() - 1;
         sides.push_back(side_samples({x.begin() + std::ptrdiff_t(t.at), x.end()}, 0));
-        kinds.insert(kinds.end(), 3, r_strokes[t.stroke].kind);
+        side_of[i][2] = sides.size() - 1;
+        kinds.resize(sides.size(), r_strokes[t.stroke].kind);
     }
     const std::vector<std::vector<SideMemory>> memory = coherence.side_memory(sides, kinds);
 
@@ -573,9 +579,12 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
         const Tee& t = tees[i];
         // The part of the crossing stroke that last frame's stroke continued into from the
         // ending one, more closely than the crossing stroke continued through itself.
-        const std::optional<double> fit_before = continuation_fit(memory[3 * i], memory[3 * i + 1], t.jump, SideHeadings::kOpposite);
-        const std::optional<double> fit_after = continuation_fit(memory[3 * i], memory[3 * i + 2], t.jump, SideHeadings::kOpposite);
-        const std::optional<double> fit_through = continuation_fit(memory[3 * i + 1], memory[3 * i + 2], 0.0, SideHeadings::kOpposite);
+        const std::vector<SideMemory>& ends_side = memory[side_of[i][0]];
+        const std::vector<SideMemory>& before = memory[side_of[i][1]];
+        const std::vector<SideMemory>& after = memory[side_of[i][2]];
+        const std::optional<double> fit_before = continuation_fit(ends_side, before, t.jump, SideHeadings::kOpposite);
+        const std::optional<double> fit_after = continuation_fit(ends_side, after, t.jump, SideHeadings::kOpposite);
+        const std::optional<double> fit_through = continuation_fit(before, after, 0.0, SideHeadings::kOpposite);
         if (!fit_before && !fit_after) continue;
         const bool keep_before = fit_before && (!fit_after || *fit_before <= *fit_after);
 
@@ -593,8 +602,7 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
         // stroke stays whole; unless the rest leads on from the junction beside the ending stroke,
         // along last frame's stroke, and stops sooner: a stub beside the branch it took.
         if (fit_through && *fit_through <= (keep_before ? *fit_before : *fit_after)) {
-            const bool stub = continuation_fit(memory[3 * i], memory[3 * i + (keep_before ? 2 : 1)], t.jump,
-                                               SideHeadings::kSame) &&
+            const bool stub = continuation_fit(ends_side, keep_before ? after : before, t.jump, SideHeadings::kSame) &&
                               rest.visible_length_px() < g.visible_length_px();
             if (!stub) continue;
         }
