@@ -340,6 +340,15 @@ TEST(StrokeTee, CrossingLineLastFrameDrewWholeStaysWhole) {
     EXPECT_EQ(join_tees(Tee{}.strokes, {}).size(), 2u);
 }
 
+// The stroke of `out` with an end at (0, 0), turned to start there (none: no points).
+core::StrokeGeometry from_origin(const std::vector<core::StrokeGeometry>& out) {
+    for (core::StrokeGeometry g : out) {
+        if (g.points_px.back() == dvec2(0, 0)) g.reverse();
+        if (g.points_px.front() == dvec2(0, 0)) return g;
+    }
+    return {};
+}
+
 TEST(StrokeTee, AnEndBetweenTheCrossingStrokesPointsIsOnIt) {
     // The crossing stroke has a point every 5 px; the branch ends 1 px beside it, midway between
     // two of them (2.7 px from either).
@@ -357,12 +366,8 @@ TEST(StrokeTee, AnEndBetweenTheCrossingStrokesPointsIsOnIt) {
     const std::vector<core::StrokeGeometry> out = join_tees(strokes, memory, &joins);
     EXPECT_EQ(joins, 1u);
     ASSERT_EQ(out.size(), 2u);
-    const auto turn = std::find_if(out.begin(), out.end(), [](const core::StrokeGeometry& g) {
-        return g.points_px.front() == dvec2(0, 0) || g.points_px.back() == dvec2(0, 0);
-    });
-    ASSERT_NE(turn, out.end());
-    core::StrokeGeometry g = *turn;
-    if (g.points_px.front() != dvec2(0, 0)) g.reverse();
+    const core::StrokeGeometry g = from_origin(out);
+    ASSERT_FALSE(g.points_px.empty());
     EXPECT_EQ(g.points_px.back(), dvec2(32.5, 40)) << "joined into the branch";
 }
 
@@ -375,12 +380,8 @@ TEST(StrokeTee, AFragmentNearerTheEndDoesNotHideTheCrossingStroke) {
     size_t joins = 0;
     const std::vector<core::StrokeGeometry> out = join_tees(strokes, memory, &joins);
     EXPECT_EQ(joins, 1u);
-    const auto turn = std::find_if(out.begin(), out.end(), [](const core::StrokeGeometry& g) {
-        return g.points_px.front() == dvec2(0, 0) || g.points_px.back() == dvec2(0, 0);
-    });
-    ASSERT_NE(turn, out.end());
-    core::StrokeGeometry g = *turn;
-    if (g.points_px.front() != dvec2(0, 0)) g.reverse();
+    const core::StrokeGeometry g = from_origin(out);
+    ASSERT_FALSE(g.points_px.empty());
     EXPECT_EQ(g.points_px.back(), dvec2(30, 40)) << "joined into the branch";
 }
 
