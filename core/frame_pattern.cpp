@@ -69,4 +69,13 @@ std::string format_frame(const std::string& pattern, int frame) {
            unescape_percent(pattern.substr(field.end));
 }
 
+void check_frame_range(long long first, long long last, const std::string& where) {
+    const auto in_range = [](long long f) { return f >= kMinFrame && f <= kMaxFrame; };
+    if (!in_range(first) || !in_range(last)) {
+        throw InputError(where + ": frame numbers must be between " + std::to_string(kMinFrame) + " and " +
+                         std::to_string(kMaxFrame));
+    }
+    if (first > last) throw InputError(where + ": first frame is after the last");
+}
+
 }  // namespace inkline::core

@@ -6,6 +6,14 @@
 
 namespace inkline::core {
 
+// Frame numbers are at most nine digits either way: every stage adds, subtracts and counts
+// frames in `int` without overflow, and a pattern's field never needs more than ten characters.
+inline constexpr int kMinFrame = -999'999'999;
+inline constexpr int kMaxFrame = 999'999'999;
+
+// Throws InputError("<where>: ...") unless kMinFrame <= first <= last <= kMaxFrame.
+void check_frame_range(long long first, long long last, const std::string& where);
+
 // True when the pattern holds exactly one %d, %Nd or %0Nd.
 bool has_frame_field(const std::string& pattern);
 
