@@ -26,6 +26,21 @@ std::string quote(const std::string& word) {
     return out + "'";
 }
 
+// One value of a `#SBATCH` line: sbatch splits those lines at whitespace and '#' outside double
+// quotes, and a line ends at a newline, so control characters, '"' and '\\' are refused and a value
+// with spaces, quotes or '#' is double-quoted. Throws InputError naming `what`.
+std::string sbatch_word(const std::string& value, const std::string& what) {
+    bool plain = !value.empty();
+    for (const char c : value) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f || c == '"' || c == '\\') {
+            throw InputError(what + ": a control character, '\"' or '\\' cannot be written into a Slurm #SBATCH line");
+        }
+        if (c == ' ' || c == '#' || c == '\'') plain = false;
+    }
+    return plain ? value : "\"" + value + "\"";
+}
+
 std::string self_path() {
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
@@ -125,17 +140,21 @@ int run_farm(const FarmArgs& args, const RenderArgs& render_in) {
     std::string farm_words = " --chunks " + std::to_string(args.chunks) + " -o " + quote(farm.out_dir);
     if (!farm.assemble_pdf.empty()) farm_words += " --assemble-pdf " + quote(farm.assemble_pdf);
 
+    // Every value in a #SBATCH line goes through sbatch_word; every word of a command line is
+    // shell-quoted. Nothing the user typed is written into a script otherwise.
     std::ostringstream job;
     job << "#!/bin/bash\n"
-        << "# One chunk of " << quote(render.input) << " per array task (written by inkline farm).\n"
+        << "# One chunk of the sequence per array task (written by inkline farm).\n"
         << "#SBATCH --job-name=inkline-render\n"
         << "#SBATCH --array=1-" << args.chunks << "\n"
-        << "#SBATCH --output=" << (dir / "logs" / "chunk-%a.log").string() << "\n";
+        << "#SBATCH " << sbatch_word("--output=" + (dir / "logs" / "chunk-%a.log").string(), "-o") << "\n";
     const std::string cd_line = "cd " + quote(fs::current_path().string()) + "\n";  // relative paths in render options
-    if (!args.partition.empty()) job << "#SBATCH --partition=" << args.partition << "\n";
-    if (!args.time.empty()) job << "#SBATCH --time=" << args.time << "\n";
-    if (!args.mem.empty()) job << "#SBATCH --mem=" << args.mem << "\n";
-    for (const std::string& a : args.sbatch_args) job << "#SBATCH " << a << "\n";
+    std::string directives;  // the user's #SBATCH lines, shared by both jobs where they apply
+    if (!args.partition.empty()) directives += "#SBATCH " + sbatch_word("--partition=" + args.partition, "--partition") + "\n";
+    job << directives;
+    if (!args.time.empty()) job << "#SBATCH " << sbatch_word("--time=" + args.time, "--time") << "\n";
+    if (!args.mem.empty()) job << "#SBATCH " << sbatch_word("--mem=" + args.mem, "--mem") << "\n";
+    for (const std::string& a : args.sbatch_args) job << "#SBATCH " << sbatch_word(a, "--sbatch") << "\n";
     job << cd_line << "exec " << quote(exe) << " render " << quote(render.input) << " --chunk slurm -q -o " << quote(render.out_dir)
         << render_words << "\n";
     write_script(dir / "render.sbatch", job.str());
@@ -144,8 +163,8 @@ int run_farm(const FarmArgs& args, const RenderArgs& render_in) {
     summary << "#!/bin/bash\n"
             << "# Runs after every chunk: checks each frame, names chunks to re-run, assembles the PDF.\n"
             << "#SBATCH --job-name=inkline-summary\n"
-            << "#SBATCH --output=" << (dir / "logs" / "summary.log").string() << "\n";
-    if (!args.partition.empty()) summary << "#SBATCH --partition=" << args.partition << "\n";
+            << "#SBATCH " << sbatch_word("--output=" + (dir / "logs" / "summary.log").string(), "-o") << "\n"
+            << directives;
     summary << cd_line << "exec " << quote(exe) << " farm " << quote(render.input) << farm_words << " --summarize --" << render_words
             << "\n";
     write_script(dir / "summary.sbatch", summary.str());

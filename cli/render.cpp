@@ -4,6 +4,8 @@
 //   -> split_by_visibility -> polylines_json / centerline_svg -> write_file_atomically
 #include "cli/render.h"
 
+#include "cli/outputs.h"
+
 #include "core/chaining.h"
 #include "core/error.h"
 #include "core/exact_visibility.h"
@@ -67,14 +69,14 @@ struct FrameRange {
     int count() const { return last - first + 1; }
 };
 
-// "A:B" or "A" -> inclusive frame range.
+// "A:B" or "A" -> inclusive frame range, within core's frame numbers.
 FrameRange parse_frames(const std::string& text) {
-    static const std::regex range(R"(^\s*(-?\d{1,9})\s*(?::\s*(-?\d{1,9}))?\s*$)");
+    static const std::regex range(R"(^\s*(-?\d{1,18})\s*(?::\s*(-?\d{1,18}))?\s*$)");
     std::smatch m;
     if (!std::regex_match(text, m, range)) throw InputError("--frames '" + text + "': expected A:B");
-    const FrameRange r{std::stoi(m[1]), m[2].matched ? std::stoi(m[2]) : std::stoi(m[1])};
-    if (r.first > r.last) throw InputError("--frames '" + text + "': first frame is after the last");
-    return r;
+    const long long first = std::stoll(m[1]), last = m[2].matched ? std::stoll(m[2]) : first;
+    core::check_frame_range(first, last, "--frames '" + text + "'");
+    return {int(first), int(last)};
 }
 
 core::ImageSize parse_size(const std::string& text, int max_side) {
@@ -96,35 +98,6 @@ bool is_scene_file(const std::string& path) {
 
 bool inside(const core::Bounds& b, const glm::dvec3& p) {
     return glm::all(glm::greaterThanEqual(p, b.min)) && glm::all(glm::lessThanEqual(p, b.max));
-}
-
-struct Outputs {
-    std::string json;
-    std::string svg;
-    std::string png;
-    std::string preview;
-    std::string pdf;
-    bool pdf_per_frame = false;
-};
-
-// Explicit patterns as given; -o DIR fills in JSON and SVG; no output at all means -o out.
-Outputs resolve_outputs(const RenderArgs& args, const FrameRange& frames) {
-    Outputs out{args.json_pattern, args.svg_pattern, args.png_pattern, args.preview_pattern, args.pdf_path, false};
-    out.pdf_per_frame = !out.pdf.empty() && core::has_frame_field(out.pdf);
-    const bool any_explicit =
-        !out.json.empty() || !out.svg.empty() || !out.png.empty() || !out.preview.empty() || !out.pdf.empty();
-    if (!args.out_dir.empty() || !any_explicit) {
-        const fs::path dir = args.out_dir.empty() ? fs::path("out") : fs::path(args.out_dir);
-        if (out.json.empty()) out.json = (dir / "json" / "frame_%04d.json").string();
-        if (out.svg.empty()) out.svg = (dir / "svg" / "frame_%04d.svg").string();
-    }
-    for (const std::string* pattern : {&out.json, &out.svg, &out.png, &out.preview}) {
-        if (!pattern->empty() && frames.count() > 1 && !core::has_frame_field(*pattern)) {
-            throw InputError("output pattern '" + *pattern + "' has no frame field such as %04d but " +
-                             std::to_string(frames.count()) + " frames are rendered");
-        }
-    }
-    return out;
 }
 
 struct DrawnFrame {
@@ -362,6 +335,10 @@ std::pair<int, int> parse_chunk(const std::string& text) {
         auto env = [](const char* name) -> long {
             const char* v = std::getenv(name);
             if (!v || !*v) throw InputError(std::string("--chunk slurm: ") + name + " is not set (not inside a Slurm job array?)");
+            static const std::regex number(R"(^\s*\d{1,9}\s*$)");
+            if (!std::regex_match(v, number)) {
+                throw InputError(std::string("--chunk slurm: ") + name + " is not a task number");
+            }
             return std::strtol(v, nullptr, 10);
         };
         const long id = env("SLURM_ARRAY_TASK_ID"), lo = env("SLURM_ARRAY_TASK_MIN"), hi = env("SLURM_ARRAY_TASK_MAX");
@@ -485,12 +462,26 @@ RenderPlan plan_render(const RenderArgs& args) {
         frames = {scene.first_frame, scene.last_frame};
     }
     if (!args.frames.empty()) frames = parse_frames(args.frames);
-    const Outputs o = resolve_outputs(args, frames);
+    const Outputs o = resolve_outputs(args, frames.count());
     return {frames.first, frames.last, o.json, o.svg, o.png, o.preview, o.pdf, o.pdf_per_frame};
 }
 
+// The files a run reads, for check_outputs.
+std::vector<InputFile> run_inputs(const RenderArgs& args, const core::Scene& scene, int first, int last) {
+    std::vector<InputFile> inputs;
+    if (!scene.file.empty()) inputs.push_back({"scene", scene.file});
+    if (scene.mesh.is_sequence) {
+        for (int frame = first; frame <= last; ++frame)
+            inputs.push_back({"mesh", core::format_frame(scene.mesh.path.string(), frame)});
+    } else {
+        inputs.push_back({"mesh", scene.mesh.path});
+    }
+    if (!args.preview_pattern.empty() && !scene.brush.tip.empty()) inputs.push_back({"brush tip", scene.brush.tip});
+    return inputs;
+}
+
 int run_render(const RenderArgs& args) {
-    // Scene: a file, or a default turntable around a bare mesh.
+    // Scene: a file, or a default turntable around a bare mesh (made once the mesh is read).
     const bool from_scene = is_scene_file(args.input);
     core::Scene scene;
     if (from_scene) {
@@ -502,9 +493,9 @@ int run_render(const RenderArgs& args) {
     }
     FrameRange frames{scene.first_frame, scene.last_frame};
     if (!args.frames.empty()) frames = parse_frames(args.frames);
-    if (!args.size.empty()) scene.image = parse_size(args.size, args.max_image_side);
-    if (args.hidden) scene.lines.hidden = true;
-    const Outputs outputs = resolve_outputs(args, frames);
+    const std::optional<core::ImageSize> size =
+        args.size.empty() ? std::nullopt : std::optional(parse_size(args.size, args.max_image_side));
+    const Outputs outputs = resolve_outputs(args, frames.count());
     // A chunk renders its frames after replaying the earlier ones without output: stroke ids,
     // propagated u and loop starts depend on every earlier frame.
     FrameRange rendered = frames;
@@ -516,6 +507,7 @@ int run_render(const RenderArgs& args) {
         }
         rendered = {c.first, c.last};
     }
+    check_outputs(outputs, rendered.first, rendered.last, run_inputs(args, scene, frames.first, frames.last));
 
     core::MeshFrames meshes(scene.mesh, frames.first);
     const size_t faces = meshes.at(frames.first).triangles.size();
@@ -529,6 +521,9 @@ int run_render(const RenderArgs& args) {
         scene.first_frame = first;
         scene.last_frame = last;
     }
+    // The options override the scene, the default turntable's included.
+    if (size) scene.image = *size;
+    if (args.hidden) scene.lines.hidden = true;
 
     Sequence sequence(scene, args, meshes, frames.count());
     for (const std::string& w : meshes.warnings()) sequence.warn(w);

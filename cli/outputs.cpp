@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: MIT
+#include "cli/outputs.h"
+
+#include "core/error.h"
+#include "core/frame_pattern.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <unordered_map>
+
+#include <sys/stat.h>
+
+namespace inkline::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A file on disk: device and inode, the same through every link and every spelling of its name.
+struct FileId {
+    dev_t device = 0;
+    ino_t inode = 0;
+    bool operator==(const FileId&) const = default;
+};
+
+std::optional<FileId> file_id(const fs::path& path) {
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) return std::nullopt;
+    return FileId{info.st_dev, info.st_ino};
+}
+
+// One output option and its pattern (or single file).
+struct OutputPattern {
+    const char* option;
+    const std::string* pattern;
+    bool per_frame;
+};
+
+// Output names with their folder resolved through links, so that "a/x.svg" and "b/../a/x.svg"
+// compare equal. Folders are resolved once each.
+class CanonicalNames {
+  public:
+    std::string operator()(const fs::path& name) {
+        const std::string folder = name.parent_path().string();
+        auto it = folders_.find(folder);
+        if (it == folders_.end()) {
+            std::error_code ec;
+            fs::path resolved = fs::weakly_canonical(fs::absolute(folder.empty() ? fs::path(".") : fs::path(folder)), ec);
+            if (ec) resolved = fs::absolute(folder).lexically_normal();
+            it = folders_.emplace(folder, resolved.string()).first;
+        }
+        return (fs::path(it->second) / name.filename()).string();
+    }
+
+  private:
+    std::unordered_map<std::string, std::string> folders_;
+};
+
+}  // namespace
+
+Outputs resolve_outputs(const RenderArgs& args, int frame_count) {
+    Outputs out{args.json_pattern, args.svg_pattern, args.png_pattern, args.preview_pattern, args.pdf_path, false};
+    out.pdf_per_frame = !out.pdf.empty() && core::has_frame_field(out.pdf);
+    const bool any_explicit =
+        !out.json.empty() || !out.svg.empty() || !out.png.empty() || !out.preview.empty() || !out.pdf.empty();
+    if (!args.out_dir.empty() || !any_explicit) {
+        const fs::path dir = args.out_dir.empty() ? fs::path("out") : fs::path(args.out_dir);
+        if (out.json.empty()) out.json = (dir / "json" / "frame_%04d.json").string();
+        if (out.svg.empty()) out.svg = (dir / "svg" / "frame_%04d.svg").string();
+    }
+    for (const std::string* pattern : {&out.json, &out.svg, &out.png, &out.preview}) {
+        if (!pattern->empty() && frame_count > 1 && !core::has_frame_field(*pattern)) {
+            throw InputError("output pattern '" + *pattern + "' has no frame field such as %04d but " +
+                             std::to_string(frame_count) + " frames are rendered");
+        }
+    }
+    return out;
+}
+
+void check_outputs(const Outputs& outputs, int first, int last, const std::vector<InputFile>& inputs) {
+    struct Known {
+        FileId id;
+        const InputFile* input;
+    };
+    std::vector<Known> input_ids;
+    for (const InputFile& input : inputs) {
+        if (const auto id = file_id(input.path)) input_ids.push_back({*id, &input});
+    }
+
+    const std::vector<OutputPattern> patterns = {
+        {"--json", &outputs.json, true},   {"--svg", &outputs.svg, true},
+        {"--png", &outputs.png, true},     {"--preview", &outputs.preview, true},
+        {"--pdf", &outputs.pdf, outputs.pdf_per_frame},
+    };
+    // Every output name as a hash of its canonical form, with where it came from; equal hashes
+    // are compared by name afterwards.
+    struct Named {
+        uint64_t hash;
+        uint32_t pattern;
+        int frame;
+    };
+    std::vector<Named> named;
+    CanonicalNames canonical;
+    for (uint32_t p = 0; p < patterns.size(); ++p) {
+        const OutputPattern& out = patterns[p];
+        if (out.pattern->empty()) continue;
+        const int begin = out.per_frame ? first : last, end = last;
+        for (int frame = begin; frame <= end; ++frame) {
+            // The name as the writer will reach it, once missing folders are made.
+            const std::string given = out.per_frame ? core::format_frame(*out.pattern, frame) : *out.pattern;
+            const fs::path name = canonical(given);
+            struct stat info {};
+            if (::lstat(name.c_str(), &info) == 0) {
+                const std::optional<FileId> id = file_id(name);
+                for (const Known& k : input_ids) {
+                    if (id && *id == k.id) {
+                        throw InputError(given + ": " + out.option + " would replace the " + k.input->role +
+                                         " it reads (" + k.input->path.string() + ")");
+                    }
+                }
+                struct stat target {};
+                if (::stat(name.c_str(), &target) == 0 && S_ISREG(target.st_mode) &&
+                    (target.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0) {
+                    throw OutputError(given + ": exists and is read-only; not replaced");
+                }
+            }
+            named.push_back({std::hash<std::string>{}(name.string()), p, frame});
+        }
+    }
+
+    std::sort(named.begin(), named.end(), [](const Named& a, const Named& b) { return a.hash < b.hash; });
+    const auto name_of = [&](const Named& n) {
+        const OutputPattern& out = patterns[n.pattern];
+        return out.per_frame ? core::format_frame(*out.pattern, n.frame) : *out.pattern;
+    };
+    for (size_t i = 1; i < named.size(); ++i) {
+        for (size_t j = i; j-- > 0 && named[j].hash == named[i].hash;) {
+            const std::string a = name_of(named[j]), b = name_of(named[i]);
+            if (canonical(a) != canonical(b)) continue;
+            const OutputPattern &pa = patterns[named[j].pattern], &pb = patterns[named[i].pattern];
+            const std::string where = pa.option == pb.option
+                                          ? std::string(pa.option) + " frames " + std::to_string(named[j].frame) +
+                                                " and " + std::to_string(named[i].frame)
+                                          : std::string(pa.option) + " and " + pb.option;
+            throw InputError(b + ": " + where + " would write the same file");
+        }
+    }
+}
+
+}  // namespace inkline::cli
