@@ -75,7 +75,8 @@ int summarize(const FarmArgs& args, const RenderPlan& plan) {
         std::vector<int> missing;
         for (int f = c.first; f <= c.last; ++f) {
             for (const std::string& file : frame_files(plan, f)) {
-                if (!fs::exists(file)) {
+                std::error_code ec;
+                if (!fs::exists(file, ec)) {
                     missing.push_back(f);
                     break;
                 }
@@ -98,7 +99,9 @@ int summarize(const FarmArgs& args, const RenderPlan& plan) {
         for (int f = plan.first; f <= plan.last; ++f) command += " " + quote(core::format_frame(plan.pdf, f));
         const std::string temp = output::temporary_path_for(args.assemble_pdf).string();
         command += " " + quote(temp);
-        fs::create_directories(fs::path(args.assemble_pdf).parent_path());
+        std::error_code ec;
+        fs::create_directories(fs::path(args.assemble_pdf).parent_path(), ec);
+        if (ec) throw OutputError(fs::path(args.assemble_pdf).parent_path().string() + ": cannot create folder: " + ec.message());
         if (std::system(command.c_str()) == 0 && std::rename(temp.c_str(), args.assemble_pdf.c_str()) == 0) {
             report << "sequence PDF: " << args.assemble_pdf << " (" << frames << " pages)\n";
         } else {
@@ -176,7 +179,9 @@ int run_farm(const FarmArgs& args, const RenderArgs& render_in) {
            << "summary=$(sbatch --parsable --dependency=afterany:$array " << quote((dir / "summary.sbatch").string()) << ")\n"
            << "echo \"inkline farm: chunks job $array, summary job ${summary%%;*}\"\n";
     write_script(dir / "submit.sh", submit.str());
-    fs::create_directories(dir / "logs");
+    std::error_code ec;
+    fs::create_directories(dir / "logs", ec);
+    if (ec) throw OutputError((dir / "logs").string() + ": cannot create folder: " + ec.message());
     std::printf("inkline farm: wrote %s (render.sbatch, summary.sbatch, submit.sh): frames %d..%d in %d chunks\n",
                 dir.c_str(), plan.first, plan.last, args.chunks);
     if (!args.submit) return 0;
