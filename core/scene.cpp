@@ -348,7 +348,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
         const auto prefix_end = what.find("] ");
         // Its "last read" part quotes the input, so it is cut like any quoted value.
         throw InputError(quote_value(name, kMaxQuotedPathChars) + ": not valid JSON: " +
-                         quote_value(prefix_end == std::string::npos ? what : what.substr(prefix_end + 2), 2 * kMaxQuotedPathChars));
+                         quote_value(prefix_end == std::string::npos ? what : what.substr(prefix_end + 2), kMaxQuotedPathChars));
     }
     const Reader r(name, root, "");
     r.allow_only({"version", "mesh", "frames", "image", "camera", "object", "light", "lines", "brush"});
