@@ -2,9 +2,11 @@
 // Error types by who is at fault: bad input, unwritable output, and bugs (INKLINE_CHECK).
 #pragma once
 
+#include <cstddef>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace inkline {
 
@@ -26,6 +28,14 @@ class InternalError : public std::logic_error {
   public:
     using std::logic_error::logic_error;
 };
+
+// Largest number of characters of a user value (a key, an option value, a file name) an error
+// message quotes: messages stay one short line however long the value.
+inline constexpr size_t kMaxQuotedChars = 60;
+
+// A user value as an error message quotes it: control characters shown as '?', and a value
+// longer than max_chars cut to its start and end around "...", at UTF-8 character boundaries.
+std::string quote_value(std::string_view value, size_t max_chars = kMaxQuotedChars);
 
 namespace detail {
 [[noreturn]] void check_failed(const char* file, int line, const std::string& message);

@@ -26,6 +26,8 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 // The query segment stops this fraction of its length short of the point, so faces that merely
 // touch the point (those around an end vertex of its edge) do not count as occluders. At a
 // 4-unit viewing distance this is 4e-6 units, far below a pixel at any supported image size.
+// The segment is first clipped to kOcclusionReachDiagonals (core/visibility.h), so a far eye
+// does not widen the gap past the mesh.
 constexpr double kEndGap = 1e-6;
 
 Point to_point(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
@@ -36,6 +38,7 @@ struct ExactOcclusion::Impl {
     const EdgeTable& table;
     std::vector<Triangle> triangles;
     std::vector<uint32_t> face_of;  // triangle index -> mesh face
+    double reach = 1.0;             // occlusion_reach of the mesh
     Tree tree;
 
     explicit Impl(const EdgeTable& t) : table(t) {}
@@ -52,6 +55,7 @@ ExactOcclusion::ExactOcclusion(const Mesh& mesh, const EdgeTable& table)
                                       to_point(glm::dvec3(mesh.positions[t.z])));
         impl_->face_of.push_back(f);
     }
+    impl_->reach = occlusion_reach(mesh.positions);
     impl_->tree.insert(impl_->triangles.cbegin(), impl_->triangles.cend());
     impl_->tree.build();
 }
@@ -66,8 +70,9 @@ void ExactOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Occl
     internal::parallel_for(queries.size(), 256, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             const OcclusionQuery& q = queries[i];
-            const glm::dvec3 stop = q.p_object + (eye_object - q.p_object) * kEndGap;
-            const Segment segment(to_point(eye_object), to_point(stop));
+            const glm::dvec3 far_end = occlusion_segment_end(q.p_object, eye_object, impl.reach);
+            const glm::dvec3 stop = q.p_object + (far_end - q.p_object) * kEndGap;
+            const Segment segment(to_point(far_end), to_point(stop));
             const auto own = impl.table.faces_of(q.edge);
             bool hit = false;
             impl.tree.all_intersected_primitives(

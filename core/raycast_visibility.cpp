@@ -9,8 +9,8 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -23,7 +23,8 @@ namespace {
 // The ray stops this fraction of the eye distance short of the point, exactly as ExactOcclusion's
 // segment does, so faces that merely touch the point (around an end vertex of its edge) do not
 // count. The ray starts at the point and runs to the eye: Embree intersects relative to the ray
-// origin, so float precision is best where the gap is decided.
+// origin, so float precision is best where the gap is decided. The ray is first clipped to
+// kOcclusionReachDiagonals (core/visibility.h), as ExactOcclusion's segment is.
 constexpr float kEndGap = 1e-6f;
 
 // Below this many queries a call runs on the calling thread; starting threads costs more.
@@ -91,6 +92,11 @@ struct RaycastOcclusion::Impl {
     std::vector<uint32_t> face_of;  // Embree primitive -> mesh face (valid faces only); empty when all are
     size_t primitives = 0;
     size_t vertex_count = 0;
+    // Embree sees the mesh and the rays scaled by a power of two (exact in float) that brings the
+    // largest coordinate to [1, 2): a mesh of extent 1e-30 or 1e18 is traced at unit scale, where
+    // float products in the triangle tests neither underflow nor leave Embree's ray range.
+    double scale = 1.0;
+    double reach = 1.0;             // occlusion_reach of the mesh, object units
     bool refittable = false;        // built in the two-level mode that update_positions refits
     DevicePtr device;
     ScenePtr scene;
@@ -136,12 +142,23 @@ struct RaycastOcclusion::Impl {
             auto* indices = static_cast<glm::uvec3*>(rtcSetNewGeometryBuffer(
                 g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(glm::uvec3), primitives));
             check_device(device.get(), "allocating the mesh buffers");
-            std::memcpy(vertices, mesh.positions.data(), vertex_count * sizeof(glm::vec3));
+            copy_scaled(mesh, static_cast<glm::vec3*>(vertices));
             for (size_t i = 0; i < primitives; ++i) indices[i] = mesh.triangles[face_of.empty() ? i : face_of[i]];
             rtcSetGeometryOccludedFilterFunction(g, reject_own_faces);
             rtcAttachGeometry(scene.get(), g);
         }
         commit();
+    }
+
+    // Sets scale and reach for the mesh's positions and writes them, scaled, to r_vertices.
+    void copy_scaled(const Mesh& mesh, glm::vec3* r_vertices) {
+        float largest = 0.0f;
+        for (const glm::vec3& p : mesh.positions) {
+            largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        }
+        scale = largest > 0.0f && std::isfinite(largest) ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0;
+        reach = occlusion_reach(mesh.positions);
+        for (size_t v = 0; v < mesh.positions.size(); ++v) r_vertices[v] = glm::vec3(glm::dvec3(mesh.positions[v]) * scale);
     }
 
     void commit() {
@@ -179,8 +196,7 @@ void RaycastOcclusion::update_positions(const Mesh& mesh) {
         return;
     }
     RTCGeometry geometry = impl.geometry.get();
-    void* vertices = rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
-    std::memcpy(vertices, mesh.positions.data(), impl.vertex_count * sizeof(glm::vec3));
+    impl.copy_scaled(mesh, static_cast<glm::vec3*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0)));
     rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
     impl.commit();
 }
@@ -200,9 +216,11 @@ void RaycastOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Oc
         for (size_t i = begin; i < end; ++i) {
             const OcclusionQuery& q = queries[i];
             context.own_faces = impl.table.faces_of(q.edge);
-            // From the point (t = 0) to the eye (t = 1); the direction is not normalised.
-            const glm::vec3 origin(q.p_object);
-            const glm::vec3 to_eye(eye_object - q.p_object);
+            // From the point (t = 0) to the eye, or as far towards it as an occluder can be
+            // (t = 1); the direction is not normalised.
+            const glm::dvec3 far_end = occlusion_segment_end(q.p_object, eye_object, impl.reach);
+            const glm::vec3 origin(q.p_object * impl.scale);
+            const glm::vec3 to_eye((far_end - q.p_object) * impl.scale);
             RTCRay ray;
             ray.org_x = origin.x;
             ray.org_y = origin.y;

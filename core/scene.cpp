@@ -22,8 +22,41 @@ namespace {
 
 using nlohmann::json;
 
-// Below this, a vector counts as zero (eye on target, zero axis) or two directions as parallel.
-constexpr double kDegenerateVector = 1e-9;
+// Below this, two unit directions count as parallel (the up vector along the view direction).
+constexpr double kParallelSine = 1e-6;
+
+// The eye counts as on the target when their distance is below this fraction of their
+// magnitude: the view direction would have fewer than a few significant digits.
+constexpr double kCoincidentRatio = 1e-12;
+
+// Characters of a file name an error message keeps (quote_value): enough for a long path.
+constexpr size_t kMaxQuotedPathChars = 160;
+
+// The largest coordinate of a camera, rotation centre or light position, world units. Ten times
+// the mesh limit (kMaxCoordinate, 1e18): a camera stands back from the mesh it frames (the bare
+// mesh turntable puts it at up to about 8e18). The occlusion tests clip their rays to the mesh
+// (core/visibility.h), so no distance reaches Embree's float ray range, and every product the
+// camera matrices form stays far inside double and, for the GL pass, float range.
+constexpr double kMaxWorldCoordinate = 1e19;
+
+// The narrowest field of view, degrees: 1/tan of half of it (about 1.1e5) times a coordinate at
+// the limit keeps clip-space values inside float range for the GL pass.
+constexpr double kMinFovDeg = 1e-3;
+
+// v scaled to unit length without overflow or underflow of its squared length; nullopt for the
+// zero vector.
+std::optional<glm::dvec3> unit_direction(const glm::dvec3& v) {
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(largest > 0.0)) return std::nullopt;
+    return glm::normalize(v / largest);
+}
+
+// Shortest decimal form of a value for messages ("1e+20", "0.5").
+std::string number_text(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
 
 // Largest accepted brush width or smoothing, px: wider strokes than this are a typo, and the
 // stroke stages scale their search windows with these values.
@@ -34,7 +67,7 @@ constexpr double kMaxBrushWidthPx = 256.0;
 class Reader {
   public:
     Reader(std::string file, const json& value, std::string path)
-        : file_(std::move(file)), value_(value), path_(std::move(path)) {}
+        : file_(quote_value(file, kMaxQuotedPathChars)), value_(value), path_(std::move(path)) {}
 
     [[noreturn]] void fail(const std::string& key, const std::string& message) const {
         throw InputError(file_ + ": key '" + join(key) + "': " + message);
@@ -51,7 +84,7 @@ class Reader {
             if (!allowed.count(item.key())) {
                 std::string list;
                 for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
-                fail(item.key(), "unknown key (allowed here: " + list + ")");
+                fail(quote_value(item.key()), "unknown key (allowed here: " + list + ")");
             }
         }
     }
@@ -103,6 +136,35 @@ class Reader {
         return out;
     }
 
+    // A point in world space: each coordinate within kMaxWorldCoordinate.
+    glm::dvec3 position(const std::string& key) const {
+        const glm::dvec3 p = vec3(key);
+        for (int i = 0; i < 3; ++i) {
+            if (std::abs(p[i]) > kMaxWorldCoordinate) {
+                fail(key, "coordinate " + number_text(p[i]) + " exceeds the limit of " + number_text(kMaxWorldCoordinate));
+            }
+        }
+        return p;
+    }
+    // A direction of any non-zero length, returned as a unit vector.
+    glm::dvec3 direction(const std::string& key) const {
+        const std::optional<glm::dvec3> unit = unit_direction(vec3(key));
+        if (!unit) fail(key, "must not be the zero vector");
+        return *unit;
+    }
+    // A frame number within kMinFrame..kMaxFrame (core/frame_pattern.h).
+    int frame(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_number_integer()) fail(key, "expected an integer frame number, got " + type_name(v));
+        check_frame_range(frame_value(v), frame_value(v), file_ + ": key '" + join(key) + "'");
+        return int(v.get<int64_t>());
+    }
+    // An integer JSON value as a long long; unsigned values past its range saturate.
+    static long long frame_value(const json& v) {
+        if (v.is_number_unsigned()) return (long long)std::min<uint64_t>(v.get<uint64_t>(), uint64_t(INT64_MAX));
+        return (long long)v.get<int64_t>();
+    }
+
     const json& value() const { return value_; }
     const std::string& file() const { return file_; }
     std::string join(const std::string& key) const {
@@ -121,29 +183,29 @@ class Reader {
 Rotation read_rotation(const Reader& r) {
     r.allow_only({"axis", "degrees", "center"});
     Rotation rot;
-    rot.axis = r.vec3("axis");
-    if (glm::length(rot.axis) < kDegenerateVector) r.fail("axis", "must not be the zero vector");
-    rot.axis = glm::normalize(rot.axis);
+    rot.axis = r.direction("axis");
     rot.degrees = r.number("degrees");
-    if (r.has("center")) rot.center = r.vec3("center");
+    if (r.has("center")) rot.center = r.position("center");
     return rot;
 }
 
 void check_pose(const Reader& r, const CameraPose& pose) {
-    if (!(pose.fov_y_deg > 0.0 && pose.fov_y_deg < 180.0))
-        r.fail("fov_y_deg", "must be between 0 and 180 degrees (exclusive)");
+    if (!(pose.fov_y_deg >= kMinFovDeg && pose.fov_y_deg < 180.0))
+        r.fail("fov_y_deg", "must be at least " + number_text(kMinFovDeg) + " and below 180 degrees");
     const glm::dvec3 view = pose.target - pose.eye;
-    if (glm::length(view) < kDegenerateVector) r.fail("eye", "equals the target; the camera has no view direction");
-    if (glm::length(pose.up) < kDegenerateVector) r.fail("up", "must not be the zero vector");
-    if (glm::length(glm::cross(glm::normalize(view), glm::normalize(pose.up))) < 1e-6)
-        r.fail("up", "is parallel to the view direction");
+    const double magnitude = std::max({std::abs(pose.eye.x), std::abs(pose.eye.y), std::abs(pose.eye.z),
+                                       std::abs(pose.target.x), std::abs(pose.target.y), std::abs(pose.target.z)});
+    const std::optional<glm::dvec3> forward = unit_direction(view);
+    if (!forward || glm::length(view) <= kCoincidentRatio * magnitude)
+        r.fail("eye", "equals the target; the camera has no view direction");
+    if (glm::length(glm::cross(*forward, pose.up)) < kParallelSine) r.fail("up", "is parallel to the view direction");
 }
 
 CameraPose read_pose(const Reader& r) {
     CameraPose pose;
-    pose.eye = r.vec3("eye");
-    pose.target = r.vec3("target");
-    pose.up = r.has("up") ? r.vec3("up") : glm::dvec3(0.0, 1.0, 0.0);
+    pose.eye = r.position("eye");
+    pose.target = r.position("target");
+    pose.up = r.has("up") ? r.direction("up") : glm::dvec3(0.0, 1.0, 0.0);
     pose.fov_y_deg = r.number_or("fov_y_deg", 35.0);
     check_pose(r, pose);
     return pose;
@@ -158,7 +220,7 @@ CameraSpec read_camera(const Reader& r) {
         for (size_t i = 0; i < list.size(); ++i) {
             const Reader item(r.file(), list[i], r.join("frames") + "[" + std::to_string(i) + "]");
             item.allow_only({"frame", "eye", "target", "up", "fov_y_deg"});
-            const int frame = item.integer("frame");
+            const int frame = item.frame("frame");
             if (spec.per_frame.count(frame)) item.fail("frame", "frame " + std::to_string(frame) + " is given twice");
             spec.per_frame[frame] = read_pose(item);
         }
@@ -255,9 +317,21 @@ BrushStyle read_brush(const Reader& r, const std::filesystem::path& base) {
         if (tip.empty()) r.fail("tip", "is empty");
         b.tip = std::filesystem::path(tip).is_absolute() ? std::filesystem::path(tip) : base / tip;
         std::error_code ec;
-        if (!std::filesystem::is_regular_file(b.tip, ec)) r.fail("tip", "no such file: " + b.tip.string());
+        if (!std::filesystem::is_regular_file(b.tip, ec)) {
+            r.fail("tip", "no such file: " + quote_value(b.tip.string(), kMaxQuotedPathChars));
+        }
     }
     return b;
+}
+
+// The radius a camera frames: the bounds' own, or, for a single point, one a millionth of the
+// point's distance from the origin (at least 1e-6), so that the camera still stands apart from
+// it in double precision.
+double framing_radius(const Bounds& bounds) {
+    const double radius = bounds.radius();
+    if (radius > 0.0) return radius;
+    const glm::dvec3 c = bounds.center();
+    return 1e-6 * std::max({1.0, std::abs(c.x), std::abs(c.y), std::abs(c.z)});
 }
 
 }  // namespace
@@ -272,7 +346,9 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
         // "[json.exception...]" prefix is one line and names the byte offset.
         std::string what = e.what();
         const auto prefix_end = what.find("] ");
-        throw InputError(name + ": not valid JSON: " + (prefix_end == std::string::npos ? what : what.substr(prefix_end + 2)));
+        // Its "last read" part quotes the input, so it is cut like any quoted value.
+        throw InputError(quote_value(name, kMaxQuotedPathChars) + ": not valid JSON: " +
+                         quote_value(prefix_end == std::string::npos ? what : what.substr(prefix_end + 2), kMaxQuotedPathChars));
     }
     const Reader r(name, root, "");
     r.allow_only({"version", "mesh", "frames", "image", "camera", "object", "light", "lines", "brush"});
@@ -286,9 +362,9 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
         const json& f = r.at("frames");
         if (!f.is_array() || f.size() != 2 || !f[0].is_number_integer() || !f[1].is_number_integer())
             r.fail("frames", "expected [first, last] as two integers");
-        scene.first_frame = f[0].get<int>();
-        scene.last_frame = f[1].get<int>();
-        if (scene.first_frame > scene.last_frame) r.fail("frames", "first frame is after the last");
+        check_frame_range(Reader::frame_value(f[0]), Reader::frame_value(f[1]), r.file() + ": key 'frames'");
+        scene.first_frame = int(f[0].get<int64_t>());
+        scene.last_frame = int(f[1].get<int64_t>());
     }
     if (r.has("image")) {
         const Reader img = r.child("image");
@@ -313,12 +389,10 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
         l.allow_only({"direction", "position"});
         if (l.has("direction") == l.has("position")) l.fail("", "give exactly one of direction or position");
         if (l.has("direction")) {
-            scene.light.direction = l.vec3("direction");
-            if (glm::length(scene.light.direction) < kDegenerateVector) l.fail("direction", "must not be the zero vector");
-            scene.light.direction = glm::normalize(scene.light.direction);
+            scene.light.direction = l.direction("direction");
         } else {
             scene.light.is_point = true;
-            scene.light.position = l.vec3("position");
+            scene.light.position = l.position("position");
         }
     }
     if (r.has("lines")) {
@@ -338,7 +412,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
 
 Scene load_scene(const std::filesystem::path& scene_file, int max_image_side) {
     std::ifstream in(scene_file, std::ios::binary);
-    if (!in) throw InputError(scene_file.string() + ": cannot open scene file");
+    if (!in) throw InputError(quote_value(scene_file.string(), kMaxQuotedPathChars) + ": cannot open scene file");
     std::ostringstream text;
     text << in.rdbuf();
     return parse_scene(text.str(), scene_file, max_image_side);
@@ -350,7 +424,7 @@ Scene default_turntable_scene(const std::filesystem::path& mesh_file, const Boun
     scene.first_frame = 1;
     scene.last_frame = 48;
     const glm::dvec3 center = bounds.center();
-    const double radius = std::max(bounds.radius(), 1e-6);
+    const double radius = framing_radius(bounds);
     constexpr double kFovDeg = 35.0;
     constexpr double kElevationDeg = 20.0;
     // Fit the bounding sphere in the vertical field of view with a 10% margin.
@@ -383,7 +457,7 @@ Camera camera_at(const Scene& scene, int frame, const Bounds& world_bounds) {
     if (!spec.per_frame.empty()) {
         const auto it = spec.per_frame.find(frame);
         if (it == spec.per_frame.end()) {
-            throw InputError(scene.file.string() + ": key 'camera.frames': no camera for frame " +
+            throw InputError(quote_value(scene.file.string(), kMaxQuotedPathChars) + ": key 'camera.frames': no camera for frame " +
                              std::to_string(frame));
         }
         pose = it->second;
@@ -396,13 +470,16 @@ Camera camera_at(const Scene& scene, int frame, const Bounds& world_bounds) {
     Camera camera{pose.eye, pose.target, pose.up, pose.fov_y_deg, 0.0, 0.0};
 
     // Fit near/far to the bounding sphere; a camera inside it gets a small positive near.
-    const double radius = std::max(world_bounds.radius(), 1e-6);
+    const double radius = framing_radius(world_bounds);
     const double distance = glm::length(world_bounds.center() - camera.eye);
     camera.near = spec.near.value_or(std::max(0.9 * (distance - radius), 1e-3 * radius));
     camera.far = spec.far.value_or(std::max(1.1 * (distance + radius), camera.near * 2.0));
+    // The scene's limits keep every value here finite; a NaN would be a bug, not a bad key.
+    INKLINE_CHECK(std::isfinite(camera.near) && std::isfinite(camera.far) && std::isfinite(glm::length(camera.eye)));
     if (!(camera.far > camera.near)) {
-        throw InputError(scene.file.string() + ": key 'camera.far': must be greater than near (" +
-                         std::to_string(camera.near) + ")");
+        throw InputError(quote_value(scene.file.string(), kMaxQuotedPathChars) +
+                         ": key 'camera.far': must be greater than near (" + number_text(camera.near) +
+                         ", fitted to the mesh at frame " + std::to_string(frame) + ")");
     }
     return camera;
 }

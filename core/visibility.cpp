@@ -272,6 +272,17 @@ class Splitter {
 
 }  // namespace
 
+double occlusion_reach(const std::vector<glm::vec3>& positions) {
+    const double diagonal = 2.0 * bounds_of(positions).radius();
+    return diagonal > 0.0 ? kOcclusionReachDiagonals * diagonal : 1.0;
+}
+
+glm::dvec3 occlusion_segment_end(const glm::dvec3& p, const glm::dvec3& eye, double reach) {
+    const glm::dvec3 to_eye = eye - p;
+    const double length = glm::length(to_eye);
+    return length > reach ? p + to_eye * (reach / length) : eye;
+}
+
 double Polyline::length_px() const {
     double len = 0.0;
     for (size_t i = 1; i < points_px.size(); ++i) len += glm::length(points_px[i] - points_px[i - 1]);

@@ -33,6 +33,20 @@ class Occlusion {
                           std::span<uint8_t> r_occluded) const = 0;
 };
 
+// Occluders lie inside the mesh's bounding box, so only the part of the segment from a point
+// towards the eye that lies within this many box diagonals of the point can meet one. The
+// occlusion tests clip the segment there before they apply their end gap: an eye at any distance
+// answers as one at this distance does, and Embree's float rays stay far inside the range it
+// accepts (about 1.8e18 per component) whatever the coordinates.
+inline constexpr double kOcclusionReachDiagonals = 4.0;
+
+// kOcclusionReachDiagonals diagonals of the bounding box of `positions` (1 for a single point).
+double occlusion_reach(const std::vector<glm::vec3>& positions);
+
+// The end of the segment from p towards the eye that the occlusion tests use: the eye when it
+// is within `reach` of p, else the point `reach` away from p towards it.
+glm::dvec3 occlusion_segment_end(const glm::dvec3& p, const glm::dvec3& eye, double reach);
+
 struct VisibilityOptions {
     double sample_spacing_px = 2.0;  // coarse samples at most this far apart along a chain
     double bisection_px = 0.125;     // transitions located to this precision

@@ -310,6 +310,41 @@ TEST(RaycastVisibility, AFaceInFrontOccludes) {
     for (size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(hidden[i], 0) << i << ": the small triangle covers none of the big one's edges";
 }
 
+// Issue 19: a mesh of radius 5e17 seen from its default turntable distance sent rays beyond
+// Embree's float range (SIGABRT in ray.valid()). At every scale, and from an eye at the scene
+// limit, both tests give the answer of the unit-scale case.
+TEST(RaycastVisibility, AnswersDoNotDependOnScaleOrEyeDistance) {
+    SKIP_WITHOUT_EMBREE();
+    for (const double scale : {1e-30, 1e-10, 1.0, 1e15, 5e17, 1e18}) {
+        SCOPED_TRACE(scale);
+        core::Mesh mesh;
+        for (const glm::dvec3 p : {glm::dvec3(-1, -1, 0), glm::dvec3(1, -1, 0), glm::dvec3(0, 1, 0),
+                                   glm::dvec3(-2, -2, 1), glm::dvec3(2, -2, 1), glm::dvec3(0, 2, 1)}) {
+            mesh.positions.emplace_back(p * scale);
+        }
+        mesh.triangles = {{0, 1, 2}, {3, 4, 5}};
+        const core::EdgeTable table = core::build_edge_table(mesh);
+        const core::RaycastOcclusion raycast(mesh, table);
+        const core::ExactOcclusion exact(mesh, table);
+        std::vector<core::OcclusionQuery> queries;
+        for (uint32_t e = 0; e < table.edge_count(); ++e) {
+            const glm::dvec3 a(mesh.positions[table.edge_vertices[e].x]), b(mesh.positions[table.edge_vertices[e].y]);
+            queries.push_back({0.5 * (a + b), e});
+        }
+        for (const glm::dvec3 eye : {glm::dvec3(0.0, 0.0, 5.0 * scale), glm::dvec3(0.0, 0.0, 1e19),
+                                     glm::dvec3(1e-3 * scale, 2e-3 * scale, 1e19)}) {
+            std::vector<uint8_t> by_ray(queries.size()), by_segment(queries.size());
+            raycast.occluded(eye, queries, by_ray);
+            exact.occluded(eye, queries, by_segment);
+            for (size_t i = 0; i < queries.size(); ++i) {
+                const int expected = queries[i].p_object.z < 0.5 * scale ? 1 : 0;
+                EXPECT_EQ(by_ray[i], expected) << "raycast, query " << i << ", eye z " << eye.z;
+                EXPECT_EQ(by_segment[i], expected) << "exact, query " << i << ", eye z " << eye.z;
+            }
+        }
+    }
+}
+
 TEST(RaycastVisibility, DegenerateFacesDoNotShiftFaceNumbers) {
     SKIP_WITHOUT_EMBREE();
     // Two parallel triangles after a zero-area face the BVH leaves out: hits must still map to

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 namespace inkline {
@@ -73,6 +74,98 @@ TEST(Scene, ErrorsNameTheFileAndKey) {
         EXPECT_NE(error.find("dir/scene.json: "), std::string::npos) << c.json;
         EXPECT_NE(error.find(c.expected), std::string::npos) << c.json << "\n  gave: " << error;
         EXPECT_EQ(error.find('\n'), std::string::npos) << "one line: " << error;
+    }
+}
+
+// Issue 19: camera values are limited where they are read, and each message names its key.
+TEST(Scene, CameraLimitsNameTheirKey) {
+    const std::string tail = R"(, "camera": {"eye": [0,0,4], "target": [0,0,0]}})";
+    struct Case {
+        std::string json;
+        std::string expected;
+    };
+    const std::vector<Case> cases = {
+        {R"({"mesh": "m.obj", "camera": {"eye": [0,0,1e20], "target": [0,0,0]}})", "key 'camera.eye': coordinate 1e+20 exceeds the limit of 1e+19"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [-1.5e19,0,0]}})", "key 'camera.target': coordinate"},
+        {R"({"mesh": "m.obj", "camera": {"frames": [{"frame": 1, "eye": [0,1e38,4], "target": [0,0,0]}]}})", "key 'camera.frames[0].eye': coordinate 1e+38"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0], "orbit": {"axis": [0,1,0], "degrees": 90, "center": [0,0,1e30]}}})", "key 'camera.orbit.center'"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0], "fov_y_deg": 1e-300}})", "key 'camera.fov_y_deg': must be at least 0.001"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0], "up": [0,0,0]}})", "key 'camera.up': must not be the zero vector"},
+        {R"({"mesh": "m.obj", "camera": {"eye": [1e18,0,0], "target": [1.0000000000000001e18,0,0]}})", "key 'camera.eye': equals the target"},
+        {R"({"mesh": "m.obj", "object": {"rotate": {"axis": [0,0,0], "degrees": 90}})" + tail, "key 'object.rotate.axis': must not be the zero vector"},
+        {R"({"mesh": "m.obj", "object": {"rotate": {"axis": [0,1,0], "degrees": 90, "center": [2e19,0,0]}})" + tail, "key 'object.rotate.center'"},
+        {R"({"mesh": "m.obj", "light": {"position": [0,-1e300,0]})" + tail, "key 'light.position'"},
+        {R"({"mesh": "m.obj", "light": {"direction": [0,0,0]})" + tail, "key 'light.direction'"},
+        {R"({"mesh": "m.obj", "frames": [1, 4294967298])" + tail, "key 'frames': frame numbers must be between"},
+        {R"({"mesh": "m.obj", "frames": [-18446744073709551615, 1])" + tail, "key 'frames'"},
+        {R"({"mesh": "m.obj", "frames": [1, 18446744073709551615])" + tail, "key 'frames': frame numbers must be between"},
+        {R"({"mesh": "m.obj", "camera": {"frames": [{"frame": 4294967297, "eye": [0,0,4], "target": [0,0,0]}]}})", "key 'camera.frames[0].frame': frame numbers must be between"},
+        {R"({"mesh": "m.obj", "camera": {"frames": [{"frame": 1000000000, "eye": [0,0,4], "target": [0,0,0]}]}})", "key 'camera.frames[0].frame'"},
+    };
+    for (const Case& c : cases) {
+        const std::string error = error_of(c.json);
+        EXPECT_EQ(error.rfind("dir/scene.json: ", 0), 0u) << c.json << "\n  gave: " << error;
+        EXPECT_NE(error.find(c.expected), std::string::npos) << c.json << "\n  gave: " << error;
+        EXPECT_EQ(error.find('\n'), std::string::npos) << "one line: " << error;
+    }
+}
+
+// Directions are taken at any finite length: an axis whose squared length overflows (once a NaN
+// that blamed camera.far) or underflows is still a direction.
+TEST(Scene, DirectionsOfAnyLengthAreNormalised) {
+    const core::Scene s = core::parse_scene(R"({"mesh": "m.obj",
+        "camera": {"eye": [0,0,1e-30], "target": [0,0,0], "up": [0,1e-300,0]},
+        "object": {"rotate": {"axis": [1e300,1e300,0], "degrees": 90}},
+        "light": {"direction": [0,-1e308,0]}})", "dir/scene.json");
+    EXPECT_NEAR(glm::length(s.object_rotation->axis), 1.0, 1e-12);
+    EXPECT_NEAR(s.object_rotation->axis.x, std::sqrt(0.5), 1e-12);
+    EXPECT_NEAR(s.camera.pose.up.y, 1.0, 1e-12);
+    EXPECT_NEAR(s.light.direction.y, -1.0, 1e-12);
+    core::Bounds bounds;
+    bounds.add({-1e-31, -1e-31, -1e-31});
+    bounds.add({1e-31, 1e-31, 1e-31});
+    const core::Camera camera = core::camera_at(s, 1, core::transformed(bounds, core::world_from_object_at(s, 1)));
+    EXPECT_TRUE(std::isfinite(camera.near) && std::isfinite(camera.far));
+    EXPECT_GT(camera.far, camera.near);
+    const glm::dmat4 m = core::world_from_object_at(s, 1);
+    for (int i = 0; i < 4; ++i) EXPECT_TRUE(std::isfinite(m[i][0] + m[i][1] + m[i][2] + m[i][3]));
+}
+
+TEST(Scene, LongKeysAndValuesAreCutInMessages) {
+    const std::string key(100000, 'k');
+    const std::string error = error_of(R"({"mesh": "m.obj", ")" + key + R"(": 1, "camera": {"eye": [0,0,4], "target": [0,0,0]}})");
+    EXPECT_NE(error.find("unknown key"), std::string::npos) << error.substr(0, 300);
+    EXPECT_NE(error.find("kkk...kkk"), std::string::npos) << error.substr(0, 300);
+    EXPECT_LT(error.size(), 300u);
+    const std::string broken = error_of(R"({"mesh": ")" + std::string(100000, 'x') + "\n\"}");
+    EXPECT_NE(broken.find("not valid JSON"), std::string::npos) << broken.substr(0, 300);
+    EXPECT_LT(broken.size(), 500u);
+    EXPECT_EQ(broken.find('\n'), std::string::npos);
+    EXPECT_EQ(quote_value("short"), "short");
+    EXPECT_EQ(quote_value("a\nb"), "a?b");
+    EXPECT_LE(quote_value(std::string(1000, 'z')).size(), kMaxQuotedChars);
+}
+
+// The bare mesh turntable frames every mesh the readers accept, from extent 1e-30 to the
+// coordinate limit, with finite near < far and the eye within the scene limit.
+TEST(Scene, DefaultTurntableFramesEveryMeshSize) {
+    for (const double size : {1e-30, 1e-6, 1.0, 5e17, 1e18}) {
+        for (const double offset : {0.0, 1e3 * size}) {
+            if (offset + size > 1e18) continue;
+            SCOPED_TRACE(std::to_string(size) + " at " + std::to_string(offset));
+            core::Bounds bounds;
+            bounds.add(glm::dvec3(offset - size));
+            bounds.add(glm::dvec3(offset + size));
+            const core::Scene s = core::default_turntable_scene("m.obj", bounds);
+            for (const int frame : {1, 13, 48}) {
+                const core::Camera camera = core::camera_at(s, frame, bounds);
+                EXPECT_GT(camera.near, 0.0);
+                EXPECT_GT(camera.far, camera.near);
+                EXPECT_TRUE(std::isfinite(camera.far));
+                EXPECT_LT(glm::length(camera.eye - bounds.center()), 10.0 * bounds.radius());
+                for (int i = 0; i < 3; ++i) EXPECT_LE(std::abs(camera.eye[i]), 1e19);
+            }
+        }
     }
 }
 
