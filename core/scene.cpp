@@ -44,10 +44,12 @@ constexpr double kMaxWorldCoordinate = 1e19;
 constexpr double kMinFovDeg = 1e-3;
 
 // v scaled to unit length without overflow or underflow of its squared length; nullopt for the
-// zero vector.
+// zero vector. Lengths whose square is a normal double are divided directly, so ordinary
+// directions normalise to the same bits as glm::normalize.
 std::optional<glm::dvec3> unit_direction(const glm::dvec3& v) {
     const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
     if (!(largest > 0.0)) return std::nullopt;
+    if (largest > 1e-150 && largest < 1e150) return glm::normalize(v);
     return glm::normalize(v / largest);
 }
 
