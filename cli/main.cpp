@@ -13,7 +13,7 @@
 
 namespace {
 
-enum ExitCode { kOk = 0, kInternal = 1, kInputError = 2, kOutputError = 3 };
+enum ExitCode { kOk = 0, kInternal = 1, kInputError = 2, kOutputError = 3, kOutOfMemory = 4 };
 
 // The render options, shared by `render` and the render arguments that `farm` passes on.
 void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
@@ -130,6 +130,9 @@ int main(int argc, char** argv) {
         std::cerr << "inkline: error: no usable OpenGL context: " << e.what()
                   << " (try --gl osmesa, or --visibility raycast or exact)\n";
         return kInputError;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "inkline: error: out of memory\n";
+        return kOutOfMemory;
     } catch (const std::exception& e) {
         std::cerr << "inkline: internal error: " << e.what() << "\n";
         return kInternal;

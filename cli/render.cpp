@@ -415,6 +415,11 @@ class Writers {
         if (!(args.margin_mm >= 0.0 && args.margin_mm < 1000.0)) throw InputError("--margin: must be 0..1000 mm");
         pdf_options_.title = fs::path(mesh_name).stem().string();
         pdf_options_.creation_date = reproducible_date(args.input);
+        // What Cairo cannot draw is refused before any file is written.
+        if (!outputs_.png.empty() || !outputs_.preview.empty()) {
+            output::check_png_size(scene.image.width, scene.image.height);
+        }
+        if (!outputs_.pdf.empty()) output::check_pdf_page(pdf_options_, scene.image.width, scene.image.height);
         if (!outputs_.pdf.empty() && !outputs_.pdf_per_frame) pdf_ = std::make_unique<output::PdfDocument>(pdf_options_);
     }
 
