@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // What Cairo and PDF cannot take is refused before drawing: PNG sides, PDF page sizes, margins;
-// a title that is not UTF-8 still makes a PDF.
+// a title that is not UTF-8 still makes a PDF; Cairo running out of memory while drawing is
+// std::bad_alloc, never a blank or half-drawn image.
 #include "export/pdf.h"
 #include "export/png.h"
 
@@ -8,7 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <new>
 #include <string>
+
+#include <malloc.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace inkline {
 namespace {
@@ -29,6 +37,75 @@ std::string input_error(F f) {
     }
     ADD_FAILURE() << "no InputError";
     return "";
+}
+
+// Runs `f` in a child process whose address space may grow by `headroom` bytes only; returns
+// its exit status: 0 done, 4 std::bad_alloc, 2 InputError, 3 OutputError, 1 anything else.
+template <typename F>
+int exit_code_with_memory_headroom(size_t headroom, F f) {
+    const pid_t child = ::fork();
+    if (child == 0) {
+        ::malloc_trim(0);  // memory freed earlier is not headroom
+        long pages = 0;
+        if (FILE* statm = std::fopen("/proc/self/statm", "r")) {
+            if (std::fscanf(statm, "%ld", &pages) != 1) pages = 0;
+            std::fclose(statm);
+        }
+        if (pages <= 0) ::_exit(9);
+        const rlim_t limit = rlim_t(pages) * rlim_t(::sysconf(_SC_PAGESIZE)) + headroom;
+        const rlimit r{limit, limit};
+        if (::setrlimit(RLIMIT_AS, &r) != 0) ::_exit(9);
+        try {
+            f();
+        } catch (const std::bad_alloc&) {
+            ::_exit(4);
+        } catch (const InputError&) {
+            ::_exit(2);
+        } catch (const OutputError&) {
+            ::_exit(3);
+        } catch (...) {
+            ::_exit(1);
+        }
+        ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// A 4096x4096 drawing with one filled square per layer: each layer is drawn in a group of its
+// own, a second image as large as the first.
+output::Drawing squares() {
+    output::Drawing d = blank(4096, 4096);
+    d.shapes.push_back({.stroke_id = 1, .filled = true, .paths = {{{100, 100}, {4000, 100}, {4000, 4000}, {100, 4000}}}});
+    return d;
+}
+
+TEST(CairoStatus, PngThatRunsOutOfMemoryWhileDrawingIsBadAlloc) {
+    const output::Drawing d = squares();
+    EXPECT_EQ(exit_code_with_memory_headroom(size_t(1) << 32, [&] { output::png_image(d); }), 0);
+    // Room for the image (64 MiB) but not for a layer's group as well.
+    EXPECT_EQ(exit_code_with_memory_headroom(size_t(80) << 20, [&] { output::png_image(d); }), 4);
+    // No room for the image.
+    EXPECT_EQ(exit_code_with_memory_headroom(size_t(16) << 20, [&] { output::png_image(d); }), 4);
+}
+
+TEST(CairoStatus, PdfThatRunsOutOfMemoryIsBadAlloc) {
+    // One stroke of 400000 scattered points: page content that does not compress, MiBs of it.
+    output::Drawing d = blank(4096, 4096);
+    output::Shape s;
+    s.paths.emplace_back();
+    uint32_t state = 12345;
+    auto next = [&] { return double((state = state * 1664525u + 1013904223u) >> 8) / double(1 << 24) * 4000.0; };
+    for (int i = 0; i < 400'000; ++i) s.paths.back().push_back({next(), next()});
+    d.shapes.push_back(std::move(s));
+    auto pdf = [&] {
+        output::PdfDocument doc({});
+        doc.add_page(d);
+        doc.finish();
+    };
+    EXPECT_EQ(exit_code_with_memory_headroom(size_t(4) << 30, pdf), 0);
+    EXPECT_EQ(exit_code_with_memory_headroom(size_t(2) << 20, pdf), 4);
 }
 
 TEST(CairoLimits, PngSideOverCairosLimitIsAnInputError) {
