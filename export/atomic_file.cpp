@@ -220,6 +220,24 @@ void write_in_place(const fs::path& path, std::string_view contents, bool throug
     if (error != 0) fail(path, "cannot write", error);
 }
 
+// The descriptor `path` names when it is /dev/stdout, /dev/stderr, /dev/fd/N or /proc/self/fd/N
+// and that descriptor is open, else -1: writing to it keeps what the shell set up (a pipe, a
+// file opened for appending) instead of replacing the file behind it.
+int named_descriptor(const fs::path& path) {
+    const std::string& s = path.native();
+    int fd = -1;
+    if (s == "/dev/stdout") fd = STDOUT_FILENO;
+    if (s == "/dev/stderr") fd = STDERR_FILENO;
+    for (const std::string_view prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+        const std::string_view digits = std::string_view(s).substr(std::min(s.size(), prefix.size()));
+        if (s.starts_with(prefix) && !digits.empty() && digits.size() <= 6 &&
+            std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+            fd = std::stoi(std::string(digits));
+        }
+    }
+    return fd >= 0 && ::fcntl(fd, F_GETFD) != -1 ? fd : -1;
+}
+
 // Refuses what cannot be an output; true when `kind` is written in place.
 bool written_in_place(const fs::path& path, mode_t kind) {
     if (S_ISCHR(kind) || S_ISFIFO(kind)) return true;
@@ -280,6 +298,10 @@ void write_file_atomically(const fs::path& path, std::string_view contents) {
         std::error_code ec;
         fs::create_directories(path.parent_path(), ec);
         if (ec) fail(path.parent_path(), "cannot create folder", ec.value());
+    }
+    if (const int fd = named_descriptor(path); fd >= 0) {
+        if (const int error = write_all(fd, contents)) fail(path, "cannot write", error);
+        return;
     }
     struct stat info {};
     if (::lstat(path.c_str(), &info) != 0) {

@@ -21,6 +21,8 @@ namespace inkline::output {
 //   writing, never created, truncated or replaced. Block devices, sockets and folders are refused.
 // - A symbolic link is followed: the link stays, and the file it leads to is written as above
 //   (a regular file is replaced in its own folder). A link that leads nowhere is refused.
+// - /dev/stdout, /dev/stderr, /dev/fd/N and /proc/self/fd/N write to that open descriptor as it
+//   is (a pipe, or a file the shell opened, appending or not).
 // Temporaries are created exclusively under unpredictable names (O_EXCL, O_NOFOLLOW); leftovers
 // of killed runs writing the same output (their process no longer running) are removed first.
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);

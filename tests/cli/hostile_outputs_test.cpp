@@ -103,6 +103,21 @@ TEST_F(HostileOutputs, FifoWhoseReaderLeavesIsAnOutputError) {
     EXPECT_EQ(changed_by(before), Names{});
 }
 
+TEST_F(HostileOutputs, DevStdoutAppendsToWhatTheShellOpened) {
+    test::write_text(dir / "log.txt", "earlier\n");
+    const auto before = test::folder_state(dir);
+    const test::RunResult r = test::run_shell(test::inkline_command() + " " + render() + " --json /dev/stdout >> " +
+                                              at("log.txt"));
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output, "");
+    const auto after = test::folder_state(dir);
+    EXPECT_EQ(test::changed_entries(before, after), Names{"log.txt"});
+    EXPECT_EQ(after.at("log.txt").inode, before.at("log.txt").inode);
+    const std::string log = test::read_text(dir / "log.txt");
+    EXPECT_TRUE(log.starts_with("earlier\n{")) << log.substr(0, 40);
+    EXPECT_TRUE(log.ends_with("}\n"));
+}
+
 TEST_F(HostileOutputs, SymlinkedOutputReplacesTheFileItLeadsToAndKeepsTheLink) {
     test::write_text(dir / "real" / "frame.svg", "old");
     test::write_text(dir / "real" / "frame.json", "old");

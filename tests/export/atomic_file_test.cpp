@@ -175,6 +175,21 @@ TEST(AtomicFile, CharacterDeviceIsWrittenInPlace) {
     EXPECT_EQ(after.st_rdev, before.st_rdev);
 }
 
+TEST(AtomicFile, NamedDescriptorIsWrittenAsItIsAppendingWhereItAppends) {
+    const fs::path dir = test::fresh_temp_dir("atomic_descriptor");
+    test::write_text(dir / "log.txt", "earlier\n");
+    const ino_t inode = inode_of(dir / "log.txt");
+    const int fd = ::open((dir / "log.txt").c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+    ASSERT_GE(fd, 0);
+    output::write_file_atomically("/dev/fd/" + std::to_string(fd), "one\n");
+    output::write_file_atomically("/proc/self/fd/" + std::to_string(fd), "two\n");
+    ::close(fd);
+    EXPECT_EQ(test::read_text(dir / "log.txt"), "earlier\none\ntwo\n");
+    EXPECT_EQ(inode_of(dir / "log.txt"), inode);
+    EXPECT_EQ(entries_in(dir), 1u);
+    fs::remove_all(dir);
+}
+
 TEST(AtomicFile, FifoIsWrittenInPlaceForItsReader) {
     const fs::path dir = test::fresh_temp_dir("atomic_fifo");
     ASSERT_EQ(::mkfifo((dir / "pipe").c_str(), 0644), 0);
