@@ -13,7 +13,7 @@
 
 namespace {
 
-enum ExitCode { kOk = 0, kInternal = 1, kInputError = 2, kOutputError = 3 };
+enum ExitCode { kOk = 0, kInternal = 1, kInputError = 2, kOutputError = 3, kOutOfMemory = 5 };
 
 // The render options, shared by `render` and the render arguments that `farm` passes on.
 void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
@@ -69,6 +69,15 @@ inkline::cli::RenderArgs parse_render_args(const std::vector<std::string>& words
     return r;
 }
 
+// The longest error line, in characters: a message quoting a huge value stays readable.
+constexpr size_t kMaxMessageChars = 300;
+
+// Prints one error line: control characters (a newline in a file name) shown as '?', a long
+// message cut in the middle.
+void report(const char* prefix, const std::string& message) {
+    std::cerr << prefix << inkline::quote_value(message, kMaxMessageChars) << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -113,7 +122,9 @@ int main(int argc, char** argv) {
     try {
         app.parse(own_words, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e) == 0 ? kOk : kInputError;
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        report("inkline: error: ", std::string(e.what()) + " (see inkline --help)");
+        return kInputError;
     }
     inkline::output::install_interrupt_cleanup();
     try {
@@ -121,17 +132,20 @@ int main(int argc, char** argv) {
         if (*info_cmd) return inkline::cli::run_info(info_path);
         if (*farm_cmd) return inkline::cli::run_farm(farm, parse_render_args(farm.render_args));
     } catch (const inkline::InputError& e) {
-        std::cerr << "inkline: error: " << e.what() << "\n";
+        report("inkline: error: ", e.what());
         return kInputError;
     } catch (const inkline::OutputError& e) {
-        std::cerr << "inkline: error: " << e.what() << "\n";
+        report("inkline: error: ", e.what());
         return kOutputError;
     } catch (const inkline::gl::ContextError& e) {
-        std::cerr << "inkline: error: no usable OpenGL context: " << e.what()
-                  << " (try --gl osmesa, or --visibility raycast or exact)\n";
+        report("inkline: error: no usable OpenGL context: ",
+               std::string(e.what()) + " (try --gl osmesa, or --visibility raycast or exact)");
         return kInputError;
+    } catch (const std::bad_alloc&) {
+        report("inkline: error: ", "out of memory");
+        return kOutOfMemory;
     } catch (const std::exception& e) {
-        std::cerr << "inkline: internal error: " << e.what() << "\n";
+        report("inkline: internal error: ", e.what());
         return kInternal;
     }
     return kInternal;

@@ -3,11 +3,11 @@
 
 #include "core/error.h"
 #include "core/frame_pattern.h"
+#include "export/atomic_file.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <functional>
-#include <optional>
 #include <unordered_map>
 
 #include <sys/stat.h>
@@ -16,19 +16,6 @@ namespace inkline::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A file on disk: device and inode, the same through every link and every spelling of its name.
-struct FileId {
-    dev_t device = 0;
-    ino_t inode = 0;
-    bool operator==(const FileId&) const = default;
-};
-
-std::optional<FileId> file_id(const fs::path& path) {
-    struct stat info {};
-    if (::stat(path.c_str(), &info) != 0) return std::nullopt;
-    return FileId{info.st_dev, info.st_ino};
-}
 
 // One output option and its pattern (or single file).
 struct OutputPattern {
@@ -71,7 +58,7 @@ Outputs resolve_outputs(const RenderArgs& args, int frame_count) {
     }
     for (const std::string* pattern : {&out.json, &out.svg, &out.png, &out.preview}) {
         if (!pattern->empty() && frame_count > 1 && !core::has_frame_field(*pattern)) {
-            throw InputError("output pattern '" + *pattern + "' has no frame field such as %04d but " +
+            throw InputError("output pattern '" + quote_value(*pattern) + "' has no frame field such as %04d but " +
                              std::to_string(frame_count) + " frames are rendered");
         }
     }
@@ -80,12 +67,12 @@ Outputs resolve_outputs(const RenderArgs& args, int frame_count) {
 
 void check_outputs(const Outputs& outputs, int first, int last, const std::vector<InputFile>& inputs) {
     struct Known {
-        FileId id;
+        output::FileIdentity id;
         const InputFile* input;
     };
     std::vector<Known> input_ids;
     for (const InputFile& input : inputs) {
-        if (const auto id = file_id(input.path)) input_ids.push_back({*id, &input});
+        if (const auto id = output::file_identity(input.path)) input_ids.push_back({*id, &input});
     }
 
     const std::vector<OutputPattern> patterns = {
@@ -110,19 +97,19 @@ void check_outputs(const Outputs& outputs, int first, int last, const std::vecto
             // The name as the writer will reach it, once missing folders are made.
             const std::string given = out.per_frame ? core::format_frame(*out.pattern, frame) : *out.pattern;
             const fs::path name = canonical(given);
-            struct stat info {};
-            if (::lstat(name.c_str(), &info) == 0) {
-                const std::optional<FileId> id = file_id(name);
+            struct stat target {};  // what the name leads to, links followed
+            if (::stat(name.c_str(), &target) == 0) {
+                const output::FileIdentity id{target.st_dev, target.st_ino};
                 for (const Known& k : input_ids) {
-                    if (id && *id == k.id) {
+                    if (id == k.id) {
                         throw InputError(given + ": " + out.option + " would replace the " + k.input->role +
                                          " it reads (" + k.input->path.string() + ")");
                     }
                 }
-                struct stat target {};
-                if (::stat(name.c_str(), &target) == 0 && S_ISREG(target.st_mode) &&
-                    (target.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0) {
-                    throw OutputError(given + ": exists and is read-only; not replaced");
+                // Devices and FIFOs are written in place, not replaced: several outputs may share one.
+                if (!S_ISREG(target.st_mode)) continue;
+                if ((target.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0) {
+                    throw OutputError(given + ": is read-only; not replaced (make it writable or remove it)");
                 }
             }
             named.push_back({std::hash<std::string>{}(name.string()), p, frame});

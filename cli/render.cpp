@@ -73,19 +73,19 @@ struct FrameRange {
 FrameRange parse_frames(const std::string& text) {
     static const std::regex range(R"(^\s*(-?\d{1,18})\s*(?::\s*(-?\d{1,18}))?\s*$)");
     std::smatch m;
-    if (!std::regex_match(text, m, range)) throw InputError("--frames '" + text + "': expected A:B");
+    if (!std::regex_match(text, m, range)) throw InputError("--frames '" + quote_value(text) + "': expected A:B");
     const long long first = std::stoll(m[1]), last = m[2].matched ? std::stoll(m[2]) : first;
-    core::check_frame_range(first, last, "--frames '" + text + "'");
+    core::check_frame_range(first, last, "--frames '" + quote_value(text) + "'");
     return {int(first), int(last)};
 }
 
 core::ImageSize parse_size(const std::string& text, int max_side) {
     static const std::regex size(R"(^\s*(\d{1,9})\s*[xX]\s*(\d{1,9})\s*$)");
     std::smatch m;
-    if (!std::regex_match(text, m, size)) throw InputError("--size '" + text + "': expected WxH");
+    if (!std::regex_match(text, m, size)) throw InputError("--size '" + quote_value(text) + "': expected WxH");
     const core::ImageSize image{std::stoi(m[1]), std::stoi(m[2])};
     if (image.width <= 0 || image.height <= 0 || image.width > max_side || image.height > max_side) {
-        throw InputError("--size '" + text + "': each side must be 1.." + std::to_string(max_side) +
+        throw InputError("--size '" + quote_value(text) + "': each side must be 1.." + std::to_string(max_side) +
                          " px (see --max-image-side)");
     }
     return image;
@@ -118,7 +118,7 @@ VisibilityChoice choose_visibility(const RenderArgs& args) {
     VisibilityChoice choice;
     const std::string& asked = args.visibility;
     if (asked != "auto" && asked != "gl" && asked != "raycast" && asked != "exact") {
-        throw InputError("--visibility '" + asked + "': expected auto, gl, raycast or exact");
+        throw InputError("--visibility '" + quote_value(asked) + "': expected auto, gl, raycast or exact");
     }
     if (asked == "exact" || asked == "raycast") {
         choice.mode = asked;
@@ -160,7 +160,7 @@ class Sequence {
     Sequence(const core::Scene& scene, const RenderArgs& args, core::MeshFrames& meshes, int frame_count)
         : scene_(scene), args_(args), meshes_(meshes), visibility_(choose_visibility(args)) {
         if (args.tracker != "incremental" && args.tracker != "brute")
-            throw InputError("--tracker '" + args.tracker + "': expected incremental or brute");
+            throw InputError("--tracker '" + quote_value(args.tracker) + "': expected incremental or brute");
         // The tracker's cone hierarchy costs about one brute-force pass per few hundred thousand
         // faces to build and repays it over later frames; a single frame gets the identical
         // result cheaper by brute force.
@@ -249,7 +249,7 @@ class Sequence {
             } else if (underlay == "toon") {
                 options.underlay = gl::Underlay::kToon;
             } else if (underlay != "none") {
-                throw InputError("--preview-underlay '" + underlay + "': expected none, flat or toon");
+                throw InputError("--preview-underlay '" + quote_value(underlay) + "': expected none, flat or toon");
             }
             if (!args_.background.empty()) {
                 const output::Rgb bg = output::parse_color(args_.background, "--background");
@@ -347,9 +347,9 @@ std::pair<int, int> parse_chunk(const std::string& text) {
     }
     static const std::regex chunk(R"(^\s*(\d{1,7})\s*/\s*(\d{1,7})\s*$)");
     std::smatch m;
-    if (!std::regex_match(text, m, chunk)) throw InputError("--chunk '" + text + "': expected K/N or slurm");
+    if (!std::regex_match(text, m, chunk)) throw InputError("--chunk '" + quote_value(text) + "': expected K/N or slurm");
     const int k = std::stoi(m[1]), n = std::stoi(m[2]);
-    if (n < 1 || k < 1 || k > n) throw InputError("--chunk '" + text + "': K must be 1.." + std::to_string(n));
+    if (n < 1 || k < 1 || k > n) throw InputError("--chunk '" + quote_value(text) + "': K must be 1.." + std::to_string(n));
     return {k, n};
 }
 
@@ -392,6 +392,11 @@ class Writers {
         if (!(args.margin_mm >= 0.0 && args.margin_mm < 1000.0)) throw InputError("--margin: must be 0..1000 mm");
         pdf_options_.title = fs::path(mesh_name).stem().string();
         pdf_options_.creation_date = reproducible_date(args.input);
+        // What Cairo cannot draw is refused before any file is written.
+        if (!outputs_.png.empty() || !outputs_.preview.empty()) {
+            output::check_png_size(scene.image.width, scene.image.height);
+        }
+        if (!outputs_.pdf.empty()) output::check_pdf_page(pdf_options_, scene.image.width, scene.image.height);
         if (!outputs_.pdf.empty() && !outputs_.pdf_per_frame) pdf_ = std::make_unique<output::PdfDocument>(pdf_options_);
     }
 

@@ -6,8 +6,11 @@
 
 #include <cairo-pdf.h>
 #include <cairo.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <regex>
 
 namespace inkline::output {
@@ -19,7 +22,67 @@ constexpr double kLabelPoints = 8.0;  // size of the frame label printed in the 
 
 double mm_to_points(double mm) { return mm / kMmPerInch * kPointsPerInch; }
 
+// Where the image goes on its page, in points.
+struct PageLayout {
+    double page_w = 0.0, page_h = 0.0;
+    double scale = 1.0, offset_x = 0.0, offset_y = 0.0;
+    std::optional<PageSize> page;  // the page size asked for, turned to the image's orientation
+};
+
+PageLayout layout(const PdfOptions& o, double image_w, double image_h) {
+    PageLayout l;
+    if (o.page) {
+        PageSize p = *o.page;
+        if (p.named && image_w > image_h) std::swap(p.width_mm, p.height_mm);
+        l.page = p;
+        l.page_w = mm_to_points(p.width_mm);
+        l.page_h = mm_to_points(p.height_mm);
+        const double margin = mm_to_points(o.margin_mm);
+        const double avail_w = std::max(l.page_w - 2.0 * margin, 1.0), avail_h = std::max(l.page_h - 2.0 * margin, 1.0);
+        l.scale = std::min(avail_w / image_w, avail_h / image_h);
+        l.offset_x = (l.page_w - l.scale * image_w) / 2.0;
+        l.offset_y = (l.page_h - l.scale * image_h) / 2.0;
+    } else {
+        l.scale = kPointsPerInch / o.dpi;
+        l.page_w = image_w * l.scale;
+        l.page_h = image_h * l.scale;
+    }
+    return l;
+}
+
+std::string number(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+// `text` with every byte sequence that is not UTF-8 replaced by U+FFFD: Cairo takes UTF-8 only.
+std::string valid_utf8(const std::string& text) {
+    using nlohmann::json;
+    return json::parse(json(text).dump(-1, ' ', false, json::error_handler_t::replace)).get<std::string>();
+}
+
 }  // namespace
+
+void check_pdf_page(const PdfOptions& o, int width, int height) {
+    const PageLayout l = layout(o, width, height);
+    const bool fits = l.page_w >= kMinPdfPagePoints && l.page_w <= kMaxPdfPagePoints &&
+                      l.page_h >= kMinPdfPagePoints && l.page_h <= kMaxPdfPagePoints;
+    const std::string limits =
+        "PDF pages are " + number(kMinPdfPagePoints) + " to " + number(kMaxPdfPagePoints) + " pt a side";
+    if (!fits && !o.page) {
+        throw InputError("--dpi " + number(o.dpi) + ": a " + std::to_string(width) + "x" + std::to_string(height) +
+                         " px image makes a PDF page of " + number(l.page_w) + "x" + number(l.page_h) + " pt; " +
+                         limits + " (use --page, or another --dpi)");
+    }
+    if (!fits) {
+        throw InputError("--page " + number(l.page->width_mm) + "x" + number(l.page->height_mm) + "mm: " + limits);
+    }
+    if (l.page && (2.0 * o.margin_mm >= l.page->width_mm || 2.0 * o.margin_mm >= l.page->height_mm)) {
+        throw InputError("--margin " + number(o.margin_mm) + " mm leaves no room for the image on a " +
+                         number(l.page->width_mm) + "x" + number(l.page->height_mm) + " mm page");
+    }
+}
 
 PageSize parse_page_size(const std::string& text) {
     std::string lower = text;
@@ -41,53 +104,45 @@ struct PdfDocument::Impl {
     std::string bytes;
     cairo_surface_t* surface = nullptr;
     cairo_t* cr = nullptr;
+    Impl() = default;
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+    ~Impl() {
+        if (cr) cairo_destroy(cr);
+        if (surface) cairo_surface_destroy(surface);
+    }
 };
 
 PdfDocument::PdfDocument(const PdfOptions& options) : impl_(std::make_unique<Impl>()) {
     impl_->options = options;
+    impl_->options.title = valid_utf8(options.title);
     // The real page size is set per page; the first page's is a placeholder.
     impl_->surface = cairo_pdf_surface_create_for_stream(internal::append_to_string, &impl_->bytes, 100, 100);
-    cairo_pdf_surface_set_metadata(impl_->surface, CAIRO_PDF_METADATA_TITLE, options.title.c_str());
+    cairo_pdf_surface_set_metadata(impl_->surface, CAIRO_PDF_METADATA_TITLE, impl_->options.title.c_str());
     cairo_pdf_surface_set_metadata(impl_->surface, CAIRO_PDF_METADATA_CREATOR, "inkline");
     if (!options.creation_date.empty()) {
         cairo_pdf_surface_set_metadata(impl_->surface, CAIRO_PDF_METADATA_CREATE_DATE, options.creation_date.c_str());
     }
     impl_->cr = cairo_create(impl_->surface);
+    internal::check_cairo(impl_->cr, "PDF document");
 }
 
-PdfDocument::~PdfDocument() {
-    if (impl_->cr) cairo_destroy(impl_->cr);
-    if (impl_->surface) cairo_surface_destroy(impl_->surface);
-}
+PdfDocument::~PdfDocument() = default;
 
 void PdfDocument::add_page(const Drawing& drawing) {
+    INKLINE_CHECK(impl_->cr != nullptr);
     const PdfOptions& o = impl_->options;
-    const double image_w = drawing.image.width, image_h = drawing.image.height;
-    double page_w, page_h, scale, offset_x, offset_y;
-    if (o.page) {
-        PageSize p = *o.page;
-        if (p.named && image_w > image_h) std::swap(p.width_mm, p.height_mm);
-        page_w = mm_to_points(p.width_mm);
-        page_h = mm_to_points(p.height_mm);
-        const double margin = mm_to_points(o.margin_mm);
-        const double avail_w = std::max(page_w - 2.0 * margin, 1.0), avail_h = std::max(page_h - 2.0 * margin, 1.0);
-        scale = std::min(avail_w / image_w, avail_h / image_h);
-        offset_x = (page_w - scale * image_w) / 2.0;
-        offset_y = (page_h - scale * image_h) / 2.0;
-    } else {
-        scale = kPointsPerInch / o.dpi;
-        page_w = image_w * scale;
-        page_h = image_h * scale;
-        offset_x = offset_y = 0.0;
-    }
-    cairo_pdf_surface_set_size(impl_->surface, page_w, page_h);
+    check_pdf_page(o, drawing.image.width, drawing.image.height);
+    const PageLayout l = layout(o, drawing.image.width, drawing.image.height);
+    const double page_h = l.page_h;
+    cairo_pdf_surface_set_size(impl_->surface, l.page_w, page_h);
     const std::string label = "frame " + std::to_string(drawing.frame);
     cairo_pdf_surface_set_page_label(impl_->surface, label.c_str());
 
     cairo_t* cr = impl_->cr;
     cairo_save(cr);
-    cairo_translate(cr, offset_x, offset_y);
-    cairo_scale(cr, scale, scale);
+    cairo_translate(cr, l.offset_x, l.offset_y);
+    cairo_scale(cr, l.scale, l.scale);
     internal::paint_drawing(cr, drawing);
     cairo_restore(cr);
     if (o.page && o.margin_mm > 0.0) {
@@ -100,20 +155,24 @@ void PdfDocument::add_page(const Drawing& drawing) {
         cairo_show_text(cr, (o.title + " - " + label).c_str());
         cairo_restore(cr);
     }
+    // Cairo records a failure in the context and draws nothing more: check before the page counts.
+    internal::check_cairo(cr, "PDF drawing");
     cairo_show_page(cr);
+    internal::check_cairo(cr, "PDF drawing");
     ++pages_;
 }
 
 std::string PdfDocument::finish() {
+    INKLINE_CHECK(impl_->cr != nullptr);
+    const cairo_status_t drawn = cairo_status(impl_->cr);
     cairo_destroy(impl_->cr);
     impl_->cr = nullptr;
     cairo_surface_finish(impl_->surface);
     const cairo_status_t status = cairo_surface_status(impl_->surface);
     cairo_surface_destroy(impl_->surface);
     impl_->surface = nullptr;
-    if (status != CAIRO_STATUS_SUCCESS) {
-        throw InternalError(std::string("PDF encoding failed: ") + cairo_status_to_string(status));
-    }
+    internal::check_cairo(drawn, "PDF drawing");
+    internal::check_cairo(status, "PDF encoding");
     return std::move(impl_->bytes);
 }
 

@@ -23,13 +23,25 @@ struct PdfOptions {
     std::optional<PageSize> page;  // none: the page is the image at `dpi`
     double margin_mm = 10.0;       // with a page size: the image is fitted inside the margins
     double dpi = 96.0;             // without a page size: pixels per inch of the image
-    std::string title = "inkline";
+    std::string title = "inkline";  // any bytes: what is not UTF-8 is written as U+FFFD
     // ISO 8601 "YYYY-MM-DDThh:mm:ss" written as the document's creation date; empty: Cairo's
     // clock. A fixed date makes the file depend on its input alone.
     std::string creation_date;
 };
 
-// A PDF document built page by page in memory; finish() returns the file contents.
+// PDF pages are 3 to 14400 pt (1/72 in) a side: PDF's own limits (ISO 32000-1, annex C), which
+// every reader honours; 14400 pt is 5080 mm.
+constexpr double kMinPdfPagePoints = 3.0;
+constexpr double kMaxPdfPagePoints = 14400.0;
+
+// Throws InputError when pages of an image of width x height px cannot be made with `options`:
+// a page side outside the limits above (naming --dpi or --page) or margins that leave no room
+// for the image (naming --margin). Check before anything is written.
+void check_pdf_page(const PdfOptions& options, int width, int height);
+
+// A PDF document built page by page in memory; finish() returns the file contents. Cairo
+// failures throw std::bad_alloc (out of memory), InputError or OutputError; a document that
+// failed cannot be finished, so no partial PDF is written.
 class PdfDocument {
   public:
     explicit PdfDocument(const PdfOptions& options);

@@ -14,33 +14,42 @@ namespace {
 
 using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 
-// A blank ARGB32 image surface, or an InternalError naming Cairo's reason.
+// A blank ARGB32 image surface.
 Surface image_surface(int width, int height) {
+    check_png_size(width, height);
     Surface surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height), cairo_surface_destroy);
-    const cairo_status_t status = cairo_surface_status(surface.get());
-    if (status != CAIRO_STATUS_SUCCESS) {
-        throw InternalError(std::string("PNG image surface: ") + cairo_status_to_string(status));
-    }
+    internal::check_cairo(cairo_surface_status(surface.get()), "PNG image surface");
     return surface;
 }
 
 std::string encode_png(const Surface& surface) {
+    cairo_surface_flush(surface.get());
+    internal::check_cairo(cairo_surface_status(surface.get()), "PNG drawing");
     std::string bytes;
-    const cairo_status_t status =
-        cairo_surface_write_to_png_stream(surface.get(), internal::append_to_string, &bytes);
-    if (status != CAIRO_STATUS_SUCCESS) {
-        throw InternalError(std::string("PNG encoding failed: ") + cairo_status_to_string(status));
-    }
+    internal::check_cairo(cairo_surface_write_to_png_stream(surface.get(), internal::append_to_string, &bytes),
+                          "PNG encoding");
     return bytes;
 }
 
 }  // namespace
 
+void check_png_size(int width, int height) {
+    if (width > kMaxPngSide || height > kMaxPngSide) {
+        throw InputError("PNG of " + std::to_string(width) + "x" + std::to_string(height) +
+                         " px: Cairo draws images of at most " + std::to_string(kMaxPngSide) + " px a side");
+    }
+    INKLINE_CHECK(width > 0 && height > 0);
+}
+
 std::string png_image(const Drawing& drawing) {
     const Surface surface = image_surface(drawing.image.width, drawing.image.height);
     {
         const std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
+        internal::check_cairo(cr.get(), "PNG drawing");
         internal::paint_drawing(cr.get(), drawing);
+        // Cairo records a failure (out of memory in a layer group, say) in the context and draws
+        // nothing more: a blank or half-drawn image is never encoded.
+        internal::check_cairo(cr.get(), "PNG drawing");
     }
     return encode_png(surface);
 }

@@ -11,7 +11,15 @@
 
 namespace inkline::output {
 
-// The encoded PNG file contents, image size in pixels.
+// The largest image side Cairo draws, px.
+constexpr int kMaxPngSide = 32767;
+
+// Throws InputError when a PNG of width x height px cannot be drawn (a side over kMaxPngSide):
+// check before anything is written.
+void check_png_size(int width, int height);
+
+// The encoded PNG file contents, image size in pixels. Throws std::bad_alloc when Cairo runs out
+// of memory, InputError or OutputError when it fails otherwise: a PNG is whole or not made.
 std::string png_image(const Drawing& drawing);
 
 // The encoded PNG of width x height pixels given as #width*height*4 bytes: straight (not

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <new>
 #include <string>
 
 namespace inkline::gl {
@@ -158,8 +159,11 @@ double ms_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Throws for a GL error recorded since the last check: std::bad_alloc for GL_OUT_OF_MEMORY, a
+// ContextError otherwise; a preview that failed is never read back or written.
 void check_gl(const internal::Functions& fn, const char* step) {
     const GLenum error = fn.GetError();
+    if (error == GL_OUT_OF_MEMORY) throw std::bad_alloc();
     if (error != GL_NO_ERROR) {
         throw ContextError(std::string("GL error ") + std::to_string(error) + " while " + step +
                            " (out of memory for the preview? try fewer samples or a smaller image)");
@@ -466,6 +470,10 @@ struct PreviewRenderer::Impl {
         out.height = fb_height;
         out.rgba.resize(size_t(fb_width) * size_t(fb_height) * 4);
         fn.BindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo);
+        if (fn.CheckFramebufferStatus(GL_READ_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            check_gl(fn, "reading back the preview");
+            throw ContextError("the preview framebuffer is incomplete; nothing to read back");
+        }
         fn.ReadBuffer(GL_COLOR_ATTACHMENT0);
         fn.PixelStorei(GL_PACK_ALIGNMENT, 4);
         fn.ReadPixels(0, 0, fb_width, fb_height, GL_RGBA, GL_UNSIGNED_BYTE, out.rgba.data());
@@ -525,6 +533,10 @@ PreviewImage PreviewRenderer::render(const core::FrameLines& frame, const core::
     start = std::chrono::steady_clock::now();
     m.resize(image.width, image.height);
     fn.BindFramebuffer(GL_FRAMEBUFFER, m.msaa_fbo);
+    if (fn.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        check_gl(fn, "binding the preview framebuffer");
+        throw ContextError("the preview framebuffer is incomplete");
+    }
     const GLenum draw_buffer = GL_COLOR_ATTACHMENT0;
     fn.DrawBuffers(1, &draw_buffer);
     fn.Viewport(0, 0, image.width, image.height);

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "export/internal/cairo_paint.h"
 
+#include "core/error.h"
+
+#include <new>
+
 namespace inkline::output::internal {
 namespace {
 
@@ -15,8 +19,33 @@ void trace_path(cairo_t* cr, const Shape& shape) {
 }  // namespace
 
 cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
-    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    try {
+        static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    } catch (const std::exception&) {  // no exception may cross Cairo's C frames
+        return CAIRO_STATUS_NO_MEMORY;
+    }
     return CAIRO_STATUS_SUCCESS;
+}
+
+void check_cairo(cairo_status_t status, const std::string& what) {
+    switch (status) {
+    case CAIRO_STATUS_SUCCESS:
+        return;
+    case CAIRO_STATUS_NO_MEMORY:
+        throw std::bad_alloc();
+    case CAIRO_STATUS_INVALID_SIZE:
+    case CAIRO_STATUS_INVALID_STRING:
+    case CAIRO_STATUS_INVALID_MATRIX:
+    case CAIRO_STATUS_INVALID_DASH:
+        throw InputError(what + ": " + cairo_status_to_string(status));
+    default:
+        throw OutputError(what + ": " + cairo_status_to_string(status));
+    }
+}
+
+void check_cairo(cairo_t* cr, const std::string& what) {
+    check_cairo(cairo_status(cr), what);
+    check_cairo(cairo_surface_status(cairo_get_target(cr)), what);
 }
 
 void paint_drawing(cairo_t* cr, const Drawing& d) {

@@ -13,7 +13,15 @@ namespace inkline::output::internal {
 // Background (when the style has one), then every layer in order.
 void paint_drawing(cairo_t* cr, const Drawing& drawing);
 
-// Appends Cairo's output to a string (for cairo_*_create_for_stream / write_to_png_stream).
+// Appends Cairo's output to a string (for cairo_*_create_for_stream / write_to_png_stream); out
+// of memory is reported to Cairo as CAIRO_STATUS_NO_MEMORY.
 cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length);
+
+// Throws for a failed Cairo status: std::bad_alloc for out of memory, InputError for what the
+// input asked for (a size, a string, a transform Cairo cannot take), OutputError otherwise, the
+// message `what`: Cairo's reason.
+void check_cairo(cairo_status_t status, const std::string& what);
+// Checks the context's status and its target surface's.
+void check_cairo(cairo_t* cr, const std::string& what);
 
 }  // namespace inkline::output::internal

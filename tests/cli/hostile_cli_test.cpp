@@ -108,7 +108,7 @@ TEST_F(HostileCli, DistinctOutputsWithSimilarPatternsAreWritten) {
 TEST_F(HostileCli, ReadOnlyOutputIsRefusedBeforeAnythingIsWritten) {
     test::write_text(dir / "out" / "svg" / "frame_0002.svg", "kept\n");
     fs::permissions(dir / "out" / "svg" / "frame_0002.svg", fs::perms::owner_read | fs::perms::group_read);
-    expect_refused(q(dir / "scene.json") + " -o " + q(dir / "out"), 3, "frame_0002.svg: exists and is read-only");
+    expect_refused(q(dir / "scene.json") + " -o " + q(dir / "out"), 3, "frame_0002.svg: is read-only; not replaced");
     EXPECT_EQ(test::read_text(dir / "out" / "svg" / "frame_0002.svg"), "kept\n");
     EXPECT_FALSE(fs::exists(dir / "out" / "json"));
 }

@@ -51,7 +51,7 @@ inline std::map<std::string, FileState> folder_state(const std::filesystem::path
         } else if (S_ISLNK(info.st_mode)) {
             s.content = std::hash<std::string>{}(fs::read_symlink(it->path()).string());
         }
-        state[fs::relative(it->path(), root).string()] = s;
+        state[it->path().lexically_relative(root).string()] = s;  // fs::relative would follow links
     }
     return state;
 }

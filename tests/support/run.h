@@ -10,6 +10,14 @@
 
 namespace inkline::test {
 
+// Whether this build runs under AddressSanitizer, which reserves terabytes of address space for
+// its shadow memory: address-space limits (ulimit -v, RLIMIT_AS) cannot be tested under it.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+
 struct RunResult {
     int code = -1;       // exit status, -1 when killed by a signal
     std::string output;  // stdout and stderr together
