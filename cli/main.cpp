@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <system_error>
 
 namespace {
 
@@ -144,6 +145,14 @@ int main(int argc, char** argv) {
     } catch (const std::bad_alloc&) {
         report("inkline: error: ", "out of memory");
         return kOutOfMemory;
+    } catch (const std::system_error& e) {
+        // A thread that cannot start (EAGAIN) or memory that cannot be mapped is a resource limit.
+        if (e.code() == std::errc::resource_unavailable_try_again || e.code() == std::errc::not_enough_memory) {
+            report("inkline: error: out of memory or threads: ", e.what());
+            return kOutOfMemory;
+        }
+        report("inkline: internal error: ", e.what());
+        return kInternal;
     } catch (const std::exception& e) {
         report("inkline: internal error: ", e.what());
         return kInternal;

@@ -128,6 +128,12 @@ VisibilityChoice choose_visibility(const RenderArgs& args) {
         return choice;
     }
     const gl::Backend backend = gl::parse_backend(args.gl_backend);
+    // Without a GPU any context is a software renderer: no need to start one to find out.
+    if (asked == "auto" && core::raycast_available() && !gl::gpu_device_present()) {
+        choice.mode = "raycast";
+        choice.reason = "no GPU device (/dev/dri/renderD*, /dev/nvidia*): CPU ray casting";
+        return choice;
+    }
     try {
         choice.context = gl::create_context(backend);
     } catch (const gl::ContextError& e) {

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -58,9 +59,15 @@ const char* error_name(RTCError error) {
 }
 
 // Embree reports errors per device; a failure is a resource problem or a bug, never bad input.
+// Running out of memory is std::bad_alloc, as for any other allocation.
+[[noreturn]] void embree_failed(RTCError error, const char* what) {
+    if (error == RTC_ERROR_OUT_OF_MEMORY) throw std::bad_alloc();
+    throw std::runtime_error(std::string("Embree: ") + what + ": " + error_name(error));
+}
+
 void check_device(RTCDevice device, const char* what) {
     const RTCError error = rtcGetDeviceError(device);
-    if (error != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree: ") + what + ": " + error_name(error));
+    if (error != RTC_ERROR_NONE) embree_failed(error, what);
 }
 
 // Extends Embree's intersect context with the faces the current ray must ignore. Embree hands
@@ -178,7 +185,7 @@ RaycastOcclusion::RaycastOcclusion(const Mesh& mesh, const EdgeTable& table)
     const std::string config = "threads=" + std::to_string(threads);
     impl.device.reset(rtcNewDevice(config.c_str()));
     if (!impl.device) {
-        throw std::runtime_error(std::string("Embree: creating the device: ") + error_name(rtcGetDeviceError(nullptr)));
+        embree_failed(rtcGetDeviceError(nullptr), "creating the device");
     }
     // A mesh is taken as static until its first update_positions.
     impl.build(mesh, false);

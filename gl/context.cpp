@@ -9,6 +9,7 @@
 #include <GL/gl.h>
 #include <GL/osmesa.h>
 
+#include <filesystem>
 #include <vector>
 
 namespace inkline::gl {
@@ -134,6 +135,15 @@ bool Context::is_software() const {
         if (r.find(name) != std::string::npos) return true;
     }
     return false;
+}
+
+bool gpu_device_present() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator("/dev/dri", ec)) {
+        if (entry.path().filename().string().starts_with("renderD")) return true;
+    }
+    return fs::exists("/dev/nvidia0", ec) || fs::exists("/dev/nvidiactl", ec);
 }
 
 std::unique_ptr<Context> create_context(Backend backend) {

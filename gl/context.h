@@ -37,6 +37,10 @@ class Context {
     bool is_software() const;
 };
 
+// Whether the machine shows a GPU device node (/dev/dri/renderD*, /dev/nvidia*): without one, any
+// context is a software renderer, and no context need be made to find that out.
+bool gpu_device_present();
+
 // Creates a context; kAuto tries EGL, then OSMesa. Throws ContextError naming what was tried.
 std::unique_ptr<Context> create_context(Backend backend);
 
