@@ -674,6 +674,7 @@ size_t split_at_reversals(std::vector<StrokeGeometry>& r_strokes, double scale_p
         const std::vector<size_t> drawn = g.drawn_indices();
         std::vector<glm::dvec2> pts;
         for (size_t k : drawn) pts.push_back(g.points_px[k]);
+        if (pts.size() < 3) continue;
         // Where the search for the points scale_px away starts: points less than scale_px along
         // the stroke from k are nearer than that, so they are passed over at once (a stroke of
         // densely spaced points would otherwise be walked scale_px both ways from every point).
