@@ -117,6 +117,19 @@ TEST_F(HostileScale, ConeOf300kFacesIsDescribedWithoutDelay) {
     EXPECT_TRUE(test::changed_entries(before, test::folder_state(dir)).empty());
 }
 
+TEST_F(HostileScale, DiscOfAMillionFacesAroundOneVertexIsDescribed) {
+    // A million faces at one vertex: quadratic, the fan count took minutes, well past the guard
+    // on any machine; linear, about a second with the file read.
+    test::write_obj(dir / "disc.obj", disc_cap(1000000));
+    const auto before = test::folder_state(dir);
+    const test::RunResult r = run_guarded("info " + (dir / "disc.obj").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("faces: 1000000\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("non-manifold vertices: 0\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("boundary edges: 1000000\n"), std::string::npos) << r.output;
+    EXPECT_TRUE(test::changed_entries(before, test::folder_state(dir)).empty());
+}
+
 TEST_F(HostileScale, TwoConesTouchingAtTheirApexOfOneHundredThousandFacesEach) {
     // 50000 faces at the shared apex from each cone: one non-manifold vertex, found as fast.
     core::Mesh two = closed_cone(50000);
