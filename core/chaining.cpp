@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "core/chaining.h"
 
+#include <algorithm>
+
 namespace inkline::core {
 namespace {
 
@@ -11,13 +13,26 @@ class Chainer {
     Chainer(const FeatureEdges& features, const EdgeTable& table)
         : table_(table), kind_(table.edge_count(), kNotFeature), used_(table.edge_count(), 0) {
         for (const FeatureEdge& fe : features.edges) kind_[fe.edge] = uint8_t(fe.kind);
+        // Both ends of every feature edge as (vertex, kind), sorted: a degree is then a count of
+        // equal keys, not a scan of all the vertex's edges (a fan's apex may have hundreds of
+        // thousands, thousands of them feature edges).
+        std::vector<uint32_t> edges;
+        edges.reserve(features.edges.size());
+        for (const FeatureEdge& fe : features.edges) edges.push_back(fe.edge);
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        ends_.reserve(2 * edges.size());
+        for (uint32_t e : edges) {
+            ends_.push_back(end_key(table.edge_vertices[e].x, kind_[e]));
+            ends_.push_back(end_key(table.edge_vertices[e].y, kind_[e]));
+        }
+        std::sort(ends_.begin(), ends_.end());
     }
 
     // Same-kind feature edges meeting at a vertex.
     int degree(uint32_t vertex, uint8_t kind) const {
-        int n = 0;
-        for (uint32_t e : table_.edges_around(vertex)) n += kind_[e] == kind;
-        return n;
+        const auto range = std::equal_range(ends_.begin(), ends_.end(), end_key(vertex, kind));
+        return int(range.second - range.first);
     }
 
     bool available(uint32_t edge) const { return kind_[edge] != kNotFeature && !used_[edge]; }
@@ -53,9 +68,12 @@ class Chainer {
     uint8_t kind_of(uint32_t edge) const { return kind_[edge]; }
 
   private:
+    static uint64_t end_key(uint32_t vertex, uint8_t kind) { return uint64_t(vertex) << 8 | kind; }
+
     const EdgeTable& table_;
     std::vector<uint8_t> kind_;
     std::vector<uint8_t> used_;
+    std::vector<uint64_t> ends_;  // end_key of both ends of each feature edge
 };
 
 }  // namespace

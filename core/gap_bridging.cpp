@@ -5,6 +5,7 @@
 #include <array>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <limits>
 #include <map>
 #include <optional>
 #include <queue>
@@ -26,6 +27,11 @@ constexpr double kFoldTouchPx = 1.0;
 // A stroke that ends this close (px) to another's interior point ends on it: a T-junction. More
 // than kSideSpacingPx, as an end on a line may fall between points of it spaced a few px apart.
 constexpr double kTeeReachPx = 3.0;
+// Grid cells for "all ends within d px" are d times this, so that rounding in the cell index
+// never leaves out a point exactly d away; and never smaller than kMinCellPx (px), so that a tiny
+// d does not make the cell index (an int, over coordinates clamped to 1e8 px) overflow.
+constexpr double kCellSlack = 1.0 + 1e-6;
+constexpr double kMinCellPx = 1.0;
 
 using Key = std::pair<double, double>;
 Key key_of(const glm::dvec2& p) { return {p.x, p.y}; }
@@ -382,9 +388,19 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
         }
     }
     // Folds: ends whose sides run back over each other, as where a zig-zag silhouette folds back
-    // along itself for longer than an exact path is searched, joined straight across.
+    // along itself for longer than an exact path is searched, joined straight across. Only ends
+    // within max_fold_px of each other can join: each end is compared with those in its grid cell
+    // and the eight around it, not with every other end (tens of thousands on a noisy scan).
+    internal::PointGrid<size_t> end_grid(std::max(options.max_fold_px * kCellSlack, kMinCellPx));
+    for (size_t i = 0; i < ends.size(); ++i) end_grid.add(ends[i].p, i);
+    end_grid.sort();
+    std::vector<size_t> near;
     for (size_t i = 0; i < ends.size(); ++i) {
-        for (size_t j = i + 1; j < ends.size(); ++j) {
+        near.clear();
+        end_grid.around(ends[i].p, [&](size_t j) {
+            if (j > i) near.push_back(j);
+        });
+        for (size_t j : near) {
             const MemoryEnd &a = ends[i], &b = ends[j];
             const double chord = glm::length(a.p - b.p);
             if (chord > options.max_fold_px || a.stroke == b.stroke) continue;
@@ -629,10 +645,15 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
 
 namespace {
 
+// Rounding of a sum of n segment lengths, relative to the whole, is below n ulp; this many ulp
+// per point cover that and the rounding of the distances compared with it.
+constexpr double kArcUlpsPerPoint = 4.0;
+
 // The turn (deg) at point k of pts: between the chords to the nearest points at least `scale_px`
-// away before and after it; nullopt where either side is shorter.
-std::optional<double> coarse_turn_deg(const std::vector<glm::dvec2>& pts, size_t k, double scale_px) {
-    size_t b = k, f = k;
+// away before and after it; nullopt where either side is shorter. Every point after b and before
+// k, and after k and before f, lies nearer than scale_px to point k (the search starts there).
+std::optional<double> coarse_turn_deg(const std::vector<glm::dvec2>& pts, size_t k, double scale_px, size_t b,
+                                      size_t f) {
     while (b > 0 && glm::length(pts[b] - pts[k]) < scale_px) --b;
     while (f + 1 < pts.size() && glm::length(pts[f] - pts[k]) < scale_px) ++f;
     const glm::dvec2 in = pts[k] - pts[b], out = pts[f] - pts[k];
@@ -653,12 +674,33 @@ size_t split_at_reversals(std::vector<StrokeGeometry>& r_strokes, double scale_p
         const std::vector<size_t> drawn = g.drawn_indices();
         std::vector<glm::dvec2> pts;
         for (size_t k : drawn) pts.push_back(g.points_px[k]);
+        if (pts.size() < 3) continue;
+        // Where the search for the points scale_px away starts: points less than scale_px along
+        // the stroke from k are nearer than that, so they are passed over at once (a stroke of
+        // densely spaced points would otherwise be walked scale_px both ways from every point).
+        // The margin covers the rounding of the arc-length sums.
+        std::vector<double> arc(pts.size(), 0.0);
+        for (size_t i = 1; i < pts.size(); ++i) arc[i] = arc[i - 1] + glm::length(pts[i] - pts[i - 1]);
+        const double within = scale_px - kArcUlpsPerPoint * std::numeric_limits<double>::epsilon() *
+                                             double(pts.size() + 8) * (arc.back() + scale_px);
+        size_t lo = 0, hi = 0;  // first point, and last point, less than `within` along from k
         // The sharpest point of each run of points turning more than angle_deg.
         std::vector<size_t> at;
         double best = 0.0;
         size_t best_k = 0;
         for (size_t i = 0; i <= pts.size(); ++i) {
-            const std::optional<double> turn = i < pts.size() ? coarse_turn_deg(pts, i, scale_px) : std::nullopt;
+            std::optional<double> turn;
+            if (i < pts.size()) {
+                size_t b = i, f = i;
+                if (within > 0.0) {
+                    while (arc[i] - arc[lo] >= within) ++lo;
+                    hi = std::max(hi, i);
+                    while (hi + 1 < pts.size() && arc[hi + 1] - arc[i] < within) ++hi;
+                    b = lo > 0 ? lo - 1 : 0;
+                    f = std::min(hi + 1, pts.size() - 1);
+                }
+                turn = coarse_turn_deg(pts, i, scale_px, b, f);
+            }
             if (turn && *turn > angle_deg) {
                 if (*turn > best) best = *turn, best_k = drawn[i];
             } else if (best > 0.0) {

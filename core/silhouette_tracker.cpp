@@ -53,6 +53,7 @@ SilhouetteTracker::SilhouetteTracker(const EdgeTable& table, const Mesh& mesh, c
     if (options.search != TrackerSearch::kHierarchy) {
         face_position_.assign(face_count_, kNoIndex);
         for (uint32_t k = 0; k < tree_->faces.size(); ++k) face_position_[tree_->faces[k]] = k;
+        vertex_stamp_.assign(mesh.positions.size(), 0);
     }
     // The hierarchy alone reaches each edge at most once a frame; the walk and a deforming
     // mesh's crease pass can reach edges again.
@@ -121,6 +122,7 @@ void SilhouetteTracker::sort_found() {
 void SilhouetteTracker::begin_frame() {
     if (frame_ == 0xffffffffu) {  // stamps would wrap: forget them all
         std::fill(edge_stamp_.begin(), edge_stamp_.end(), 0u);
+        std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0u);
         frame_ = 0;
     }
     ++frame_;
@@ -227,9 +229,21 @@ void SilhouetteTracker::walk() {
 void SilhouetteTracker::extend_from_found() {
     for (; extended_ < found_.size(); ++extended_) {
         const glm::uvec2 v = table_->edge_vertices[found_[extended_]];
-        for (uint32_t e : table_->edges_around(v.x)) visit_edge(e);
-        for (uint32_t e : table_->edges_around(v.y)) visit_edge(e);
+        for (uint32_t vertex : {v.x, v.y}) {
+            if (!first_visit(vertex)) continue;
+            for (uint32_t e : table_->edges_around(vertex)) visit_edge(e);
+        }
     }
+}
+
+bool SilhouetteTracker::first_visit(uint32_t vertex) {
+    // Every edge around a vertex visited once this frame answers kSeen to any later visit, so a
+    // vertex is walked around once a frame: a fan's apex, with an edge to each of its hundreds of
+    // thousands of faces, would otherwise be walked around again from each of its silhouette
+    // edges.
+    if (vertex_stamp_[vertex] == frame_) return false;
+    vertex_stamp_[vertex] = frame_;
+    return true;
 }
 
 void SilhouetteTracker::walk_from_stopped(uint32_t edge) {
@@ -241,6 +255,7 @@ void SilhouetteTracker::walk_from_stopped(uint32_t edge) {
         next_ring_.clear();
         for (uint32_t e : ring_) {
             for (uint32_t vertex : {table_->edge_vertices[e].x, table_->edge_vertices[e].y}) {
+                if (!first_visit(vertex)) continue;
                 for (uint32_t n : table_->edges_around(vertex)) {
                     if (visit_edge(n) == Visit::kPlain &&
                         is_front(face_position_[table_->faces_of(n)[0]]) == side) {

@@ -86,6 +86,8 @@ class SilhouetteTracker {
     void walk();
     void extend_from_found();
     void walk_from_stopped(uint32_t edge);
+    // False when the vertex was already walked around this frame; marks it.
+    bool first_visit(uint32_t vertex);
     internal::ClusterFacing prove(uint32_t node);
     void collect_creases(uint32_t node, double crease_angle_rad, double cos_crease,
                          std::vector<uint32_t>& r_creases);
@@ -117,6 +119,7 @@ class SilhouetteTracker {
     std::vector<uint32_t> face_position_;  // #F, each face's index in ConeTree::faces (walk only)
     bool stamp_edges_ = true;
     std::vector<uint32_t> edge_stamp_;   // #E when stamp_edges_, tested this frame
+    std::vector<uint32_t> vertex_stamp_; // #V with the walk, every edge around it tested this frame
     // Per leaf of the cone tree, what this frame proved of it (kUnknown: its edges were tested).
     std::vector<internal::ClusterFacing> leaf_facing_;
     std::vector<uint32_t> found_;        // silhouette edges found this frame, discovery order

@@ -28,10 +28,17 @@ constexpr double kStartLookahead = 30.0;
 // single crossing of last frame's outline does not count as standing still.
 constexpr double kStartMotionWindowPx = 24.0;
 
-// Last frame's samples on a grid of radius-sized cells.
+// Cells of the sample grid per match radius. The nearest sample is searched ring by ring from
+// the query's cell, and the search stops at the first ring beyond the nearest found: where last
+// frame's strokes crowd the image (a noisy scan draws tens of thousands), it so looks at the few
+// samples next to the query rather than all within the radius.
+constexpr int kCellsPerRadius = 3;
+
+// Last frame's samples on a grid of cells a third of the radius.
 class SampleGrid {
   public:
-    SampleGrid(const std::vector<StrokeTrace>& traces, double radius) : traces_(traces), radius_(radius), grid_(radius) {
+    SampleGrid(const std::vector<StrokeTrace>& traces, double radius)
+        : traces_(traces), radius_(radius), grid_(radius / kCellsPerRadius) {
         for (size_t t = 0; t < traces.size(); ++t) {
             for (size_t s = 0; s < traces[t].samples_px.size(); ++s) grid_.add(traces[t].samples_px[s], {t, s});
         }
@@ -48,7 +55,11 @@ class SampleGrid {
     template <typename Filter>
     Hit nearest(const glm::dvec2& p, Filter use) const {
         Hit best;
-        grid_.around(p, [&](const std::pair<size_t, size_t>& ts) {
+        const double cell = grid_.cell_px();
+        const auto more = [&](int ring) {
+            return !(best.distance < double(ring) * cell - internal::PointGrid<int>::kRingSlack);
+        };
+        grid_.rings(p, kCellsPerRadius + 1, [&](const std::pair<size_t, size_t>& ts) {
             const auto [trace, sample] = ts;
             if constexpr (std::is_invocable_v<Filter, size_t, size_t>) {
                 if (!use(trace, sample)) return;
@@ -59,7 +70,7 @@ class SampleGrid {
             const bool better =
                 d < best.distance || (d == best.distance && std::tie(trace, sample) < std::tie(best.trace, best.sample));
             if (d <= radius_ && better) best = {trace, sample, d};
-        });
+        }, more);
         return best;
     }
 

@@ -195,33 +195,40 @@ namespace {
 
 // A vertex is manifold when its faces form one fan: each joined to the next across an edge of the
 // vertex that has exactly two faces. Two cones touching at their tips, or faces meeting at a
-// non-manifold edge, make more than one fan.
+// non-manifold edge, make more than one fan. Linear in the mesh: each face's place among its
+// vertex's faces is looked up in a table over all faces, not searched for (a fan's apex may have
+// hundreds of thousands).
 size_t count_non_manifold_vertices(const EdgeTable& table) {
     size_t count = 0;
     std::vector<uint32_t> faces, fan;  // the vertex's faces and the fan root of each
+    std::vector<uint32_t> slot(table.face_valid.size(), kNoIndex);  // face -> index in `faces`
     const size_t vertices = table.vertex_edge_offsets.empty() ? 0 : table.vertex_edge_offsets.size() - 1;
     for (uint32_t v = 0; v < vertices; ++v) {
         faces.clear();
         for (uint32_t e : table.edges_around(v)) {
             for (uint32_t f : table.faces_of(e)) {
-                if (std::find(faces.begin(), faces.end(), f) == faces.end()) faces.push_back(f);
+                if (slot[f] == kNoIndex) {
+                    slot[f] = uint32_t(faces.size());
+                    faces.push_back(f);
+                }
             }
         }
-        if (faces.size() < 2) continue;
-        fan.resize(faces.size());
-        std::iota(fan.begin(), fan.end(), 0u);
-        auto index_of = [&](uint32_t f) { return uint32_t(std::find(faces.begin(), faces.end(), f) - faces.begin()); };
-        size_t fans = faces.size();
-        for (uint32_t e : table.edges_around(v)) {
-            if (!table.is_interior(e)) continue;
-            const auto pair = table.faces_of(e);
-            const uint32_t a = find_root(fan, index_of(pair[0])), b = find_root(fan, index_of(pair[1]));
-            if (a != b) {
-                fan[a] = b;
-                --fans;
+        if (faces.size() >= 2) {
+            fan.resize(faces.size());
+            std::iota(fan.begin(), fan.end(), 0u);
+            size_t fans = faces.size();
+            for (uint32_t e : table.edges_around(v)) {
+                if (!table.is_interior(e)) continue;
+                const auto pair = table.faces_of(e);
+                const uint32_t a = find_root(fan, slot[pair[0]]), b = find_root(fan, slot[pair[1]]);
+                if (a != b) {
+                    fan[a] = b;
+                    --fans;
+                }
             }
+            if (fans > 1) ++count;
         }
-        if (fans > 1) ++count;
+        for (uint32_t f : faces) slot[f] = kNoIndex;
     }
     return count;
 }
@@ -231,10 +238,15 @@ size_t count_non_manifold_vertices(const EdgeTable& table) {
 uint32_t find_edge(const EdgeTable& table, uint32_t a, uint32_t b) {
     if (a > b) std::swap(a, b);
     if (size_t(a) + 1 >= table.vertex_edge_offsets.size()) return kNoIndex;
-    for (uint32_t e : table.edges_around(a)) {
-        if (table.edge_vertices[e] == glm::uvec2(a, b)) return e;
-    }
-    return kNoIndex;
+    // The edges around a vertex are ascending, and edge order is the order of (v0, v1): a binary
+    // search, so that a fan's apex with very many edges costs log of them.
+    const auto around = table.edges_around(a);
+    const glm::uvec2 key(a, b);
+    const auto it = std::lower_bound(around.begin(), around.end(), key, [&](uint32_t e, const glm::uvec2& k) {
+        const glm::uvec2 v = table.edge_vertices[e];
+        return v.x != k.x ? v.x < k.x : v.y < k.y;
+    });
+    return it != around.end() && table.edge_vertices[*it] == key ? *it : kNoIndex;
 }
 
 std::vector<glm::uvec3> face_edges(const Mesh& mesh, const EdgeTable& table) {

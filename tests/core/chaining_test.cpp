@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 
 namespace inkline {
@@ -81,6 +82,47 @@ TEST(Chaining, SplitsWhereThreeEdgesMeet) {
             EXPECT_NE(chain.vertices[i], 1u);
         }
     }
+}
+
+}  // namespace
+}  // namespace inkline
+
+namespace inkline {
+namespace {
+
+TEST(Chaining, ThousandsOfFeatureEdgesAtOneVertexEachEndThere) {
+    // Every spoke of a fan of 20000 faces marked a crease: 20000 creases meet at the apex, one at
+    // each rim vertex, so every spoke is a chain of its own from the apex; the rim, marked a
+    // boundary (another kind), is one closed chain through vertices where two of its edges meet.
+    constexpr uint32_t kSpokes = 20000;
+    core::Mesh fan;
+    fan.positions.push_back({0.0f, 0.0f, 0.0f});
+    for (uint32_t i = 0; i < kSpokes; ++i) {
+        const double a = 6.283185307179586 * double(i) / kSpokes;
+        fan.positions.push_back({float(std::cos(a)), float(std::sin(a)), 0.0f});
+    }
+    for (uint32_t i = 0; i < kSpokes; ++i) fan.triangles.push_back({0, 1 + i, 1 + (i + 1) % kSpokes});
+    const core::EdgeTable table = core::build_edge_table(fan);
+    core::FeatureEdges features;
+    for (uint32_t e = 0; e < table.edge_count(); ++e) {
+        features.edges.push_back({e, table.edge_vertices[e].x == 0 ? core::LineKind::kCrease : core::LineKind::kBoundary});
+    }
+    const std::vector<core::Chain> chains = core::chain_feature_edges(features, table);
+    ASSERT_EQ(chains.size(), kSpokes + 1);
+    size_t spokes = 0, loops = 0;
+    for (const core::Chain& chain : chains) {
+        if (chain.kind == core::LineKind::kCrease) {
+            ++spokes;
+            EXPECT_EQ(chain.edges.size(), 1u);
+            EXPECT_EQ(chain.vertices.front(), 0u) << "chains start at the end where the count is not 2";
+        } else {
+            ++loops;
+            EXPECT_TRUE(chain.closed);
+            EXPECT_EQ(chain.edges.size(), kSpokes);
+        }
+    }
+    EXPECT_EQ(spokes, kSpokes);
+    EXPECT_EQ(loops, 1u);
 }
 
 }  // namespace

@@ -313,3 +313,36 @@ TEST(SilhouetteTracker, DegenerateAndNonManifoldFacesMatchBrute) {
 
 }  // namespace
 }  // namespace inkline
+
+namespace inkline {
+namespace {
+
+TEST(SilhouetteTracker, StarConeWithThousandsOfSilhouettesAtItsApexMatchesBrute) {
+    // A cone over a star of 4000 points (radii 1 and 0.8 in turn), seen from near its axis:
+    // about every other spoke is a silhouette, all through the apex, which the walk then visits
+    // from each of them.
+    constexpr uint32_t kPoints = 4000;
+    core::Mesh star;
+    star.positions = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+    for (uint32_t i = 0; i < kPoints; ++i) {
+        const double a = 2.0 * std::numbers::pi * double(i) / kPoints, r = i % 2 ? 0.8 : 1.0;
+        star.positions.push_back({float(r * std::cos(a)), 0.0f, float(r * std::sin(a))});
+    }
+    for (uint32_t i = 0; i < kPoints; ++i) {
+        const uint32_t a = 2 + i, b = 2 + (i + 1) % kPoints;
+        star.triangles.push_back({0, b, a});
+        star.triangles.push_back({1, a, b});
+    }
+    const core::EdgeTable table = core::build_edge_table(star);
+    for (const core::TrackerSearch search : kExactSearches) {
+        SCOPED_TRACE(search_name(search));
+        core::SilhouetteTracker tracker(table, star, {.search = search});
+        const RunTotals t = run_against_brute(
+            tracker, table, 24, [&](int) -> const core::Mesh& { return star; },
+            [](int i) { return glm::dvec3(0.3 * std::cos(0.5 * i), 6.0, 0.3 * std::sin(0.5 * i)); });
+        EXPECT_EQ(t.mismatched_frames, 0u);
+    }
+}
+
+}  // namespace
+}  // namespace inkline

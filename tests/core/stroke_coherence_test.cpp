@@ -173,3 +173,57 @@ TEST(StrokeCoherence, LoopStartStaysPut) {
 
 }  // namespace
 }  // namespace inkline
+
+namespace inkline {
+namespace {
+
+TEST(StrokeCoherence, NearestSampleIsTheNearestOfAllInCrowdedAndSparsePlaces) {
+    // Random short strokes, dense in one corner and sparse elsewhere, some hidden and some of
+    // another kind, against a search over every sample: the nearest visible one of the kind
+    // within kMatchRadiusPx, ties to the lower stroke and sample.
+    uint32_t seed = 7;
+    auto random = [&] {
+        seed = seed * 1664525u + 1013904223u;
+        return double(seed >> 8) / double(1u << 24);
+    };
+    std::vector<core::StrokeTrace> traces;
+    for (uint32_t s = 0; s < 3000; ++s) {
+        const double spread = s % 3 ? 120.0 : 2000.0;
+        const dvec2 a(spread * random() - 300.0, spread * random() - 300.0);
+        const dvec2 b = a + dvec2(40.0 * random() - 20.0, 40.0 * random() - 20.0);
+        core::StrokeTrace t = trace(candidate(a, b, 10 * s), s, 0.0);
+        t.visible = s % 5 != 0;
+        t.kind = s % 7 == 0 ? core::LineKind::kCrease : core::LineKind::kSilhouette;
+        traces.push_back(std::move(t));
+    }
+    std::vector<dvec2> points;
+    for (int i = 0; i < 4000; ++i) {
+        const double spread = i % 2 ? 150.0 : 2100.0;
+        points.push_back({spread * random() - 320.0, spread * random() - 320.0});
+    }
+    points.push_back(traces[1].samples_px[0]);  // exactly on a sample
+    const core::StrokeCoherence state(traces, 3000);
+    const std::vector<core::StrokeCoherence::Nearest> got = state.nearest_visible(points, core::LineKind::kSilhouette);
+    ASSERT_EQ(got.size(), points.size());
+    size_t found = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        double best = HUGE_VAL;
+        int64_t id = -1;
+        double u = 0.0;
+        for (const core::StrokeTrace& t : traces) {
+            if (!t.visible || t.kind != core::LineKind::kSilhouette) continue;
+            for (size_t k = 0; k < t.samples_px.size(); ++k) {
+                const double d = glm::length(t.samples_px[k] - points[i]);
+                if (d <= core::kMatchRadiusPx && d < best) best = d, id = t.id, u = t.samples_u[k];
+            }
+        }
+        found += id >= 0;
+        ASSERT_EQ(got[i].id, id) << "point " << i;
+        ASSERT_EQ(got[i].u, u) << "point " << i;
+    }
+    EXPECT_GT(found, points.size() / 3);
+    EXPECT_LT(found, points.size());
+}
+
+}  // namespace
+}  // namespace inkline

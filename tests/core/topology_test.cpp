@@ -106,6 +106,92 @@ TEST(Topology, SheetsTouchingAtAVertexAreNonManifold) {
     }
 }
 
+// A closed cone of n sides: apex 0 above, base centre 1, the ring 2.. n+1; every side face has
+// the apex and every base face the centre, so both have n faces.
+core::Mesh closed_cone(uint32_t n) {
+    core::Mesh m;
+    m.positions = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+    for (uint32_t i = 0; i < n; ++i) {
+        const double a = 6.283185307179586 * double(i) / n;
+        m.positions.push_back({float(std::cos(a)), 0.0f, float(std::sin(a))});
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t a = 2 + i, b = 2 + (i + 1) % n;
+        m.triangles.push_back({0, b, a});
+        m.triangles.push_back({1, a, b});
+    }
+    return m;
+}
+
+TEST(Topology, NonManifoldVerticesCountedOnMeshesWhereTheCountIsKnown) {
+    // A closed cone of 200000 faces: its apex and base centre, each with 100000 faces, are one
+    // fan each (the count is linear in the faces at a vertex, not quadratic).
+    const core::Mesh cone = closed_cone(100000);
+    core::MeshReport r = core::describe_mesh(cone, core::build_edge_table(cone));
+    EXPECT_EQ(r.non_manifold_vertices, 0u);
+    EXPECT_EQ(r.boundary_edges, 0u);
+    EXPECT_EQ(r.connected_components, 1u);
+
+    // Two such cones touching apex to apex (the second mirrored through the apex): one
+    // non-manifold vertex, however many faces meet there.
+    core::Mesh two = closed_cone(5000);
+    const auto n = uint32_t(two.positions.size());
+    for (size_t v = 1; v < n; ++v) two.positions.push_back({two.positions[v].x, 2.0f - two.positions[v].y, two.positions[v].z});
+    const size_t faces = two.triangles.size();
+    for (size_t f = 0; f < faces; ++f) {
+        glm::uvec3 t = two.triangles[f];
+        for (int c = 0; c < 3; ++c) t[c] = t[c] == 0 ? 0 : t[c] + n - 1;
+        two.triangles.push_back({t.x, t.z, t.y});  // mirrored: turned to face out again
+    }
+    r = core::describe_mesh(two, core::build_edge_table(two));
+    EXPECT_EQ(r.non_manifold_vertices, 1u);
+    EXPECT_EQ(r.non_manifold_edges, 0u);
+    EXPECT_EQ(r.connected_components, 2u) << "joined at the apex only, not along an edge";
+    EXPECT_EQ(r.inconsistent_edges, 0u);
+
+    // A fan of sheets around one edge of the cone: both ends of that edge become non-manifold.
+    core::Mesh sheets = closed_cone(3000);
+    for (int k = 0; k < 3; ++k) {
+        sheets.positions.push_back({0.5f, 0.5f, float(k + 1)});
+        sheets.triangles.push_back({0, 2, uint32_t(sheets.positions.size() - 1)});
+    }
+    r = core::describe_mesh(sheets, core::build_edge_table(sheets));
+    EXPECT_EQ(r.non_manifold_edges, 1u);
+    EXPECT_EQ(r.non_manifold_vertices, 2u);
+}
+
+TEST(Topology, FindEdgeAtAVertexWithManyEdges) {
+    // The apex of a cone has an edge to each of its 20000 ring vertices and none to the base
+    // centre; a ring vertex has its two ring neighbours, the apex and the centre.
+    constexpr uint32_t kSides = 20000;
+    const core::Mesh cone = closed_cone(kSides);
+    const core::EdgeTable table = core::build_edge_table(cone);
+    for (uint32_t i = 0; i < kSides; ++i) {
+        const uint32_t e = core::find_edge(table, 2 + i, 0);
+        ASSERT_NE(e, core::kNoIndex) << i;
+        ASSERT_EQ(table.edge_vertices[e], glm::uvec2(0, 2 + i));
+        ASSERT_EQ(core::find_edge(table, 0, 2 + i), e);
+        const uint32_t next = 2 + (i + 1) % kSides;
+        const uint32_t ring = core::find_edge(table, 2 + i, next);
+        ASSERT_NE(ring, core::kNoIndex);
+        ASSERT_EQ(table.edge_vertices[ring], glm::uvec2(std::min(2 + i, next), std::max(2 + i, next)));
+    }
+    EXPECT_EQ(core::find_edge(table, 0, 1), core::kNoIndex);
+    EXPECT_EQ(core::find_edge(table, 2, 4), core::kNoIndex);
+    EXPECT_EQ(core::find_edge(table, 0, 0), core::kNoIndex);
+    EXPECT_EQ(core::find_edge(table, 0, kSides + 2), core::kNoIndex) << "no such vertex";
+    EXPECT_EQ(core::find_edge(table, kSides + 2, kSides + 9), core::kNoIndex) << "no such vertices";
+    // Every face's edges, as face_edges finds them, join that face's corners.
+    const std::vector<glm::uvec3> fe = core::face_edges(cone, table);
+    for (size_t f = 0; f < fe.size(); ++f) {
+        const glm::uvec3 t = cone.triangles[f];
+        for (int c = 0; c < 3; ++c) {
+            const glm::uvec2 v = table.edge_vertices[fe[f][c]];
+            ASSERT_EQ(v, glm::uvec2(std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3]))) << f;
+        }
+    }
+}
+
 TEST(Topology, DuplicateFacesAreIgnoredWithAWarning) {
     core::Mesh m = test::cube(1.0);
     m.triangles.push_back(m.triangles[3]);                                   // same order
