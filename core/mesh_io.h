@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Mesh files (OBJ, OFF, PLY, STL) read through OpenMesh's readers into a plain Mesh.
+// Mesh files (OBJ, OFF, PLY, STL) read into a plain Mesh: OFF, PLY and STL by inkline's own strict
+// readers (core/internal/), OBJ by a fast reader of its own or through OpenMesh after check_obj.
 #pragma once
 
 #include "core/mesh.h"
