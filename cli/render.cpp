@@ -520,7 +520,7 @@ int run_render(const RenderArgs& args) {
     }
     check_outputs(outputs, rendered.first, rendered.last, run_inputs(args, scene, frames.first, frames.last));
 
-    core::MeshFrames meshes(scene.mesh, frames.first);
+    core::MeshFrames meshes(scene.mesh, frames.first, {args.max_faces});
     const size_t faces = meshes.at(frames.first).triangles.size();
     if (faces > args.max_faces) {
         throw InputError(meshes.path_of(frames.first).string() + ": " + std::to_string(faces) +

@@ -523,7 +523,7 @@ class InteriorGrid {
             if (stroke == self || strokes_[stroke].kind != kind) return;
             const double d = glm::length(strokes_[stroke].points_px[point] - p);
             if (d > kTeeReachPx) return;
-            const auto same = std::find_if(hits.begin(), hits.end(), [&](const Hit& h) { return h.stroke == stroke; });
+            const auto same = std::find_if(hits.begin(), hits.end(), [&, wanted = stroke](const Hit& h) { return h.stroke == wanted; });
             if (same == hits.end()) {
                 hits.push_back({stroke, point, d});
             } else if (std::tie(d, point) < std::tie(same->distance, same->point)) {

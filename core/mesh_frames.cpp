@@ -7,9 +7,9 @@
 
 namespace inkline::core {
 
-MeshFrames::MeshFrames(const MeshSource& source, int first_frame)
-    : source_(source), loaded_frame_(first_frame), reference_file_(path_of(first_frame)) {
-    LoadedMesh loaded = load_mesh(reference_file_);
+MeshFrames::MeshFrames(const MeshSource& source, int first_frame, const MeshLimits& limits)
+    : source_(source), limits_(limits), loaded_frame_(first_frame), reference_file_(path_of(first_frame)) {
+    LoadedMesh loaded = load_mesh(reference_file_, limits_);
     mesh_ = std::move(loaded.mesh);
     warnings_ = std::move(loaded.warnings);
     table_ = build_edge_table(mesh_);
@@ -26,7 +26,7 @@ std::filesystem::path MeshFrames::path_of(int frame) const {
 const Mesh& MeshFrames::at(int frame) {
     if (!source_.is_sequence || frame == loaded_frame_) return mesh_;
     const std::filesystem::path file = path_of(frame);
-    LoadedMesh loaded = load_mesh(file);
+    LoadedMesh loaded = load_mesh(file, limits_);
     if (loaded.mesh.positions.size() != mesh_.positions.size() ||
         loaded.mesh.triangles != mesh_.triangles) {
         throw InputError(file.string() + ": frame " + std::to_string(frame) +

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/mesh.h"
+#include "core/mesh_io.h"
 #include "core/scene.h"
 #include "core/topology.h"
 
@@ -15,8 +16,9 @@ namespace inkline::core {
 
 class MeshFrames {
   public:
-    // Loads the mesh of `first_frame` (the only one for a single file). Throws InputError.
-    MeshFrames(const MeshSource& source, int first_frame);
+    // Loads the mesh of `first_frame` (the only one for a single file). Throws InputError, also
+    // for a mesh over `limits` (checked while reading, for every frame's file).
+    MeshFrames(const MeshSource& source, int first_frame, const MeshLimits& limits = {});
 
     // The mesh at a frame; for a sequence this reads the frame's file and checks that its
     // topology matches, throwing InputError naming the file when it does not.
@@ -30,6 +32,7 @@ class MeshFrames {
 
   private:
     MeshSource source_;
+    MeshLimits limits_;
     Mesh mesh_;
     int loaded_frame_;
     std::filesystem::path reference_file_;

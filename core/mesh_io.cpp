@@ -5,6 +5,8 @@
 #include "core/internal/mesh_checks.h"
 #include "core/internal/obj_reader.h"
 #include "core/internal/off_reader.h"
+#include "core/internal/ply_reader.h"
+#include "core/internal/stl_reader.h"
 
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -12,9 +14,12 @@
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <cstring>
+#include <memory>
 #include <optional>
 
 namespace inkline::core {
@@ -33,7 +38,8 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
     // Every vertex and face takes at least two bytes of any file format, so a reader that
     // produces more than max_elements of either is following a lying header: refused before
     // memory grows past a small multiple of the file size.
-    SoupImporter(LoadedMesh& r_out, uintmax_t file_size) : out_(r_out), max_elements_(file_size / 2 + 16) {}
+    SoupImporter(LoadedMesh& r_out, uintmax_t file_size, size_t max_triangles)
+        : out_(r_out), max_elements_(file_size / 2 + 16), max_triangles_(max_triangles) {}
 
     std::optional<std::string> error;  // the first fatal problem, reported after reading
 
@@ -41,11 +47,13 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
         return add_vertex(OpenMesh::Vec3d(p[0], p[1], p[2]));
     }
     VertexHandle add_vertex(const OpenMesh::Vec3d& p) override {
-        const double largest = std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])});
-        if (!error && !(largest <= kMaxCoordinate)) {  // also catches NaN
+        // Each coordinate on its own: std::max drops a NaN that is not first.
+        const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+        const bool within = finite && std::abs(p[0]) <= kMaxCoordinate && std::abs(p[1]) <= kMaxCoordinate &&
+                            std::abs(p[2]) <= kMaxCoordinate;
+        if (!error && !within) {
             error = "vertex " + std::to_string(out_.mesh.positions.size() + 1) +
-                    (std::isfinite(largest) ? " has a coordinate beyond the limit of 1e18"
-                                            : " has a non-finite coordinate");
+                    (finite ? " has a coordinate beyond the limit of 1e18" : " has a non-finite coordinate");
         }
         if (out_.mesh.positions.size() >= max_elements_) throw_too_many("vertices");
         out_.mesh.positions.emplace_back(float(p[0]), float(p[1]), float(p[2]));
@@ -72,6 +80,7 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
         }
         // Fan triangulation keeps the polygon's winding.
         for (size_t i = 1; i + 1 < corners.size(); ++i) {
+            if (out_.mesh.triangles.size() >= max_triangles_) throw FaceLimit();
             out_.mesh.triangles.emplace_back(corners[0].idx(), corners[i].idx(),
                                              corners[i + 1].idx());
         }
@@ -79,6 +88,9 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
     }
 
     size_t short_faces() const { return short_faces_; }
+
+    // Thrown through OpenMesh's reader when the mesh passes the face limit.
+    struct FaceLimit {};
 
     // Attributes inkline does not use are accepted and dropped.
     HalfedgeHandle add_edge(VertexHandle, VertexHandle) override { return HalfedgeHandle(); }
@@ -132,6 +144,7 @@ class SoupImporter final : public OpenMesh::IO::BaseImporter {
 
     LoadedMesh& out_;
     uintmax_t max_elements_;
+    size_t max_triangles_;
     size_t polygons_ = 0;
     size_t short_faces_ = 0;
 };
@@ -153,45 +166,83 @@ void finish(const std::string& name, size_t short_faces, LoadedMesh& r_out) {
 
 }  // namespace
 
-LoadedMesh load_mesh(const std::filesystem::path& path) {
+LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits) {
     const std::string name = path.string();
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw InputError(name + ": file not found");
-    if (std::filesystem::is_directory(path, ec)) throw InputError(name + ": is a folder, not a mesh file");
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (status.type() == std::filesystem::file_type::not_found) throw InputError(name + ": file not found");
+    if (ec) throw InputError(name + ": cannot read: " + ec.message());
+    if (status.type() == std::filesystem::file_type::directory) throw InputError(name + ": is a folder, not a mesh file");
+    if (status.type() != std::filesystem::file_type::regular) {
+        throw InputError(name + ": not a regular file (a device, FIFO or socket), not a mesh file");
+    }
+    // Opened before anything else, so that an unreadable file says why.
+    const std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!file) throw InputError(name + ": cannot read: " + std::strerror(errno));
     const uintmax_t file_size = std::filesystem::file_size(path, ec);
     if (ec) throw InputError(name + ": cannot read: " + ec.message());
     if (file_size == 0) throw InputError(name + ": file is empty");
 
     std::string extension = path.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+    if (extension != ".obj" && extension != ".off" && extension != ".ply" && extension != ".stl") {
+        throw InputError(name + ": cannot read '" + extension + "' files (supported: .obj .off .ply .stl)");
+    }
+    const size_t max_faces = limits.max_faces;
     if (extension == ".off") {
-        internal::OffContents off = internal::read_off(path, file_size);
+        internal::OffContents off = internal::read_off(path, file_size, max_faces);
         LoadedMesh out{std::move(off.mesh), {}};
         finish(name, off.short_faces, out);
         return out;
     }
-    if (extension == ".obj") {
-        // Plain OBJ text, the usual form of big meshes, is read in one pass; anything else goes
-        // through check_obj and OpenMesh below, which also report what is wrong with it.
-        std::string text(file_size, '\0');
-        std::ifstream(path, std::ios::binary).read(text.data(), std::streamsize(file_size));
-        if (std::optional<internal::ObjContents> obj = internal::read_plain_obj(text)) {
-            LoadedMesh out{std::move(obj->mesh), {}};
-            finish(name, obj->short_faces, out);
-            return out;
-        }
+
+    std::string bytes;
+    try {
+        bytes.resize(size_t(file_size));
+    } catch (const std::bad_alloc&) {
+        throw InputError(name + ": too large to load into memory");
     }
-    size_t short_faces = 0;
-    if (extension == ".ply") internal::check_ply(path, file_size);
-    if (extension == ".obj") short_faces = internal::check_obj(path);
+    if (std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
+        throw InputError(name + ": cannot read: " + (std::ferror(file.get()) ? std::strerror(errno) : "the file shrank while being read"));
+    }
+    if (extension == ".ply") {
+        internal::check_ply(path, file_size);
+        internal::PlyContents ply = internal::read_ply(path, bytes, max_faces);
+        LoadedMesh out{std::move(ply.mesh), {}};
+        finish(name, ply.short_faces, out);
+        return out;
+    }
+    if (extension == ".stl") {
+        internal::StlContents stl = internal::read_stl(path, bytes, max_faces);
+        LoadedMesh out{std::move(stl.mesh), {}};
+        finish(name, 0, out);
+        if (stl.collapsed > 0) {
+            out.warnings.push_back(name + ": skipped " + std::to_string(stl.collapsed) +
+                                   " triangle(s) with two corners at the same position");
+        }
+        return out;
+    }
+
+    // OBJ. Plain text, the usual form of big meshes, is read in one pass; anything else goes
+    // through check_obj and OpenMesh below, which also report what is wrong with it.
+    if (std::optional<internal::ObjContents> obj = internal::read_plain_obj(bytes, max_faces)) {
+        if (obj->over_limit) internal::throw_face_limit(name, max_faces);
+        LoadedMesh out{std::move(obj->mesh), {}};
+        finish(name, obj->short_faces, out);
+        return out;
+    }
+    bytes = std::string();
+    const size_t short_faces = internal::check_obj(path);
 
     silence_openmesh_streams();
     LoadedMesh out;
-    SoupImporter importer(out, file_size);
+    SoupImporter importer(out, file_size, max_faces);
     OpenMesh::IO::Options options;
     bool ok = false;
     try {
         ok = OpenMesh::IO::IOManager().read(name, importer, options);
+    } catch (const SoupImporter::FaceLimit&) {
+        internal::throw_face_limit(name, max_faces);
     } catch (const std::bad_alloc&) {
         throw InputError(name + ": too large to load into memory");
     } catch (const InputError& e) {
@@ -200,10 +251,7 @@ LoadedMesh load_mesh(const std::filesystem::path& path) {
         throw InputError(name + ": cannot read: " + e.what());
     }
     if (importer.error) throw InputError(name + ": " + *importer.error);
-    if (!ok) {
-        throw InputError(name + ": cannot read as a mesh (supported: .obj .off .ply .stl; "
-                                "the file may be damaged)");
-    }
+    if (!ok) throw InputError(name + ": cannot read as OBJ (the file may be damaged)");
     finish(name, std::max(short_faces, importer.short_faces()), out);
     return out;
 }

@@ -3,6 +3,8 @@
 
 #include "core/error.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -38,10 +40,10 @@ void check_counts(const std::filesystem::path& path, const PlyCounts& c, uintmax
     }
 }
 
-// A signed decimal integer of at most 10 digits.
+// A signed decimal integer of at most 9 digits (OpenMesh reads an int; ten digits may overflow it).
 bool is_index(std::string_view s) {
     if (!s.empty() && s[0] == '-') s.remove_prefix(1);
-    return !s.empty() && s.size() <= 10 && s.find_first_not_of("0123456789") == std::string_view::npos;
+    return !s.empty() && s.size() <= 9 && s.find_first_not_of("0123456789") == std::string_view::npos;
 }
 
 // An OBJ face corner: v, v/vt, v//vn or v/vt/vn.
@@ -58,17 +60,34 @@ bool is_obj_corner(std::string_view corner) {
 
 }  // namespace
 
-// Reads one coordinate with strtod, which also accepts "nan" and "inf", so they can be named.
+// Reads one coordinate: a whole decimal word, so that strtod here and OpenMesh's stream
+// extraction (which stops at the first character it cannot take and reads the rest as the next
+// number) agree on it; "nan" and "inf" are named as such.
 double scan_coordinate(const std::string& where, const char*& r_cursor) {
+    const char* begin = r_cursor;
+    while (*begin == ' ' || *begin == '\t' || *begin == '\r' || *begin == '\f' || *begin == '\v') ++begin;
+    const char* end_of_word = begin;
+    while (*end_of_word != '\0' && !std::isspace(static_cast<unsigned char>(*end_of_word))) ++end_of_word;
+    if (end_of_word == begin) throw InputError(where + ": vertex needs three numbers");
+    const std::string word(begin, std::min<size_t>(size_t(end_of_word - begin), 40));
     char* end = nullptr;
-    const double value = std::strtod(r_cursor, &end);
-    if (end == r_cursor) throw InputError(where + ": vertex needs three numbers");
-    if (!std::isfinite(value)) throw InputError(where + ": vertex has a non-finite coordinate");
-    if (std::abs(value) > kMaxCoordinate) {
-        throw InputError(where + ": coordinate " + std::to_string(value) + " exceeds the limit of 1e18");
+    const double value = std::strtod(begin, &end);
+    if (end != end_of_word) {
+        throw InputError(where + ": coordinate '" + word + "' is not a number");
     }
-    r_cursor = end;
+    if (!std::isfinite(value)) throw InputError(where + ": vertex has a non-finite coordinate");
+    if (std::string_view(begin, size_t(end_of_word - begin)).find_first_not_of("0123456789.eE+-") != std::string_view::npos) {
+        throw InputError(where + ": coordinate '" + word + "' is not a decimal number (hex floats are not read)");
+    }
+    if (std::abs(value) > kMaxCoordinate) {
+        throw InputError(where + ": coordinate " + word + " exceeds the limit of 1e18");
+    }
+    r_cursor = end_of_word;
     return value;
+}
+
+void throw_face_limit(const std::string& name, size_t limit) {
+    throw InputError(name + ": more than " + std::to_string(limit) + " faces, the limit (raise it with --max-faces)");
 }
 
 // OpenMesh's OBJ reader silently skips a vertex line it cannot parse ("v nan 0 0", or a value
@@ -104,6 +123,12 @@ size_t check_obj(const std::filesystem::path& path) {
             std::getline(words, rest);
             const char* cursor = rest.c_str();
             for (int axis = 0; axis < 3; ++axis) scan_coordinate(where, cursor);
+        } else if (keyword == "vt") {
+            // OpenMesh fails the whole read on a texture coordinate it cannot parse.
+            std::string rest;
+            std::getline(words, rest);
+            const char* cursor = rest.c_str();
+            for (int axis = 0; axis < 2; ++axis) scan_coordinate(where, cursor);
         }
     }
     return short_faces;

@@ -4,6 +4,7 @@
 // (tests/fuzz/); each check names the file and line.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -14,9 +15,14 @@ namespace inkline::core::internal {
 // and no real scene needs them (float meshes lose all precision long before).
 inline constexpr double kMaxCoordinate = 1e18;
 
-// Reads one coordinate at r_cursor with strtod (which also accepts "nan" and "inf", so they can
-// be named), advancing the cursor. Throws InputError prefixed with `where` ("file:line").
+// Reads one coordinate at r_cursor: the next blank-separated word, which must be a whole decimal
+// number (no hex floats, no "1.5.3" or "1-2" that stream extraction would split), finite and
+// within kMaxCoordinate; advances the cursor past it. Throws InputError prefixed with `where`
+// ("file:line") naming the word.
 double scan_coordinate(const std::string& where, const char*& r_cursor);
+
+// Throws the InputError for a mesh with more than `limit` triangles.
+[[noreturn]] void throw_face_limit(const std::string& name, size_t limit);
 
 // OBJ: names vertex lines OpenMesh would skip; returns the number of faces with < 3 corners.
 size_t check_obj(const std::filesystem::path& path);

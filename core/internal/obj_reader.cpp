@@ -138,7 +138,7 @@ void count_lines(Piece& r_piece) {
     }
 }
 
-void read_piece(Piece& r_piece, bool has_carriage_returns) {
+void read_piece(Piece& r_piece, bool has_carriage_returns, size_t max_triangles) {
     Mesh& mesh = r_piece.contents.mesh;
     mesh.positions.reserve(r_piece.vertex_lines);
     mesh.triangles.reserve(r_piece.face_lines);
@@ -189,6 +189,10 @@ void read_piece(Piece& r_piece, bool has_carriage_returns) {
             drop_repeated_corners(corners, scratch);
             r_piece.contents.short_faces += count < 3;
             for (size_t i = 1; i + 1 < corners.size(); ++i) {
+                if (mesh.triangles.size() >= max_triangles) {
+                    r_piece.contents.over_limit = true;
+                    return;
+                }
                 mesh.triangles.emplace_back(corners[0], corners[i], corners[i + 1]);
             }
         }
@@ -199,7 +203,7 @@ void read_piece(Piece& r_piece, bool has_carriage_returns) {
 
 }  // namespace
 
-std::optional<ObjContents> read_plain_obj(std::string_view text) {
+std::optional<ObjContents> read_plain_obj(std::string_view text, size_t max_triangles) {
     // Bytes OpenMesh's streams treat as blanks but this reader does not, and NUL: general reader.
     for (char c : {'\v', '\f', '\0'}) {
         if (std::memchr(text.data(), c, text.size())) return std::nullopt;
@@ -226,7 +230,7 @@ std::optional<ObjContents> read_plain_obj(std::string_view text) {
         pieces[i].vertices_before = pieces[i - 1].vertices_before + pieces[i - 1].vertex_lines;
     }
     parallel_for(pieces.size(), 2, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) read_piece(pieces[i], has_carriage_returns);
+        for (size_t i = begin; i < end; ++i) read_piece(pieces[i], has_carriage_returns, max_triangles);
     });
 
     ObjContents out;
@@ -234,12 +238,21 @@ std::optional<ObjContents> read_plain_obj(std::string_view text) {
     int64_t largest_index = -1;
     for (const Piece& piece : pieces) {
         if (!piece.plain) return std::nullopt;
+        if (piece.contents.over_limit) {
+            // Every line before the limit was plain; those after were not all read.
+            out.over_limit = true;
+            return out;
+        }
         vertices += piece.contents.mesh.positions.size();
         triangles += piece.contents.mesh.triangles.size();
         largest_index = std::max(largest_index, piece.largest_index);
         out.short_faces += piece.contents.short_faces;
     }
     if (largest_index >= int64_t(vertices)) return std::nullopt;
+    if (triangles > max_triangles) {
+        out.over_limit = true;
+        return out;
+    }
     if (pieces.size() == 1) {
         out.mesh = std::move(pieces[0].contents.mesh);
         return out;

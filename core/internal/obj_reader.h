@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -16,6 +17,7 @@ namespace inkline::core::internal {
 struct ObjContents {
     Mesh mesh;               // polygons fan-triangulated from their first corner
     size_t short_faces = 0;  // "f" lines with fewer than 3 corners, skipped (as check_obj counts)
+    bool over_limit = false; // reading stopped: more than max_triangles triangles (mesh incomplete)
 };
 
 // The mesh of an OBJ file's text, exactly as check_obj + OpenMesh's reader + load_mesh's
@@ -31,6 +33,8 @@ struct ObjContents {
 // Lines start at their first byte (no leading blanks) and may end in '\r'. nullopt for anything
 // else, including every file load_mesh would refuse: the caller then reads it the general way,
 // which reports the problem.
-std::optional<ObjContents> read_plain_obj(std::string_view text);
+// Reading stops, with over_limit set, once the triangles pass max_triangles.
+std::optional<ObjContents> read_plain_obj(std::string_view text,
+                                          size_t max_triangles = std::numeric_limits<size_t>::max());
 
 }  // namespace inkline::core::internal

@@ -49,7 +49,7 @@ bool scan_count(const char*& r_cursor, long long& r_value) {
 
 }  // namespace
 
-OffContents read_off(const std::filesystem::path& path, uintmax_t file_size) {
+OffContents read_off(const std::filesystem::path& path, uintmax_t file_size, size_t max_triangles) {
     OffLines lines(path);
     std::string line;
     if (!lines.next(line)) throw InputError(path.string() + ": not an OFF file (no header)");
@@ -106,7 +106,10 @@ OffContents read_off(const std::filesystem::path& path, uintmax_t file_size) {
             ++out.short_faces;
             continue;
         }
-        for (size_t i = 1; i + 1 < corners.size(); ++i) out.mesh.triangles.emplace_back(corners[0], corners[i], corners[i + 1]);
+        for (size_t i = 1; i + 1 < corners.size(); ++i) {
+            if (out.mesh.triangles.size() >= max_triangles) throw_face_limit(path.string(), max_triangles);
+            out.mesh.triangles.emplace_back(corners[0], corners[i], corners[i + 1]);
+        }
     }
     return out;
 }

@@ -5,6 +5,7 @@
 
 #include "core/mesh.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 
@@ -18,6 +19,7 @@ struct OffContents {
 // Reads [ST][C][N]OFF: the counts, then one vertex per line (its first three numbers; colours,
 // normals and texture coordinates after them are ignored), then one face per line. Throws
 // InputError naming the file and line for anything malformed; binary OFF is refused.
-OffContents read_off(const std::filesystem::path& path, uintmax_t file_size);
+// Throws too when the mesh has more than max_triangles triangles, as soon as reading passes it.
+OffContents read_off(const std::filesystem::path& path, uintmax_t file_size, size_t max_triangles);
 
 }  // namespace inkline::core::internal

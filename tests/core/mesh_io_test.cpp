@@ -7,6 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+
 namespace inkline {
 namespace {
 
@@ -212,6 +217,122 @@ TEST_F(MeshIo, PlyFaceListCountsMustFitTheirLine_fuzz_oom_39421bb9) {
 TEST_F(MeshIo, UnknownExtensionIsAnError) {
     test::write_text(dir / "mesh.xyz", "garbage");
     EXPECT_NE(error_of(dir / "mesh.xyz").find("cannot read"), std::string::npos);
+}
+
+// A binary STL of two triangles of a unit square, written by hand.
+std::string square_binary_stl() {
+    std::string out = "solid written by a tool that starts binary headers with solid" + std::string(18, ' ');
+    out.resize(80, ' ');
+    const uint32_t count = 2;
+    out.append(reinterpret_cast<const char*>(&count), 4);
+    for (const std::array<float, 12>& t : {std::array<float, 12>{0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 1, 0},
+                                           std::array<float, 12>{0, 0, 1, 0, 0, 0, 1, 1, 0, 0, 1, 0}}) {
+        out.append(reinterpret_cast<const char*>(t.data()), 48);
+        out.append(2, '\0');
+    }
+    return out;
+}
+
+// The unit square as binary PLY in either byte order, with properties and an element inkline
+// does not use, of every size.
+std::string square_binary_ply(bool big_endian) {
+    std::string out = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                      " 1.0\ncomment c\nelement vertex 4\nproperty double x\nproperty float y\nproperty short z\n"
+                      "property uchar red\nelement face 2\nproperty list uchar uint vertex_indices\nproperty float q\n"
+                      "element edge 1\nproperty int a\nproperty ushort b\nend_header\n";
+    auto put = [&](auto value) {
+        char raw[sizeof(value)];
+        std::memcpy(raw, &value, sizeof(value));
+        if (big_endian) std::reverse(raw, raw + sizeof(value));
+        out.append(raw, sizeof(value));
+    };
+    for (const std::array<int, 3>& v : {std::array<int, 3>{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}) {
+        put(double(v[0]));
+        put(float(v[1]));
+        put(int16_t(v[2]));
+        put(uint8_t(7));
+    }
+    for (const std::array<uint32_t, 3>& f : {std::array<uint32_t, 3>{0, 1, 2}, {0, 2, 3}}) {
+        put(uint8_t(3));
+        for (uint32_t i : f) put(i);
+        put(0.5f);
+    }
+    put(int32_t(0));
+    put(uint16_t(1));
+    return out;
+}
+
+TEST_F(MeshIo, BinaryPlyAndStlReadAsTheSquare) {
+    test::write_text(dir / "le.ply", square_binary_ply(false));
+    test::write_text(dir / "be.ply", square_binary_ply(true));
+    test::write_text(dir / "b.stl", square_binary_stl());
+    for (const char* name : {"le.ply", "be.ply", "b.stl"}) {
+        const core::LoadedMesh loaded = core::load_mesh(dir / name);
+        EXPECT_EQ(loaded.mesh.triangles.size(), 2u) << name;
+        EXPECT_EQ(loaded.mesh.positions.size(), 4u) << name << ": STL corners at one place share a vertex";
+        EXPECT_TRUE(loaded.warnings.empty()) << name;
+        for (const auto& t : loaded.mesh.triangles) {
+            EXPECT_GT(core::face_normal(loaded.mesh.positions, t).z, 0.0) << name;
+        }
+    }
+}
+
+// A binary file ends exactly where its data does: every shorter prefix is refused.
+TEST_F(MeshIo, EveryTruncationOfABinaryMeshIsRefused) {
+    for (const auto& [name, whole] : {std::pair<std::string, std::string>{"t.stl", square_binary_stl()},
+                                      {"le.ply", square_binary_ply(false)},
+                                      {"be.ply", square_binary_ply(true)}}) {
+        for (size_t cut = 1; cut < whole.size(); ++cut) {
+            test::write_text(dir / name, whole.substr(0, cut));
+            EXPECT_NE(error_of(dir / name).find(name), std::string::npos) << name << " cut at " << cut;
+        }
+    }
+}
+
+// ASCII PLY and STL cut at any line end before their last element are refused.
+TEST_F(MeshIo, EveryTruncationOfAnAsciiMeshAtALineEndIsRefused) {
+    const std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                            "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+    const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\nendfacet\n";
+    const std::string stl = "solid s\n" + facet + facet + "endsolid s\n";
+    for (const auto& [name, whole] : {std::pair<std::string, std::string>{"a.ply", ply}, {"a.stl", stl}}) {
+        ASSERT_NO_THROW(core::load_mesh((test::write_text(dir / name, whole), dir / name)));
+        for (size_t cut = whole.find('\n'); cut + 1 < whole.size(); cut = whole.find('\n', cut + 1)) {
+            test::write_text(dir / name, whole.substr(0, cut + 1));
+            EXPECT_NE(error_of(dir / name).find(name), std::string::npos) << name << " cut at " << cut;
+            test::write_text(dir / name, whole.substr(0, cut));  // and without the line end
+            EXPECT_NE(error_of(dir / name).find(name), std::string::npos) << name << " cut at " << cut;
+        }
+    }
+}
+
+TEST_F(MeshIo, FaceLimitStopsReadingEveryFormat) {
+    test::write_text(dir / "q.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    test::write_text(dir / "q.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+    test::write_text(dir / "q.ply", square_binary_ply(false));
+    test::write_text(dir / "q.stl", square_binary_stl());
+    for (const char* name : {"q.obj", "q.off", "q.ply", "q.stl"}) {
+        EXPECT_EQ(core::load_mesh(dir / name, {2}).mesh.triangles.size(), 2u) << name << ": at the limit";
+        try {
+            core::load_mesh(dir / name, {1});
+            ADD_FAILURE() << name << ": over the limit but read";
+        } catch (const InputError& e) {
+            const std::string message = e.what();
+            const std::string file = (dir / name).string();
+            EXPECT_TRUE(message.find(file + ": more than 1 faces, the limit") == 0 ||
+                        message.find(file + ": declares 2 triangles, more than the limit of 1 faces") == 0)
+                << message;
+        }
+    }
+}
+
+TEST_F(MeshIo, CoordinatesBeyondFloatRangeInTheGeneralObjReaderAreRefused) {
+    // Values beyond float range pass check_obj's double test but not OpenMesh's float read.
+    for (const char* line : {"v 0 1e39 0", "v 0 0 -1e39"}) {
+        test::write_text(dir / "f.obj", std::string(" # general reader\nv 0 0 0\n") + line + "\nv 0 1 0\nf 1 2 3\n");
+        EXPECT_NE(error_of(dir / "f.obj").find("f.obj:3: coordinate"), std::string::npos) << error_of(dir / "f.obj");
+    }
 }
 
 }  // namespace

@@ -35,5 +35,15 @@ TEST(FuzzCorpus, SceneInputsParseOrFailCleanly) { EXPECT_GT(replay("scene", inkl
 
 TEST(FuzzCorpus, MeshInputsLoadOrFailCleanly) { EXPECT_GT(replay("mesh", inkline::fuzz::mesh_target), 5u); }
 
+void obj_target(const uint8_t* data, size_t size) { inkline::fuzz::mesh_format_target(".obj", data, size); }
+void off_target(const uint8_t* data, size_t size) { inkline::fuzz::mesh_format_target(".off", data, size); }
+void ply_target(const uint8_t* data, size_t size) { inkline::fuzz::mesh_format_target(".ply", data, size); }
+void stl_target(const uint8_t* data, size_t size) { inkline::fuzz::mesh_format_target(".stl", data, size); }
+
+TEST(FuzzCorpus, ObjInputsLoadOrFailCleanly) { EXPECT_GT(replay("obj", obj_target), 5u); }
+TEST(FuzzCorpus, OffInputsLoadOrFailCleanly) { EXPECT_GT(replay("off", off_target), 5u); }
+TEST(FuzzCorpus, PlyInputsLoadOrFailCleanly) { EXPECT_GT(replay("ply", ply_target), 5u); }
+TEST(FuzzCorpus, StlInputsLoadOrFailCleanly) { EXPECT_GT(replay("stl", stl_target), 5u); }
+
 }  // namespace
 }  // namespace inkline

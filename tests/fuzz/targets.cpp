@@ -26,12 +26,10 @@ void scene_target(const uint8_t* data, size_t size) {
     }
 }
 
-void mesh_target(const uint8_t* data, size_t size) {
-    if (size == 0) return;
-    static const char* const kExtensions[] = {".obj", ".off", ".ply", ".stl"};
+void mesh_format_target(const char* extension, const uint8_t* data, size_t size) {
     const auto path = std::filesystem::temp_directory_path() /
-                      ("inkline_fuzz_" + std::to_string(::getpid()) + kExtensions[data[0] % 4]);
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
+                      ("inkline_fuzz_" + std::to_string(::getpid()) + extension);
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data), std::streamsize(size));
     try {
         const core::LoadedMesh loaded = core::load_mesh(path);
         const core::EdgeTable table = core::build_edge_table(loaded.mesh);
@@ -39,6 +37,12 @@ void mesh_target(const uint8_t* data, size_t size) {
     } catch (const InputError&) {
     }
     std::filesystem::remove(path);
+}
+
+void mesh_target(const uint8_t* data, size_t size) {
+    if (size == 0) return;
+    static const char* const kExtensions[] = {".obj", ".off", ".ply", ".stl"};
+    mesh_format_target(kExtensions[data[0] % 4], data + 1, size - 1);
 }
 
 }  // namespace inkline::fuzz

@@ -15,4 +15,8 @@ void scene_target(const uint8_t* data, size_t size);
 // by data[0], then loads it and builds its topology report.
 void mesh_target(const uint8_t* data, size_t size);
 
+// Writes all the bytes to a temporary mesh file with the given extension (".obj", ".off", ".ply"
+// or ".stl"), then loads it and builds its topology report: one reader fuzzed on its own.
+void mesh_format_target(const char* extension, const uint8_t* data, size_t size);
+
 }  // namespace inkline::fuzz
