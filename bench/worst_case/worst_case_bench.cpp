@@ -38,10 +38,12 @@
 #include "core/strokes.h"
 #include "core/topology.h"
 #include "core/visibility.h"
+#include "tests/support/shapes.h"
 
 namespace {
 
 namespace core = inkline::core;
+namespace test = inkline::test;
 
 double cpu_ms() {
     timespec t{};
@@ -63,70 +65,6 @@ double rss_mb() {
     if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
     std::fclose(f);
     return double(resident) * 4096.0 / (1024.0 * 1024.0);
-}
-
-core::Mesh closed_cone(uint32_t sides) {
-    core::Mesh m;
-    m.positions = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
-    for (uint32_t i = 0; i < sides; ++i) {
-        const double a = 2.0 * std::numbers::pi * double(i) / sides;
-        m.positions.push_back({float(std::cos(a)), 0.0f, float(std::sin(a))});
-    }
-    for (uint32_t i = 0; i < sides; ++i) {
-        const uint32_t a = 2 + i, b = 2 + (i + 1) % sides;
-        m.triangles.push_back({0, b, a});
-        m.triangles.push_back({1, a, b});
-    }
-    return m;
-}
-
-core::Mesh polygon(uint32_t corners) {
-    core::Mesh m;
-    for (uint32_t i = 0; i < corners; ++i) {
-        const double a = 2.0 * std::numbers::pi * double(i) / corners;
-        m.positions.push_back({float(std::cos(a)), 0.0f, float(std::sin(a))});
-    }
-    for (uint32_t i = 1; i + 1 < corners; ++i) m.triangles.push_back({0, i, i + 1});
-    return m;
-}
-
-core::Mesh terrain(uint32_t n) {
-    core::Mesh m;
-    uint32_t seed = 1;
-    for (uint32_t j = 0; j <= n; ++j) {
-        for (uint32_t i = 0; i <= n; ++i) {
-            seed = seed * 1664525u + 1013904223u;
-            const double h = 0.15 * double(seed >> 8) / double(1u << 24);
-            m.positions.push_back({float(2.0 * i / n - 1.0), float(h), float(2.0 * j / n - 1.0)});
-        }
-    }
-    for (uint32_t j = 0; j < n; ++j) {
-        for (uint32_t i = 0; i < n; ++i) {
-            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-            m.triangles.push_back({a, c, b});
-            m.triangles.push_back({b, c, d});
-        }
-    }
-    return m;
-}
-
-core::Mesh torus(int major, int minor) {
-    core::Mesh m;
-    for (int i = 0; i < major; ++i) {
-        for (int j = 0; j < minor; ++j) {
-            const double u = 2.0 * std::numbers::pi * i / major, v = 2.0 * std::numbers::pi * j / minor;
-            const double r = 1.0 + 0.35 * std::cos(v);
-            m.positions.push_back({float(r * std::cos(u)), float(0.35 * std::sin(v)), float(r * std::sin(u))});
-        }
-    }
-    for (int i = 0; i < major; ++i) {
-        for (int j = 0; j < minor; ++j) {
-            const auto at = [&](int a, int b) { return uint32_t(((a + major) % major) * minor + (b + minor) % minor); };
-            m.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j)});
-            m.triangles.push_back({at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)});
-        }
-    }
-    return m;
 }
 
 const char* const kStages[] = {"edge table", "describe", "cone tree", "BVH", "extract", "chain", "visibility", "strokes"};
@@ -219,7 +157,7 @@ void print_table(const std::string& title, const std::vector<Row>& rows) {
 // A small torus over 20000 frames (one turn): mean CPU ms per frame in each quarter of the run,
 // and the resident memory at the end of each (stroke coherence must not grow with the frames).
 void long_run(int scale) {
-    const core::Mesh mesh = torus(48, 16);
+    const core::Mesh mesh = test::torus(1.0, 0.35, 48, 16);
     const core::EdgeTable table = core::build_edge_table(mesh);
     const int frames = 20000 / scale;
     core::Scene scene = core::default_turntable_scene("bench.obj", core::bounds_of(mesh.positions));
@@ -275,12 +213,12 @@ int run(int argc, char** argv) {
     };
     if (only.empty() || only == "fan") {
         std::vector<Row> rows;
-        for (uint32_t sides : sizes(18750)) rows.push_back(render_two_frames(closed_cone(sides), std::to_string(sides) + " sides"));
+        for (uint32_t sides : sizes(18750)) rows.push_back(render_two_frames(test::closed_cone(sides), std::to_string(sides) + " sides"));
         print_table("fan: closed cone, apex and base centre each in half of the faces", rows);
     }
     if (only.empty() || only == "polygon") {
         std::vector<Row> rows;
-        for (uint32_t corners : sizes(125000)) rows.push_back(render_two_frames(polygon(corners), std::to_string(corners) + " corners"));
+        for (uint32_t corners : sizes(125000)) rows.push_back(render_two_frames(test::fan_polygon(corners), std::to_string(corners) + " corners"));
         print_table("polygon: one face of N corners, fan-triangulated", rows);
     }
     if (only.empty() || only == "terrain") {
@@ -288,7 +226,7 @@ int run(int argc, char** argv) {
         // Side n grows by sqrt 2 a step: faces (and strokes) double.
         for (int k = 0; k < 4; ++k) {
             const auto n = uint32_t(std::lround(141.0 * std::pow(std::sqrt(2.0), k) / std::sqrt(double(scale))));
-            rows.push_back(render_two_frames(terrain(n), std::to_string(n) + "^2 grid"));
+            rows.push_back(render_two_frames(test::noise_terrain(n, 0.15), std::to_string(n) + "^2 grid"));
         }
         print_table("terrain: random heightfield", rows);
     }

@@ -29,56 +29,6 @@ test::RunResult run_guarded(const std::string& args) {
     return test::run_shell("timeout 120 " + test::inkline_command() + " " + args);
 }
 
-// A closed cone of 2 * sides faces: every side face has the apex, every base face the base centre.
-core::Mesh closed_cone(uint32_t sides) {
-    core::Mesh m;
-    m.positions = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
-    for (uint32_t i = 0; i < sides; ++i) {
-        const double a = 2.0 * std::numbers::pi * double(i) / sides;
-        m.positions.push_back({float(std::cos(a)), 0.0f, float(std::sin(a))});
-    }
-    for (uint32_t i = 0; i < sides; ++i) {
-        const uint32_t a = 2 + i, b = 2 + (i + 1) % sides;
-        m.triangles.push_back({0, b, a});
-        m.triangles.push_back({1, a, b});
-    }
-    return m;
-}
-
-// A flat disc of `sides` faces, all around its centre (a CAD export's cap).
-core::Mesh disc_cap(uint32_t sides) {
-    core::Mesh m;
-    m.positions = {{0.0f, 0.0f, 0.0f}};
-    for (uint32_t i = 0; i < sides; ++i) {
-        const double a = 2.0 * std::numbers::pi * double(i) / sides;
-        m.positions.push_back({float(std::cos(a)), 0.0f, float(std::sin(a))});
-    }
-    for (uint32_t i = 0; i < sides; ++i) m.triangles.push_back({0, 1 + (i + 1) % sides, 1 + i});
-    return m;
-}
-
-// An n x n heightfield of random heights (seeded): terrain or a noisy scan, whose silhouettes
-// break into tens of thousands of short strokes.
-core::Mesh noise_terrain(uint32_t n, double amplitude) {
-    core::Mesh m;
-    uint32_t seed = 1;
-    for (uint32_t j = 0; j <= n; ++j) {
-        for (uint32_t i = 0; i <= n; ++i) {
-            seed = seed * 1664525u + 1013904223u;
-            const double h = amplitude * double(seed >> 8) / double(1u << 24);
-            m.positions.push_back({float(2.0 * i / n - 1.0), float(h), float(2.0 * j / n - 1.0)});
-        }
-    }
-    for (uint32_t j = 0; j < n; ++j) {
-        for (uint32_t i = 0; i < n; ++i) {
-            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-            m.triangles.push_back({a, c, b});
-            m.triangles.push_back({b, c, d});
-        }
-    }
-    return m;
-}
-
 // A frame's JSON written whole: the document's first and last bytes, and its frame number.
 void expect_whole_json(const fs::path& path, int frame) {
     ASSERT_TRUE(fs::is_regular_file(path)) << path;
@@ -106,7 +56,7 @@ void expect_only_outputs(const std::map<std::string, test::FileState>& before,
 TEST_F(HostileScale, ConeOf300kFacesIsDescribedWithoutDelay) {
     // The apex and the base centre each have 150000 faces: counting the fans around them was
     // quadratic (past 100 s).
-    test::write_obj(dir / "cone.obj", closed_cone(150000));
+    test::write_obj(dir / "cone.obj", test::closed_cone(150000));
     const auto before = test::folder_state(dir);
     const test::RunResult r = run_guarded("info " + (dir / "cone.obj").string());
     ASSERT_EQ(r.code, 0) << r.output;
@@ -120,7 +70,7 @@ TEST_F(HostileScale, ConeOf300kFacesIsDescribedWithoutDelay) {
 TEST_F(HostileScale, DiscOfAMillionFacesAroundOneVertexIsDescribed) {
     // A million faces at one vertex: quadratic, the fan count took minutes, well past the guard
     // on any machine; linear, about a second with the file read.
-    test::write_obj(dir / "disc.obj", disc_cap(1000000));
+    test::write_obj(dir / "disc.obj", test::disc_cap(1000000));
     const auto before = test::folder_state(dir);
     const test::RunResult r = run_guarded("info " + (dir / "disc.obj").string());
     ASSERT_EQ(r.code, 0) << r.output;
@@ -132,7 +82,7 @@ TEST_F(HostileScale, DiscOfAMillionFacesAroundOneVertexIsDescribed) {
 
 TEST_F(HostileScale, TwoConesTouchingAtTheirApexOfOneHundredThousandFacesEach) {
     // 50000 faces at the shared apex from each cone: one non-manifold vertex, found as fast.
-    core::Mesh two = closed_cone(50000);
+    core::Mesh two = test::closed_cone(50000);
     const auto n = uint32_t(two.positions.size());
     for (uint32_t v = 1; v < n; ++v) two.positions.push_back({two.positions[v].x, 2.0f - two.positions[v].y, two.positions[v].z});
     const size_t faces = two.triangles.size();
@@ -151,7 +101,7 @@ TEST_F(HostileScale, TwoConesTouchingAtTheirApexOfOneHundredThousandFacesEach) {
 
 TEST_F(HostileScale, DiscCapOf150kFacesRendersTwoFramesWhole) {
     // One vertex in all 150000 faces, and a rim of 150000 edges drawn as one boundary loop.
-    test::write_obj(dir / "cap.obj", disc_cap(150000));
+    test::write_obj(dir / "cap.obj", test::disc_cap(150000));
     const auto before = test::folder_state(dir);
     const test::RunResult r = run_guarded("render " + (dir / "cap.obj").string() +
                                                 " --frames 1:2 --size 512x512 -q -o " + (dir / "out").string());
@@ -193,7 +143,7 @@ TEST_F(HostileScale, PolygonOfAQuarterMillionCornersRendersWhole) {
 TEST_F(HostileScale, TensOfThousandsOfStrokesFromFrameTwoRenderWhole) {
     // Random terrain: frame 2 joins last frame's split strokes again, which compared every stroke
     // end with every other (13 s at 16k strokes, 48 s at 30k).
-    test::write_obj(dir / "terrain.obj", noise_terrain(210, 0.15));
+    test::write_obj(dir / "terrain.obj", test::noise_terrain(210, 0.15));
     const auto before = test::folder_state(dir);
     const test::RunResult r = run_guarded("render " + (dir / "terrain.obj").string() +
                                                 " --frames 1:2 -q --json " + (dir / "out/f_%04d.json").string());

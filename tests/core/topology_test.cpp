@@ -106,27 +106,10 @@ TEST(Topology, SheetsTouchingAtAVertexAreNonManifold) {
     }
 }
 
-// A closed cone of n sides: apex 0 above, base centre 1, the ring 2.. n+1; every side face has
-// the apex and every base face the centre, so both have n faces.
-core::Mesh closed_cone(uint32_t n) {
-    core::Mesh m;
-    m.positions = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
-    for (uint32_t i = 0; i < n; ++i) {
-        const double a = 6.283185307179586 * double(i) / n;
-        m.positions.push_back({float(std::cos(a)), 0.0f, float(std::sin(a))});
-    }
-    for (uint32_t i = 0; i < n; ++i) {
-        const uint32_t a = 2 + i, b = 2 + (i + 1) % n;
-        m.triangles.push_back({0, b, a});
-        m.triangles.push_back({1, a, b});
-    }
-    return m;
-}
-
 TEST(Topology, NonManifoldVerticesCountedOnMeshesWhereTheCountIsKnown) {
     // A closed cone of 200000 faces: its apex and base centre, each with 100000 faces, are one
     // fan each (the count is linear in the faces at a vertex, not quadratic).
-    const core::Mesh cone = closed_cone(100000);
+    const core::Mesh cone = test::closed_cone(100000);
     core::MeshReport r = core::describe_mesh(cone, core::build_edge_table(cone));
     EXPECT_EQ(r.non_manifold_vertices, 0u);
     EXPECT_EQ(r.boundary_edges, 0u);
@@ -134,7 +117,7 @@ TEST(Topology, NonManifoldVerticesCountedOnMeshesWhereTheCountIsKnown) {
 
     // Two such cones touching apex to apex (the second mirrored through the apex): one
     // non-manifold vertex, however many faces meet there.
-    core::Mesh two = closed_cone(5000);
+    core::Mesh two = test::closed_cone(5000);
     const auto n = uint32_t(two.positions.size());
     for (size_t v = 1; v < n; ++v) two.positions.push_back({two.positions[v].x, 2.0f - two.positions[v].y, two.positions[v].z});
     const size_t faces = two.triangles.size();
@@ -150,7 +133,7 @@ TEST(Topology, NonManifoldVerticesCountedOnMeshesWhereTheCountIsKnown) {
     EXPECT_EQ(r.inconsistent_edges, 0u);
 
     // A fan of sheets around one edge of the cone: both ends of that edge become non-manifold.
-    core::Mesh sheets = closed_cone(3000);
+    core::Mesh sheets = test::closed_cone(3000);
     for (int k = 0; k < 3; ++k) {
         sheets.positions.push_back({0.5f, 0.5f, float(k + 1)});
         sheets.triangles.push_back({0, 2, uint32_t(sheets.positions.size() - 1)});
@@ -164,7 +147,7 @@ TEST(Topology, FindEdgeAtAVertexWithManyEdges) {
     // The apex of a cone has an edge to each of its 20000 ring vertices and none to the base
     // centre; a ring vertex has its two ring neighbours, the apex and the centre.
     constexpr uint32_t kSides = 20000;
-    const core::Mesh cone = closed_cone(kSides);
+    const core::Mesh cone = test::closed_cone(kSides);
     const core::EdgeTable table = core::build_edge_table(cone);
     for (uint32_t i = 0; i < kSides; ++i) {
         const uint32_t e = core::find_edge(table, 2 + i, 0);

@@ -179,4 +179,60 @@ Mesh wavy_torus(int major_segments, int minor_segments, double wave, double ripp
     });
 }
 
+core::Mesh closed_cone(uint32_t sides) {
+    core::Mesh m;
+    m.positions = {{0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+    for (uint32_t i = 0; i < sides; ++i) {
+        const double a = 2.0 * std::numbers::pi * double(i) / sides;
+        m.positions.push_back({float(std::cos(a)), 0.0f, float(std::sin(a))});
+    }
+    for (uint32_t i = 0; i < sides; ++i) {
+        const uint32_t a = 2 + i, b = 2 + (i + 1) % sides;
+        m.triangles.push_back({0, b, a});
+        m.triangles.push_back({1, a, b});
+    }
+    return m;
+}
+
+core::Mesh disc_cap(uint32_t sides) {
+    core::Mesh m;
+    m.positions = {{0.0f, 0.0f, 0.0f}};
+    for (uint32_t i = 0; i < sides; ++i) {
+        const double a = 2.0 * std::numbers::pi * double(i) / sides;
+        m.positions.push_back({float(std::cos(a)), 0.0f, float(std::sin(a))});
+    }
+    for (uint32_t i = 0; i < sides; ++i) m.triangles.push_back({0, 1 + (i + 1) % sides, 1 + i});
+    return m;
+}
+
+core::Mesh fan_polygon(uint32_t corners) {
+    core::Mesh m;
+    for (uint32_t i = 0; i < corners; ++i) {
+        const double a = 2.0 * std::numbers::pi * double(i) / corners;
+        m.positions.push_back({float(std::cos(a)), 0.0f, float(std::sin(a))});
+    }
+    for (uint32_t i = 1; i + 1 < corners; ++i) m.triangles.push_back({0, i, i + 1});
+    return m;
+}
+
+core::Mesh noise_terrain(uint32_t n, double amplitude) {
+    core::Mesh m;
+    uint32_t seed = 1;
+    for (uint32_t j = 0; j <= n; ++j) {
+        for (uint32_t i = 0; i <= n; ++i) {
+            seed = seed * 1664525u + 1013904223u;
+            const double h = amplitude * double(seed >> 8) / double(1u << 24);
+            m.positions.push_back({float(2.0 * i / n - 1.0), float(h), float(2.0 * j / n - 1.0)});
+        }
+    }
+    for (uint32_t j = 0; j < n; ++j) {
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            m.triangles.push_back({a, c, b});
+            m.triangles.push_back({b, c, d});
+        }
+    }
+    return m;
+}
+
 }  // namespace inkline::test

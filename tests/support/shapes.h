@@ -34,6 +34,19 @@ core::Mesh bumpy_sphere(core::Mesh unit_sphere, const Bumps& bumps);
 // relative amplitudes `wave` (sin 7u sin 3v) and `ripple` (sin(23u + 5v)): folds and
 // self-occlusion everywhere. Faces in grid order, two per quad.
 core::Mesh wavy_torus(int major_segments, int minor_segments, double wave, double ripple);
+// Worst cases for anything quadratic in vertex valence or line count:
+// A closed cone of `sides` sides: apex 0 above, base centre 1, the ring 2.. sides+1 on the unit
+// circle in y = 0; every side face has the apex and every base face the centre (2 * sides faces).
+core::Mesh closed_cone(uint32_t sides);
+// A flat disc in y = 0 of `sides` faces, all around its centre (vertex 0), as a CAD export's cap.
+core::Mesh disc_cap(uint32_t sides);
+// One convex polygon of `corners` corners on the unit circle in y = 0, fan-triangulated from
+// corner 0 as a reader splits it (corners - 2 faces).
+core::Mesh fan_polygon(uint32_t corners);
+// An n x n heightfield over [-1, 1]^2 in x and z with random heights in [0, amplitude) (seeded):
+// terrain or a noisy scan, whose silhouettes break into tens of thousands of short strokes.
+core::Mesh noise_terrain(uint32_t n, double amplitude);
+
 // Flat n x n quad grid in the z = 0 plane spanning [-h, h]^2, normals towards +z.
 core::Mesh grid(int n, double half_size);
 
