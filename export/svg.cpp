@@ -21,8 +21,16 @@ class Writer {
     }
     // A number with bounded decimals and no trailing zeros.
     Writer& number(double v) {
-        char buf[64];
-        int n = std::snprintf(buf, sizeof buf, "%.*f", decimals_, v);
+        // %f writes every integer digit: a far plane of 1e300 takes 301 of them.
+        char small[64];
+        std::string large;
+        char* buf = small;
+        int n = std::snprintf(small, sizeof small, "%.*f", decimals_, v);
+        if (n >= int(sizeof small)) {
+            large.resize(size_t(n) + 1);
+            buf = large.data();
+            n = std::snprintf(buf, large.size(), "%.*f", decimals_, v);
+        }
         if (decimals_ > 0) {
             while (n > 0 && buf[n - 1] == '0') --n;
             if (n > 0 && buf[n - 1] == '.') --n;

@@ -52,5 +52,20 @@ TEST(Svg, FilledShapesAndBackground) {
         << svg;
 }
 
+// A far plane of 1e300 (drawable: only ratios matter) prints as its 301 integer digits in the
+// metadata, not cut at a fixed buffer.
+TEST(Svg, HugeCameraValuesAreWrittenWhole) {
+    output::Drawing d;
+    d.image = {10, 10};
+    d.camera.near = 1e-300;
+    d.camera.far = 1e300;
+    const std::string svg = output::svg_document(d, {});
+    const std::regex far(R"re(far="1(\d+)")re");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(svg, m, far)) << svg.substr(0, 2000);
+    EXPECT_EQ(m[1].length(), 300);
+    EXPECT_NE(svg.find("near=\"0\""), std::string::npos);
+}
+
 }  // namespace
 }  // namespace inkline
