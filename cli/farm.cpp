@@ -41,6 +41,21 @@ std::string sbatch_word(const std::string& value, const std::string& what) {
     return plain ? value : "\"" + value + "\"";
 }
 
+// An --sbatch value: one sbatch option that the scripts do not set themselves.
+const std::string& own_sbatch_option(const std::string& option) {
+    sbatch_word(option, "--sbatch");  // what no #SBATCH line can hold is named first
+    if (!option.starts_with("-")) {
+        throw InputError("--sbatch '" + quote_value(option) + "': expected one sbatch option, e.g. --account=lab");
+    }
+    for (const char* reserved : {"--array", "-a", "--output", "-o", "--error", "-e", "--job-name", "-J", "--dependency", "-d"}) {
+        const std::string name = reserved;
+        if (option == name || option.starts_with(name + "=") || (name.size() == 2 && option.starts_with(name))) {
+            throw InputError("--sbatch '" + quote_value(option) + "': inkline farm sets " + name + " itself");
+        }
+    }
+    return option;
+}
+
 std::string self_path() {
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
@@ -120,6 +135,9 @@ int summarize(const FarmArgs& args, const RenderPlan& plan) {
 
 int run_farm(const FarmArgs& args, const RenderArgs& render_in) {
     if (args.chunks < 1 || args.chunks > 100000) throw InputError("--chunks: must be 1..100000");
+    // Each task gets its chunk and the farm's output folder; the same options after -- would clash.
+    if (!render_in.chunk.empty()) throw InputError("render options after --: --chunk is set by inkline farm for each task");
+    if (!render_in.out_dir.empty()) throw InputError("render options after --: -o is the farm's own -o");
     RenderArgs render = render_in;
     render.input = absolute(args.scene);
     render.out_dir = absolute(args.out_dir);
@@ -152,12 +170,14 @@ int run_farm(const FarmArgs& args, const RenderArgs& render_in) {
         << "#SBATCH --array=1-" << args.chunks << "\n"
         << "#SBATCH " << sbatch_word("--output=" + (dir / "logs" / "chunk-%a.log").string(), "-o") << "\n";
     const std::string cd_line = "cd " + quote(fs::current_path().string()) + "\n";  // relative paths in render options
-    std::string directives;  // the user's #SBATCH lines, shared by both jobs where they apply
+    // The user's #SBATCH lines, the same for both jobs (an account or QOS the cluster requires
+    // applies to the summary too).
+    std::string directives;
     if (!args.partition.empty()) directives += "#SBATCH " + sbatch_word("--partition=" + args.partition, "--partition") + "\n";
+    if (!args.time.empty()) directives += "#SBATCH " + sbatch_word("--time=" + args.time, "--time") + "\n";
+    if (!args.mem.empty()) directives += "#SBATCH " + sbatch_word("--mem=" + args.mem, "--mem") + "\n";
+    for (const std::string& a : args.sbatch_args) directives += "#SBATCH " + sbatch_word(own_sbatch_option(a), "--sbatch") + "\n";
     job << directives;
-    if (!args.time.empty()) job << "#SBATCH " << sbatch_word("--time=" + args.time, "--time") << "\n";
-    if (!args.mem.empty()) job << "#SBATCH " << sbatch_word("--mem=" + args.mem, "--mem") << "\n";
-    for (const std::string& a : args.sbatch_args) job << "#SBATCH " << sbatch_word(a, "--sbatch") << "\n";
     job << cd_line << "exec " << quote(exe) << " render " << quote(render.input) << " --chunk slurm -q -o " << quote(render.out_dir)
         << render_words << "\n";
     write_script(dir / "render.sbatch", job.str());

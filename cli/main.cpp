@@ -47,7 +47,9 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
     cmd->add_option("--chunk", r.chunk,
                            "render chunk K of N contiguous chunks of the frames (K/N), or 'slurm' for the job array task");
     cmd->add_flag("--keep-going", r.keep_going, "report a frame that fails and render the rest");
-    cmd->add_option("--max-faces", r.max_faces, "refuse meshes with more faces")->capture_default_str();
+    cmd->add_option("--max-faces", r.max_faces, "refuse meshes with more faces")
+        ->capture_default_str()
+        ->check(CLI::Range(size_t(1), size_t(1) << 32));
     cmd->add_option("--max-image-side", r.max_image_side, "refuse larger images, px")
         ->capture_default_str()
         ->check(CLI::Range(1, 1 << 20));
@@ -142,6 +144,9 @@ int main(int argc, char** argv) {
         report("inkline: error: no usable OpenGL context: ",
                std::string(e.what()) + " (try --gl osmesa, or --visibility raycast or exact)");
         return kInputError;
+    } catch (const inkline::OutOfMemory& e) {
+        report("inkline: error: out of memory: ", e.what());
+        return kOutOfMemory;
     } catch (const std::bad_alloc&) {
         report("inkline: error: ", "out of memory");
         return kOutOfMemory;

@@ -6,6 +6,7 @@
 #include "export/atomic_file.h"
 
 #include <algorithm>
+#include <climits>
 #include <cstdint>
 #include <functional>
 #include <unordered_map>
@@ -43,6 +44,19 @@ class CanonicalNames {
   private:
     std::unordered_map<std::string, std::string> folders_;
 };
+
+// Refuses a name the system cannot create: a part over NAME_MAX bytes or a path over PATH_MAX.
+void check_name_length(const std::string& name) {
+    if (name.size() >= PATH_MAX) {
+        throw OutputError(quote_value(name) + ": path longer than " + std::to_string(PATH_MAX - 1) + " bytes");
+    }
+    for (const fs::path& part : fs::path(name)) {
+        if (part.native().size() > NAME_MAX) {
+            throw OutputError(quote_value(name) + ": a file or folder name longer than " + std::to_string(NAME_MAX) +
+                              " bytes");
+        }
+    }
+}
 
 }  // namespace
 
@@ -96,6 +110,7 @@ void check_outputs(const Outputs& outputs, int first, int last, const std::vecto
         for (int frame = begin; frame <= end; ++frame) {
             // The name as the writer will reach it, once missing folders are made.
             const std::string given = out.per_frame ? core::format_frame(*out.pattern, frame) : *out.pattern;
+            check_name_length(given);
             const fs::path name = canonical(given);
             struct stat target {};  // what the name leads to, links followed
             if (::stat(name.c_str(), &target) == 0) {

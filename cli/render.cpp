@@ -38,6 +38,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <regex>
@@ -141,6 +142,11 @@ VisibilityChoice choose_visibility(const RenderArgs& args) {
         choice.mode = core::raycast_available() ? "raycast" : "exact";
         choice.reason = std::string("no OpenGL context (") + e.what() + ")";
         return choice;
+    } catch (const OutOfMemory& e) {
+        if (asked == "gl") throw;
+        choice.mode = core::raycast_available() ? "raycast" : "exact";
+        choice.reason = std::string("no OpenGL (") + e.what() + ")";
+        return choice;
     }
     const std::string renderer = choice.context->backend_name() + std::string(": ") + choice.context->renderer();
     if (asked == "gl") {
@@ -235,36 +241,40 @@ class Sequence {
         if (!args_.quiet) std::fprintf(stderr, "inkline: warning: %s\n", message.c_str());
     }
 
-    // The GL preview of a frame just drawn (--preview): on the depth pass's context when it has
-    // one, else on a context of its own, created with the first frame.
-    gl::PreviewImage preview(const DrawnFrame& drawn) {
-        if (!preview_) {
-            const gl::Context* context = visibility_.context.get();
-            if (!context) {
-                try {
-                    preview_context_ = gl::create_context(gl::parse_backend(args_.gl_backend));
-                } catch (const gl::ContextError& e) {
-                    throw InputError(std::string("--preview: no OpenGL context: ") + e.what());
-                }
-                context = preview_context_.get();
+    // Sets up the GL preview (--preview) before the first frame: on the depth pass's context when
+    // it has one, else on a context of its own; its framebuffers are allocated at the scene's
+    // image size, so a GL that cannot draw it fails the run before anything is written.
+    void start_preview() {
+        const gl::Context* context = visibility_.context.get();
+        if (!context) {
+            try {
+                preview_context_ = gl::create_context(gl::parse_backend(args_.gl_backend));
+            } catch (const gl::ContextError& e) {
+                throw InputError(std::string("--preview: no OpenGL context: ") + e.what());
             }
-            gl::PreviewOptions options;
-            const std::string& underlay = args_.preview_underlay;
-            if (underlay == "flat") {
-                options.underlay = gl::Underlay::kFlat;
-            } else if (underlay == "toon") {
-                options.underlay = gl::Underlay::kToon;
-            } else if (underlay != "none") {
-                throw InputError("--preview-underlay '" + quote_value(underlay) + "': expected none, flat or toon");
-            }
-            if (!args_.background.empty()) {
-                const output::Rgb bg = output::parse_color(args_.background, "--background");
-                options.background = glm::dvec3(bg.r, bg.g, bg.b);
-            }
-            const gl::BrushTip tip =
-                scene_.brush.tip.empty() ? gl::default_brush_tip() : gl::load_brush_tip(scene_.brush.tip);
-            preview_ = std::make_unique<gl::PreviewRenderer>(*context, scene_.brush, tip, options);
+            context = preview_context_.get();
         }
+        gl::PreviewOptions options;
+        const std::string& underlay = args_.preview_underlay;
+        if (underlay == "flat") {
+            options.underlay = gl::Underlay::kFlat;
+        } else if (underlay == "toon") {
+            options.underlay = gl::Underlay::kToon;
+        } else if (underlay != "none") {
+            throw InputError("--preview-underlay '" + quote_value(underlay) + "': expected none, flat or toon");
+        }
+        if (!args_.background.empty()) {
+            const output::Rgb bg = output::parse_color(args_.background, "--background");
+            options.background = glm::dvec3(bg.r, bg.g, bg.b);
+        }
+        const gl::BrushTip tip =
+            scene_.brush.tip.empty() ? gl::default_brush_tip() : gl::load_brush_tip(scene_.brush.tip);
+        preview_ = std::make_unique<gl::PreviewRenderer>(*context, scene_.brush, tip, options);
+        preview_->prepare(scene_.image);
+    }
+
+    // The GL preview of a frame just drawn; start_preview() came first.
+    gl::PreviewImage preview(const DrawnFrame& drawn) {
         return preview_->render(drawn.lines, drawn.strokes,
                                 {.mesh = drawn.mesh, .world_from_object = drawn.world_from_object});
     }
@@ -355,7 +365,8 @@ std::pair<int, int> parse_chunk(const std::string& text) {
     std::smatch m;
     if (!std::regex_match(text, m, chunk)) throw InputError("--chunk '" + quote_value(text) + "': expected K/N or slurm");
     const int k = std::stoi(m[1]), n = std::stoi(m[2]);
-    if (n < 1 || k < 1 || k > n) throw InputError("--chunk '" + quote_value(text) + "': K must be 1.." + std::to_string(n));
+    if (n < 1) throw InputError("--chunk '" + quote_value(text) + "': N must be at least 1");
+    if (k < 1 || k > n) throw InputError("--chunk '" + quote_value(text) + "': K must be 1.." + std::to_string(n));
     return {k, n};
 }
 
@@ -439,11 +450,18 @@ class Writers {
         return files;
     }
 
-    // Writes the multi-page PDF with the pages so far (also after a failure, so no drawn frame
-    // is lost). Returns the number of files written.
-    size_t finish() {
+    // Writes the multi-page PDF with the pages so far, also after a failure, so no drawn frame
+    // is lost; but a run that failed never replaces a PDF already there, which may hold more of
+    // the sequence. Returns the number of files written.
+    size_t finish(bool complete, const std::function<void(const std::string&)>& warn) {
         if (!pdf_ || pdf_->pages() == 0) return 0;
         std::unique_ptr<output::PdfDocument> doc = std::move(pdf_);
+        std::error_code ec;
+        if (!complete && fs::exists(outputs_.pdf, ec)) {
+            warn(quote_value(outputs_.pdf, 160) + ": kept as it was; the " + std::to_string(doc->pages()) +
+                 " page(s) of this failed run are not written over it");
+            return 0;
+        }
         output::write_file_atomically(outputs_.pdf, doc->finish());
         return 1;
     }
@@ -478,7 +496,7 @@ RenderPlan plan_render(const RenderArgs& args) {
 }
 
 // The files a run reads, for check_outputs.
-std::vector<InputFile> run_inputs(const RenderArgs& args, const core::Scene& scene, int first, int last) {
+std::vector<InputFile> run_inputs(const core::Scene& scene, int first, int last) {
     std::vector<InputFile> inputs;
     if (!scene.file.empty()) inputs.push_back({"scene", scene.file});
     if (scene.mesh.is_sequence) {
@@ -487,7 +505,7 @@ std::vector<InputFile> run_inputs(const RenderArgs& args, const core::Scene& sce
     } else {
         inputs.push_back({"mesh", scene.mesh.path});
     }
-    if (!args.preview_pattern.empty() && !scene.brush.tip.empty()) inputs.push_back({"brush tip", scene.brush.tip});
+    if (!scene.brush.tip.empty()) inputs.push_back({"brush tip", scene.brush.tip});
     return inputs;
 }
 
@@ -518,7 +536,8 @@ int run_render(const RenderArgs& args) {
         }
         rendered = {c.first, c.last};
     }
-    check_outputs(outputs, rendered.first, rendered.last, run_inputs(args, scene, frames.first, frames.last));
+    core::check_cameras(scene, frames.first, frames.last);
+    check_outputs(outputs, rendered.first, rendered.last, run_inputs(scene, frames.first, frames.last));
 
     core::MeshFrames meshes(scene.mesh, frames.first, {args.max_faces});
     const size_t faces = meshes.at(frames.first).triangles.size();
@@ -537,10 +556,12 @@ int run_render(const RenderArgs& args) {
     if (args.hidden) scene.lines.hidden = true;
 
     Sequence sequence(scene, args, meshes, frames.count());
+    if (!outputs.preview.empty()) sequence.start_preview();
     for (const std::string& w : meshes.warnings()) sequence.warn(w);
     Writers writers(outputs, args, scene);
     Progress progress(std::max(rendered.count(), 0), !args.quiet && !args.verbose);
 
+    const auto warn = [&](const std::string& message) { sequence.warn(message); };
     const auto start = std::chrono::steady_clock::now();
     size_t strokes = 0, files = 0, failed = 0;
     double fast_forward_ms = 0.0;
@@ -560,7 +581,7 @@ int run_render(const RenderArgs& args) {
             result = sequence.draw(frame);
         } catch (const InputError& e) {
             if (!args.keep_going) {
-                writers.finish();
+                writers.finish(false, warn);
                 throw;
             }
             ++failed;
@@ -586,7 +607,7 @@ int run_render(const RenderArgs& args) {
             std::fprintf(stderr, "\n");
         }
     }
-    files += writers.finish();
+    files += writers.finish(failed == 0, warn);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const int skipped = rendered.first - frames.first;
     if (!args.quiet) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,17 @@ class InputError : public std::runtime_error {
 class OutputError : public std::runtime_error {
   public:
     using std::runtime_error::runtime_error;
+};
+
+// Memory or address space the run needs and cannot have, with what it was for. A std::bad_alloc,
+// so it is handled as any other allocation failure (exit 5).
+class OutOfMemory : public std::bad_alloc {
+  public:
+    explicit OutOfMemory(std::string what) : what_(std::move(what)) {}
+    const char* what() const noexcept override { return what_.c_str(); }
+
+  private:
+    std::string what_;
 };
 
 // A broken internal invariant: a bug in inkline, never the user's fault.

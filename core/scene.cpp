@@ -11,7 +11,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <initializer_list>
 #include <set>
@@ -414,7 +416,9 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
 
 Scene load_scene(const std::filesystem::path& scene_file, int max_image_side) {
     std::ifstream in(scene_file, std::ios::binary);
-    if (!in) throw InputError(quote_value(scene_file.string(), kMaxQuotedPathChars) + ": cannot open scene file");
+    if (!in) {
+        throw InputError(quote_value(scene_file.string(), kMaxQuotedPathChars) + ": cannot read: " + std::strerror(errno));
+    }
     std::ostringstream text;
     text << in.rdbuf();
     return parse_scene(text.str(), scene_file, max_image_side);
@@ -453,15 +457,30 @@ glm::dmat4 world_from_object_at(const Scene& scene, int frame) {
            glm::translate(glm::dmat4(1.0), -r.center);
 }
 
+namespace {
+[[noreturn]] void no_camera_for(const Scene& scene, int frame) {
+    throw InputError(quote_value(scene.file.string(), kMaxQuotedPathChars) +
+                     ": key 'camera.frames': no camera for frame " + std::to_string(frame));
+}
+}  // namespace
+
+void check_cameras(const Scene& scene, int first, int last) {
+    const std::map<int, CameraPose>& per_frame = scene.camera.per_frame;
+    if (per_frame.empty()) return;
+    // The keys in [first, last] are sorted: the first frame that is not the next key is missing.
+    long long expected = first;
+    for (auto it = per_frame.lower_bound(first); it != per_frame.end() && it->first <= last; ++it, ++expected) {
+        if (it->first != expected) no_camera_for(scene, int(expected));
+    }
+    if (expected <= last) no_camera_for(scene, int(expected));
+}
+
 Camera camera_at(const Scene& scene, int frame, const Bounds& world_bounds) {
     const CameraSpec& spec = scene.camera;
     CameraPose pose = spec.pose;
     if (!spec.per_frame.empty()) {
         const auto it = spec.per_frame.find(frame);
-        if (it == spec.per_frame.end()) {
-            throw InputError(quote_value(scene.file.string(), kMaxQuotedPathChars) + ": key 'camera.frames': no camera for frame " +
-                             std::to_string(frame));
-        }
+        if (it == spec.per_frame.end()) no_camera_for(scene, frame);
         pose = it->second;
     } else if (spec.orbit) {
         const Rotation& orbit = *spec.orbit;

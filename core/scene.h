@@ -88,6 +88,10 @@ Scene default_turntable_scene(const std::filesystem::path& mesh_file, const Boun
 // Object motion at a frame (identity without "object").
 glm::dmat4 world_from_object_at(const Scene& scene, int frame);
 
+// Throws InputError naming the first frame of [first, last] that the explicit per-frame camera
+// form has no camera for; nothing for the other forms.
+void check_cameras(const Scene& scene, int first, int last);
+
 // Camera at a frame; near/far fitted to world_bounds unless the scene gives them.
 // Throws InputError when the explicit form lacks the frame.
 Camera camera_at(const Scene& scene, int frame, const Bounds& world_bounds);

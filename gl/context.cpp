@@ -9,7 +9,10 @@
 #include <GL/gl.h>
 #include <GL/osmesa.h>
 
+#include <sys/resource.h>
+
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace inkline::gl {
@@ -147,6 +150,14 @@ bool gpu_device_present() {
 }
 
 std::unique_ptr<Context> create_context(Backend backend) {
+    // Mesa's drivers (llvmpipe's JIT above all) map hundreds of MB as they start and crash, rather
+    // than fail, when they cannot: under a smaller address-space limit no context is started.
+    constexpr rlim_t kMinAddressSpace = rlim_t(1536) << 20;
+    struct rlimit limit {};
+    if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && limit.rlim_cur < kMinAddressSpace) {
+        throw OutOfMemory("OpenGL needs at least 1536 MiB of address space; the limit (ulimit -v) is " +
+                          std::to_string(limit.rlim_cur >> 20) + " MiB");
+    }
     std::string egl_reason, osmesa_reason;
     if (backend == Backend::kAuto || backend == Backend::kEgl) {
         if (auto context = try_egl(egl_reason)) return context;

@@ -513,25 +513,30 @@ PreviewRenderer::PreviewRenderer(const Context& context, const core::BrushStyle&
 
 PreviewRenderer::~PreviewRenderer() = default;
 
+void PreviewRenderer::prepare(core::ImageSize image) {
+    Impl& m = *impl_;
+    INKLINE_CHECK(image.width > 0 && image.height > 0);
+    if (image.width > m.max_size || image.height > m.max_size) {
+        throw InputError("preview of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                         " px is larger than this GL's framebuffer limit of " + std::to_string(m.max_size) + " px");
+    }
+    m.resize(image.width, image.height);
+}
+
 PreviewImage PreviewRenderer::render(const core::FrameLines& frame, const core::FrameStrokes& strokes,
                                      const PreviewSurface& surface) {
     Impl& m = *impl_;
     const internal::Functions& fn = m.fn;
     const core::ImageSize image = frame.image;
-    INKLINE_CHECK(image.width > 0 && image.height > 0);
     const bool underlay = m.options.underlay != Underlay::kNone;
     INKLINE_CHECK(!underlay || surface.mesh != nullptr);
-    if (image.width > m.max_size || image.height > m.max_size) {
-        throw InputError("preview of " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                         " px is larger than this GL's framebuffer limit of " + std::to_string(m.max_size) + " px");
-    }
+    prepare(image);
 
     auto start = std::chrono::steady_clock::now();
     const std::vector<StrokeDraw> draws = m.upload_strokes(strokes);
     m.stats.geometry_ms = ms_since(start);
 
     start = std::chrono::steady_clock::now();
-    m.resize(image.width, image.height);
     fn.BindFramebuffer(GL_FRAMEBUFFER, m.msaa_fbo);
     if (fn.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         check_gl(fn, "binding the preview framebuffer");

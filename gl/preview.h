@@ -82,6 +82,11 @@ class PreviewRenderer {
     PreviewRenderer(const PreviewRenderer&) = delete;
     PreviewRenderer& operator=(const PreviewRenderer&) = delete;
 
+    // Checks that images of `image` size can be drawn and allocates their framebuffers, so a
+    // run can fail before it writes anything. Throws InputError beyond GL's framebuffer size
+    // limit, ContextError when the framebuffers cannot be made. render() does the same.
+    void prepare(core::ImageSize image);
+
     // Draws the visible, drawn strokes of one frame (hidden lines are left out) at frame.image,
     // over the underlay when the options ask for one (then `surface.mesh` is required).
     // Strokes overlap like layers of ink; a stroke never darkens itself where it folds over.

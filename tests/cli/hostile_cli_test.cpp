@@ -186,5 +186,101 @@ TEST_F(HostileCli, FarmRefusesWhatASlurmDirectiveCannotHold) {
     }
 }
 
+// Class 3c: a scene's brush tip is an input whether or not the preview draws with it.
+TEST_F(HostileCli, AnyOutputNamingTheBrushTipIsRefused) {
+    test::write_text(dir / "tip.png", "the tip");
+    test::write_text(dir / "tip.json", R"({"mesh": "cube.obj", "frames": [1, 1], "image": {"width": 64, "height": 64},
+        "camera": {"eye": [3, 2.5, 4], "target": [0, 0, 0]}, "brush": {"tip": "tip.png"}})");
+    expect_refused(q(dir / "tip.json") + " --png " + q(dir / "tip.png"), 2, "--png would replace the brush tip");
+}
+
+// What can be known before the first frame is checked before the first frame: no run writes
+// some frames and then stops on a name, a camera or a size it was given from the start.
+TEST_F(HostileCli, OverlongOutputNameIsRefusedBeforeAnythingIsWritten) {
+    const std::string long_name(250, 'c');
+    // Frame 99999 fits in 255 bytes, frame 100000 does not.
+    expect_refused(q(dir / "cube.obj") + " --frames 99998:100001 --svg " + q(dir / "s%d.svg") + " --json " +
+                       q(dir / (long_name + "%d")),
+                   3, "a file or folder name longer than 255 bytes");
+}
+
+TEST_F(HostileCli, MissingPerFrameCameraIsRefusedBeforeAnythingIsWritten) {
+    test::write_text(dir / "cams.json", R"({"mesh": "cube.obj", "frames": [1, 3], "image": {"width": 64, "height": 64},
+        "camera": {"frames": [{"frame": 1, "eye": [3, 2.5, 4], "target": [0, 0, 0]},
+                              {"frame": 3, "eye": [3, 2.5, 4], "target": [0, 0, 0]}]}})");
+    expect_refused(q(dir / "cams.json") + " -o " + q(dir / "out"), 2, "key 'camera.frames': no camera for frame 2");
+    const test::RunResult ok = test::run_inkline("render " + q(dir / "cams.json") + " -q --frames 3 -o " + q(dir / "out"));
+    EXPECT_EQ(ok.code, 0) << ok.output;
+}
+
+TEST_F(HostileCli, PreviewLargerThanGlCanDrawIsRefusedBeforeAnythingIsWritten) {
+    expect_refused(q(dir / "cube.obj") + " --frames 1 --size 40000x8 --max-image-side 40000 --json " + q(dir / "f.json") +
+                       " --preview " + q(dir / "p.png"),
+                   2, "framebuffer limit");
+}
+
+TEST_F(HostileCli, PreviewUnderATightAddressSpaceLimitIsOutOfMemoryNotACrash) {
+    if (test::kAddressSanitizer) GTEST_SKIP() << "ulimit -v stops AddressSanitizer from starting";
+    for (const int limit_mb : {500, 800, 1200}) {
+        const auto before = test::folder_state(dir);
+        const test::RunResult r = test::run_shell("ulimit -v " + std::to_string(limit_mb * 1024) + "; " +
+                                                  test::inkline_command() + " render " + q(dir / "cube.obj") +
+                                                  " -q --frames 1 --json " + q(dir / "f.json") + " --preview " +
+                                                  q(dir / "p.png"));
+        test::expect_one_line_error(r, 5, "OpenGL needs at least 1536 MiB of address space");
+        EXPECT_EQ(test::changed_entries(before, test::folder_state(dir)), std::vector<std::string>{}) << limit_mb;
+    }
+}
+
+// Never lose a frame already written: a failing re-run keeps the complete PDF of an earlier run.
+TEST_F(HostileCli, FailingRerunKeepsTheEarlierMultiPagePdf) {
+    for (int f = 1; f <= 3; ++f) test::write_obj(dir / "anim" / ("f" + std::to_string(f) + ".obj"), test::cube(1.0 + 0.1 * f));
+    test::write_text(dir / "seq.json", R"({"mesh": {"sequence": "anim/f%d.obj"}, "frames": [1, 3], "image": {"width": 64, "height": 64},
+        "camera": {"eye": [3, 2.5, 4], "target": [0, 0, 0]}})");
+    const std::string run = "render " + q(dir / "seq.json") + " --pdf " + q(dir / "all.pdf");
+    ASSERT_EQ(test::run_inkline(run + " -q").code, 0);
+    const std::string complete = test::read_text(dir / "all.pdf");
+    test::write_text(dir / "anim" / "f3.obj", "garbage\n");
+    const test::RunResult failed = test::run_inkline(run);
+    EXPECT_EQ(failed.code, 2) << failed.output;
+    EXPECT_NE(failed.output.find("all.pdf: kept as it was; the 2 page(s) of this failed run are not written over it"),
+              std::string::npos)
+        << failed.output;
+    EXPECT_TRUE(test::read_text(dir / "all.pdf") == complete);
+    // Without an earlier file, the pages drawn before the failure are written.
+    fs::remove(dir / "all.pdf");
+    EXPECT_EQ(test::run_inkline(run + " -q").code, 2);
+    EXPECT_TRUE(fs::exists(dir / "all.pdf"));
+}
+
+TEST_F(HostileCli, FarmRefusesOptionsItSetsItself) {
+    for (const std::string option : {"--sbatch=--array=1-100", "--sbatch=--output=/tmp/x.log", "--sbatch=-J name",
+                                     "--sbatch=--dependency=afterok:1", "--sbatch=notanoption", "-- --chunk 1/2",
+                                     "-- -o elsewhere"}) {
+        const auto before = test::folder_state(dir);
+        const test::RunResult r = test::run_shell(test::inkline_command() + " farm " + q(dir / "scene.json") +
+                                                  " --chunks 2 -o " + q(dir / "out") + " " + option);
+        EXPECT_EQ(r.code, 2) << option << ": " << r.output;
+        EXPECT_EQ(r.output.find('\n'), r.output.size() - 1) << r.output;
+        EXPECT_TRUE(test::changed_entries(before, test::folder_state(dir)).empty()) << option;
+    }
+    const test::RunResult ok = test::run_inkline("farm " + q(dir / "scene.json") + " --chunks 2 -o " + q(dir / "out") +
+                                                 " --sbatch=--account=lab --time 01:00:00");
+    ASSERT_EQ(ok.code, 0) << ok.output;
+    for (const char* script : {"render.sbatch", "summary.sbatch"}) {
+        const std::string text = test::read_text(dir / "out" / "slurm" / script);
+        EXPECT_NE(text.find("#SBATCH --account=lab\n"), std::string::npos) << script;
+        EXPECT_NE(text.find("#SBATCH --time=01:00:00\n"), std::string::npos) << script;
+    }
+}
+
+TEST_F(HostileCli, CountsOutOfRangeAreRefused) {
+    expect_refused(q(dir / "scene.json") + " --chunk 1/0 -o " + q(dir / "out"), 2, "N must be at least 1");
+    for (const std::string faces : {"-1", "0", "99999999999999999999"}) {
+        const test::RunResult r = test::run_inkline("render " + q(dir / "cube.obj") + " -q --max-faces " + faces);
+        test::expect_one_line_error(r, 2, "--max-faces");
+    }
+}
+
 }  // namespace
 }  // namespace inkline
