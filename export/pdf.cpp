@@ -96,7 +96,7 @@ PageSize parse_page_size(const std::string& text) {
         const PageSize p{std::stod(m[1]), std::stod(m[2]), false};
         if (p.width_mm >= 1.0 && p.height_mm >= 1.0 && p.width_mm <= 5000.0 && p.height_mm <= 5000.0) return p;
     }
-    throw InputError("--page '" + text + "': expected A4, A3, Letter or WxHmm with sides 1..5000 mm");
+    throw InputError("--page '" + quote_value(text) + "': expected A4, A3, Letter or WxHmm with sides 1..5000 mm");
 }
 
 struct PdfDocument::Impl {
