@@ -314,6 +314,75 @@ TEST_F(HostileReaders, LibraryOutputNeverReachesTheUser) {
     expect_refused(dir / "om.obj", "om.obj: face 2 references a vertex that does not exist");
 }
 
+// ---- round two: what the readers skipped silently ----
+
+// `inkline info MESH`: its output, after checking it succeeded.
+std::string info_of(const fs::path& mesh) {
+    const test::RunResult r = test::run_inkline("info '" + mesh.string() + "'");
+    EXPECT_EQ(r.code, 0) << r.output;
+    return r.output;
+}
+
+const std::string kBom = "\xef\xbb\xbf";
+
+TEST_F(HostileReaders, ObjByteOrderMarkKeepsTheFirstVertex) {
+    // The mark used to make the first line's keyword unknown: the vertex went, every index shifted.
+    const std::string body = "v 5 5 5\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    test::write_text(dir / "bom.obj", kBom + body);
+    test::write_text(dir / "bom_general.obj", kBom + body + " # read by the general reader\n");
+    for (const char* name : {"bom.obj", "bom_general.obj"}) {
+        SCOPED_TRACE(name);
+        const std::string out = info_of(dir / name);
+        EXPECT_NE(out.find("vertices: 4\n"), std::string::npos) << out;
+        EXPECT_NE(out.find("bounds: [0, 0, 0] .. [5, 5, 5]"), std::string::npos) << out;
+    }
+}
+
+TEST_F(HostileReaders, UnknownObjStatementIsRefusedWithItsLine) {
+    test::write_text(dir / "cap.obj", "v 0 0 0\nV 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    expect_refused(dir / "cap.obj", "cap.obj:2: unknown statement 'V'");
+    test::write_text(dir / "cap_general.obj", " v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nvx 1 2 3\n");
+    expect_refused(dir / "cap_general.obj", "cap_general.obj:5: unknown statement 'vx'");
+    // Every statement of the format is still read (and ignored where it carries no geometry).
+    test::write_text(dir / "all.obj",
+                     "mtllib a.mtl\no thing\ng part\ns 1\nmg off\nusemtl ink\nvp 0.5\nvn 0 0 1\nvt 0 0\n"
+                     "v 0 0 0\nv 1 0 0\nv 0 1 0\ncstype bezier\ndeg 3\nstep 1 1\nbmat u 1\ncurv 0 1 1 2\n"
+                     "curv2 1 2\nsurf 0 1 0 1 1 2\nparm u 0 1\ntrim 0 1 1\nhole 0 1 1\nscrv 0 1 1\nsp 1\n"
+                     "end\ncon 1 0 1 1 2 0 1 1\nbevel off\nc_interp off\nd_interp off\nlod 1\nmaplib a.map\n"
+                     "usemap off\nshadow_obj s.obj\ntrace_obj t.obj\nctech cparm 1\nstech cparma 1 1\n"
+                     "call x.mod\ncsh -ls\nl 1 2\np 1\nf 1 2 3\n");
+    const std::string out = info_of(dir / "all.obj");
+    EXPECT_NE(out.find("vertices: 3\nfaces: 1\n"), std::string::npos) << out;
+}
+
+TEST_F(HostileReaders, ObjTextureCoordinateProblemsNameTheTextureCoordinate) {
+    test::write_text(dir / "vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt inf 0\nf 1 2 3\n");
+    expect_refused(dir / "vt.obj", "vt.obj:4: texture coordinate 'inf' is not finite");
+}
+
+TEST_F(HostileReaders, ObjFaceLineMayEndInAComment) {
+    const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3 # first\nf 2 4 3 #second\n";
+    test::write_text(dir / "c.obj", body);
+    test::write_text(dir / "c_general.obj", " # read by the general reader\n" + body);
+    for (const char* name : {"c.obj", "c_general.obj"}) {
+        SCOPED_TRACE(name);
+        const std::string out = info_of(dir / name);
+        EXPECT_NE(out.find("vertices: 4\nfaces: 2\n"), std::string::npos) << out;
+    }
+}
+
+TEST_F(HostileReaders, ObjFaceWithARepeatedCornerIsCountedInTheWarning) {
+    const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 2\nf 3 3 3 3\n";
+    test::write_text(dir / "r.obj", body);
+    test::write_text(dir / "r_general.obj", " # read by the general reader\n" + body);
+    for (const char* name : {"r.obj", "r_general.obj"}) {
+        SCOPED_TRACE(name);
+        const std::string out = info_of(dir / name);
+        EXPECT_NE(out.find("faces: 1\n"), std::string::npos) << out;
+        EXPECT_NE(out.find(std::string(name) + ": skipped 2 face(s) with fewer than 3"), std::string::npos) << out;
+    }
+}
+
 // ---- class 9: --max-faces while reading ----
 
 TEST_F(HostileReaders, MaxFacesIsCheckedWhileReadingEveryFormat) {
