@@ -383,6 +383,39 @@ TEST_F(HostileReaders, ObjFaceWithARepeatedCornerIsCountedInTheWarning) {
     }
 }
 
+const std::string kOffSquare = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+
+TEST_F(HostileReaders, OffNumbersThatAreNotIntegersAreRefused) {
+    // strtol read the leading digits: "2.7" was vertex 2, "1.5" faces was 1.
+    for (const char* word : {"2.7", "2x", "2e5", "0x2"}) {
+        test::write_text(dir / "f.off", "OFF\n4 1 0\n" + kOffSquare + "3 0 1 " + word + "\n");
+        expect_refused(dir / "f.off", "f.off:7: '" + std::string(word) + "' is not an integer");
+    }
+    test::write_text(dir / "h.off", "OFF\n4 1.5 0\n" + kOffSquare + "3 0 1 2\n");
+    expect_refused(dir / "h.off", "h.off:2: '1.5' is not an integer");
+    test::write_text(dir / "n.off", "OFF\n-3 1 0\n" + kOffSquare + "3 0 1 2\n");
+    expect_refused(dir / "n.off", "n.off:2: the element counts must not be negative");
+}
+
+TEST_F(HostileReaders, OffHoldingMoreThanItDeclaresIsRefused) {
+    test::write_text(dir / "face.off", "OFF\n4 1 0\n" + kOffSquare + "3 0 1 2\n3 0 2 3\n");
+    expect_refused(dir / "face.off", "face.off:8: data after the 4 vertices and 1 faces the header declares");
+    test::write_text(dir / "junk.off", "OFF\n4 1 0\n" + kOffSquare + "3 0 1 2\ngarbage here\n");
+    expect_refused(dir / "junk.off", "junk.off:8: data after the 4 vertices and 1 faces the header declares");
+    test::write_text(dir / "fourth.off", "OFF\n4 1 0\n0 0 0\n1 0 0 0\n1 1 0\n0 1 0\n3 0 1 2\n");
+    expect_refused(dir / "fourth.off", "fourth.off:4: unexpected '0' after the vertex's three coordinates");
+    // What the format allows still reads: colours after vertices of COFF and after face indices,
+    // comments and blank lines at the end, counts on the header line, a byte order mark.
+    test::write_text(dir / "c.off", "COFF\n4 2 0\n0 0 0 1 0 0 1\n1 0 0 1 0 0 1\n1 1 0 1 0 0 1\n0 1 0 1 0 0 1\n"
+                                    "3 0 1 2 0.5 0.5 0.5\n3 0 2 3 255 0 0\n# end\n\n");
+    test::write_text(dir / "bom.off", kBom + "OFF 4 2\n" + kOffSquare + "3 0 1 2\n3 0 2 3\n");
+    for (const char* name : {"c.off", "bom.off"}) {
+        SCOPED_TRACE(name);
+        const std::string out = info_of(dir / name);
+        EXPECT_NE(out.find("vertices: 4\nfaces: 2\n"), std::string::npos) << out;
+    }
+}
+
 // ---- class 9: --max-faces while reading ----
 
 TEST_F(HostileReaders, MaxFacesIsCheckedWhileReadingEveryFormat) {
