@@ -244,6 +244,7 @@ void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
     bool have_format = false, in_element = false;
     std::vector<PlyElement> elements;
     for (int number = 1; number <= kMaxHeaderLines && std::getline(in, line); ++number) {
+        if (number == 1) strip_bom(line);
         if (!line.empty() && line.back() == '\r') line.pop_back();
         auto fail = [&](const std::string& problem) {
             throw InputError(path.string() + ":" + std::to_string(number) + ": malformed PLY header: " + problem);

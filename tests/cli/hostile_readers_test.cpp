@@ -416,6 +416,21 @@ TEST_F(HostileReaders, OffHoldingMoreThanItDeclaresIsRefused) {
     }
 }
 
+TEST_F(HostileReaders, HexFloatInAsciiPlyIsRefusedWithItsLine) {
+    // strtod read "0x1p3" as 8, where OBJ and OFF refuse it.
+    for (const char* word : {"0x1p3", "0X1P0", "-0x.8p1"}) {
+        test::write_text(dir / "hex.ply", ascii_ply_header(4, 2) + "0 0 0\n1 0 " + word + "\n1 1 0\n0 1 0\n" + kSquareFaces);
+        expect_refused(dir / "hex.ply", "hex.ply:11: vertex 1: '" + std::string(word) + "' is not a decimal number");
+    }
+}
+
+TEST_F(HostileReaders, PlyByteOrderMarkIsSkipped) {
+    test::write_text(dir / "bom.ply", kBom + ascii_ply_header(4, 2) + "0 0 0\n1 0 0\n1 1 3\n0 1 0\n" + kSquareFaces);
+    const std::string out = info_of(dir / "bom.ply");
+    EXPECT_NE(out.find("vertices: 4\nfaces: 2\n"), std::string::npos) << out;
+    EXPECT_NE(out.find("bounds: [0, 0, 0] .. [1, 1, 3]"), std::string::npos) << out;
+}
+
 // ---- class 9: --max-faces while reading ----
 
 TEST_F(HostileReaders, MaxFacesIsCheckedWhileReadingEveryFormat) {
