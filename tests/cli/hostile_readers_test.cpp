@@ -431,6 +431,34 @@ TEST_F(HostileReaders, PlyByteOrderMarkIsSkipped) {
     EXPECT_NE(out.find("bounds: [0, 0, 0] .. [1, 1, 3]"), std::string::npos) << out;
 }
 
+TEST_F(HostileReaders, HexFloatInAsciiStlIsRefusedWithItsLine) {
+    for (const char* word : {"0x1p0", "0X1P0", "-0x.8p1"}) {
+        std::string facet = kFacet;
+        facet.replace(facet.find("vertex 1 0 0"), 12, "vertex " + std::string(word) + " 0 0");
+        test::write_text(dir / "hex.stl", "solid s\n" + facet + "endsolid s\n");
+        expect_refused(dir / "hex.stl", "hex.stl:5: '" + std::string(word) + "' is not a decimal number in facet 0");
+    }
+}
+
+TEST_F(HostileReaders, AsciiStlByteOrderMarkIsSkipped) {
+    // Read as binary before: "declares 1818521189 triangles".
+    test::write_text(dir / "bom.stl", kBom + "solid s\n" + kFacet + "endsolid s\n");
+    const std::string out = info_of(dir / "bom.stl");
+    EXPECT_NE(out.find("vertices: 3\nfaces: 1\n"), std::string::npos) << out;
+}
+
+TEST_F(HostileReaders, UpperCaseAsciiStlKeywordsAreNamedAsSuch) {
+    test::write_text(dir / "facet.stl", "solid s\nFACET normal 0 0 1\nendsolid s\n");
+    expect_refused(dir / "facet.stl",
+                   "facet.stl:2: expected 'facet' or 'endsolid', found 'FACET' (STL keywords are lower case)");
+    test::write_text(dir / "solid.stl", "SOLID s\n" + kFacet + "endsolid s\n");
+    expect_refused(dir / "solid.stl", "solid.stl: ASCII STL must start with 'solid', found 'SOLID' (STL keywords are lower case)");
+    std::string facet = kFacet;
+    facet.replace(facet.find("outer"), 5, "OUTER");
+    test::write_text(dir / "outer.stl", "solid s\n" + facet + "endsolid s\n");
+    expect_refused(dir / "outer.stl", "outer.stl:3: expected 'outer' in facet 0, found 'OUTER' (STL keywords are lower case)");
+}
+
 // ---- class 9: --max-faces while reading ----
 
 TEST_F(HostileReaders, MaxFacesIsCheckedWhileReadingEveryFormat) {
