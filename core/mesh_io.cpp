@@ -21,6 +21,8 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <sstream>
+#include <string_view>
 
 namespace inkline::core {
 namespace {
@@ -231,7 +233,13 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits
         finish(name, obj->short_faces, out);
         return out;
     }
-    bytes = std::string();
+    // OpenMesh would read a byte order mark as part of the first line's keyword and skip it.
+    const bool bom = std::string_view(bytes).starts_with(internal::kUtf8Bom);
+    if (bom) {
+        bytes.erase(0, internal::kUtf8Bom.size());
+    } else {
+        bytes = std::string();
+    }
     const size_t short_faces = internal::check_obj(path);
 
     silence_openmesh_streams();
@@ -240,7 +248,12 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits
     OpenMesh::IO::Options options;
     bool ok = false;
     try {
-        ok = OpenMesh::IO::IOManager().read(name, importer, options);
+        if (bom) {
+            std::istringstream text(std::move(bytes));
+            ok = OpenMesh::IO::IOManager().read(text, "obj", importer, options);
+        } else {
+            ok = OpenMesh::IO::IOManager().read(name, importer, options);
+        }
     } catch (const SoupImporter::FaceLimit&) {
         internal::throw_face_limit(name, max_faces);
     } catch (const std::bad_alloc&) {

@@ -60,23 +60,51 @@ bool is_obj_corner(std::string_view corner) {
 
 }  // namespace
 
+// The statements of the OBJ format (geometry, free-form, grouping, display and render
+// attributes). OpenMesh skips any other word silently: a mistyped "V" would drop a vertex and
+// shift every later index, so anything else is refused.
+bool is_obj_statement(std::string_view keyword) {
+    static const std::set<std::string_view> kStatements = {
+        "v",     "vt",      "vn",       "vp",       "vc",       "f",        "l",         "p",    "o",
+        "g",     "s",       "mg",       "usemtl",   "mtllib",   "cstype",   "deg",       "bmat", "step",
+        "curv",  "curv2",   "surf",     "parm",     "trim",     "hole",     "scrv",      "sp",   "end",
+        "con",   "bevel",   "c_interp", "d_interp", "lod",      "maplib",   "usemap",    "shadow_obj",
+        "trace_obj", "ctech", "stech",  "call",     "csh"};
+    return kStatements.count(keyword) > 0;
+}
+
 // Reads one coordinate: a whole decimal word, so that strtod here and OpenMesh's stream
 // extraction (which stops at the first character it cannot take and reads the rest as the next
 // number) agree on it; "nan" and "inf" are named as such.
-double scan_coordinate(const std::string& where, const char*& r_cursor) {
+bool is_decimal_word(std::string_view word) {
+    return word.find_first_not_of("0123456789.eE+-") == std::string_view::npos;
+}
+
+bool strip_bom(std::string& r_line) {
+    if (r_line.compare(0, kUtf8Bom.size(), kUtf8Bom) != 0) return false;
+    r_line.erase(0, kUtf8Bom.size());
+    return true;
+}
+
+double scan_coordinate(const std::string& where, const char*& r_cursor, const char* what) {
     const char* begin = r_cursor;
     while (*begin == ' ' || *begin == '\t' || *begin == '\r' || *begin == '\f' || *begin == '\v') ++begin;
     const char* end_of_word = begin;
     while (*end_of_word != '\0' && !std::isspace(static_cast<unsigned char>(*end_of_word))) ++end_of_word;
-    if (end_of_word == begin) throw InputError(where + ": vertex needs three numbers");
+    if (end_of_word == begin) {
+        throw InputError(where + ": " + what + (std::string_view(what) == "vertex" ? " needs three numbers" : " needs two numbers"));
+    }
     const std::string word(begin, std::min<size_t>(size_t(end_of_word - begin), 40));
     char* end = nullptr;
     const double value = std::strtod(begin, &end);
     if (end != end_of_word) {
         throw InputError(where + ": coordinate '" + word + "' is not a number");
     }
-    if (!std::isfinite(value)) throw InputError(where + ": vertex has a non-finite coordinate");
-    if (std::string_view(begin, size_t(end_of_word - begin)).find_first_not_of("0123456789.eE+-") != std::string_view::npos) {
+    if (!std::isfinite(value)) {
+        throw InputError(where + ": " + (std::string_view(what) == "vertex" ? "vertex has a non-finite coordinate"
+                                                                            : std::string(what) + " '" + word + "' is not finite"));
+    }
+    if (!is_decimal_word(std::string_view(begin, size_t(end_of_word - begin)))) {
         throw InputError(where + ": coordinate '" + word + "' is not a decimal number (hex floats are not read)");
     }
     if (std::abs(value) > kMaxCoordinate) {
@@ -99,16 +127,22 @@ size_t check_obj(const std::filesystem::path& path) {
     size_t number = 0, short_faces = 0;
     while (std::getline(in, line)) {
         ++number;
+        if (number == 1) strip_bom(line);  // load_mesh hands OpenMesh the text without it
         const std::string where = path.string() + ":" + std::to_string(number);
         // Split the keyword as OpenMesh does: stream extraction, so any leading whitespace.
         std::istringstream words(line);
         std::string keyword;
-        if (!(words >> keyword)) continue;
+        if (!(words >> keyword) || keyword[0] == '#') continue;
+        if (!is_obj_statement(keyword)) {
+            throw InputError(where + ": unknown statement '" + keyword.substr(0, 40) + "'");
+        }
         if (keyword == "f") {
             std::string corner;
             int count = 0;
-            while (words >> corner) {
+            std::set<std::string> distinct;  // vertex indices as written: OpenMesh drops repeats
+            while (words >> corner && corner[0] != '#') {  // a comment may end the line
                 ++count;
+                distinct.insert(corner.substr(0, corner.find('/')));
                 // OpenMesh's reader asserts (aborts) on a corner that is not an index.
                 if (!is_obj_corner(corner)) {
                     throw InputError(where + ": face corner '" + corner +
@@ -117,7 +151,7 @@ size_t check_obj(const std::filesystem::path& path) {
             }
             // ... and on a face without corners.
             if (count == 0) throw InputError(where + ": face without corners");
-            short_faces += count < 3;
+            short_faces += distinct.size() < 3;
         } else if (keyword == "v") {
             std::string rest;
             std::getline(words, rest);
@@ -128,7 +162,7 @@ size_t check_obj(const std::filesystem::path& path) {
             std::string rest;
             std::getline(words, rest);
             const char* cursor = rest.c_str();
-            for (int axis = 0; axis < 2; ++axis) scan_coordinate(where, cursor);
+            for (int axis = 0; axis < 2; ++axis) scan_coordinate(where, cursor, "texture coordinate");
         }
     }
     return short_faces;
@@ -210,6 +244,7 @@ void check_ply(const std::filesystem::path& path, uintmax_t file_size) {
     bool have_format = false, in_element = false;
     std::vector<PlyElement> elements;
     for (int number = 1; number <= kMaxHeaderLines && std::getline(in, line); ++number) {
+        if (number == 1) strip_bom(line);
         if (!line.empty() && line.back() == '\r') line.pop_back();
         auto fail = [&](const std::string& problem) {
             throw InputError(path.string() + ":" + std::to_string(number) + ": malformed PLY header: " + problem);

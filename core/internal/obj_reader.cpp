@@ -172,6 +172,9 @@ void read_piece(Piece& r_piece, bool has_carriage_returns, size_t max_triangles)
                 if (!parse_coordinate(next_token(cursor, line_end), unused)) return decline();
             }
         } else if (keyword == "f") {
+            // A comment may end a face line.
+            const char* const hash = std::find(cursor, line_end, '#');
+            if (hash != line_end) line_end = hash;
             corners.clear();
             size_t count = 0;
             for (std::string_view token = next_token(cursor, line_end); !token.empty();
@@ -187,7 +190,7 @@ void read_piece(Piece& r_piece, bool has_carriage_returns, size_t max_triangles)
             }
             if (count == 0) return decline();
             drop_repeated_corners(corners, scratch);
-            r_piece.contents.short_faces += count < 3;
+            r_piece.contents.short_faces += corners.size() < 3;
             for (size_t i = 1; i + 1 < corners.size(); ++i) {
                 if (mesh.triangles.size() >= max_triangles) {
                     r_piece.contents.over_limit = true;
@@ -195,8 +198,10 @@ void read_piece(Piece& r_piece, bool has_carriage_returns, size_t max_triangles)
                 }
                 mesh.triangles.emplace_back(corners[0], corners[i], corners[i + 1]);
             }
+        } else if (keyword[0] != '#' && !is_obj_statement(keyword)) {
+            return decline();  // check_obj names it
         }
-        // Every other keyword ("vn", "vc", "o", "g", "s", "usemtl", "mtllib", "l", ...) carries
+        // Every other statement ("vn", "o", "g", "s", "usemtl", "mtllib", "l", ...) carries
         // nothing OpenMesh's reader passes on to inkline's mesh.
     }
 }
@@ -204,6 +209,7 @@ void read_piece(Piece& r_piece, bool has_carriage_returns, size_t max_triangles)
 }  // namespace
 
 std::optional<ObjContents> read_plain_obj(std::string_view text, size_t max_triangles) {
+    if (text.starts_with(kUtf8Bom)) text.remove_prefix(kUtf8Bom.size());
     // Bytes OpenMesh's streams treat as blanks but this reader does not, and NUL: general reader.
     for (char c : {'\v', '\f', '\0'}) {
         if (std::memchr(text.data(), c, text.size())) return std::nullopt;

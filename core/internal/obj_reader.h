@@ -26,11 +26,13 @@ struct ObjContents {
 //   - empty, or a comment ('#' first);
 //   - "v X Y Z [more]" with three plain decimal numbers (no '+', hex, inf or nan) within
 //     kMaxCoordinate, anything after them ignored as OpenMesh ignores it;
-//   - "vt U V [...]" with two plain numbers; "vn ..." and any other keyword that OpenMesh
-//     ignores for geometry ("vc", "o", "g", "s", "usemtl", "mtllib", "l", ...);
-//   - "f C1 C2 ..." with corners "I", "I/J", "I//K" or "I/J/K" (plain integers; a negative I
-//     counts back from the vertices read so far), every I resolving to an existing vertex.
-// Lines start at their first byte (no leading blanks) and may end in '\r'. nullopt for anything
+//   - "vt U V [...]" with two plain numbers; "vn ..." and any other OBJ statement that OpenMesh
+//     ignores for geometry ("o", "g", "s", "usemtl", "mtllib", "l", ...; is_obj_statement);
+//   - "f C1 C2 ... [# comment]" with corners "I", "I/J", "I//K" or "I/J/K" (plain integers; a
+//     negative I counts back from the vertices read so far), every I resolving to an existing
+//     vertex; a face of fewer than 3 distinct corners is counted in short_faces.
+// Lines start at their first byte (no leading blanks) and may end in '\r'; a UTF-8 byte order
+// mark before the first line is skipped. nullopt for anything
 // else, including every file load_mesh would refuse: the caller then reads it the general way,
 // which reports the problem.
 // Reading stops, with over_limit set, once the triangles pass max_triangles.

@@ -94,6 +94,7 @@ class PlyReader {
             std::string line = bytes_.substr(at, newline - at);
             at = newline + 1;
             ++number;
+            if (number == 1) strip_bom(line);
             if (!line.empty() && line.back() == '\r') line.pop_back();
             std::istringstream words(line);
             std::string keyword;
@@ -238,6 +239,10 @@ class PlyReader {
         if (type.kind == Kind::kFloat) {
             const double value = std::strtod(text.c_str(), &end);
             if (end == text.c_str() || *end != '\0') fail_at_line(what + ": '" + text + "' is not a number");
+            // As for every format: stream readers take "0x1p3" as 0 and fail on the rest.
+            if (std::isfinite(value) && !is_decimal_word(token)) {
+                fail_at_line(what + ": '" + text + "' is not a decimal number (hex floats are not read)");
+            }
             return value;
         }
         errno = 0;

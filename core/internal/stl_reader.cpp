@@ -66,12 +66,14 @@ class StlReader {
                 read_binary(count);
                 return std::move(out_);
             }
+            if (!solid && starts_with_upper_case_solid() && is_text()) fail_upper_case_solid();
             if (!solid || !is_text()) {
                 fail("binary STL header declares " + std::to_string(count) + " triangles (" +
                      std::to_string(expected) + " bytes), but the file has " + std::to_string(bytes_.size()) +
                      " bytes (truncated or damaged)");
             }
         }
+        if (!solid && starts_with_upper_case_solid() && is_text()) fail_upper_case_solid();
         if (!solid) fail("not an STL file (neither 'solid ...' text nor a binary STL of 84 + 50 x N bytes)");
         if (!is_text()) fail("ASCII STL with binary bytes in it (damaged?)");
         read_ascii();
@@ -84,9 +86,28 @@ class StlReader {
         throw InputError(name_ + ":" + std::to_string(line_) + ": " + problem);
     }
 
+    // Where the text starts: after a UTF-8 byte order mark, if any.
+    size_t text_begin() const { return std::string_view(bytes_).starts_with(kUtf8Bom) ? kUtf8Bom.size() : 0; }
+
     bool starts_with_solid() const {
-        const size_t first = bytes_.find_first_not_of(" \t\r\n");
+        const size_t first = bytes_.find_first_not_of(" \t\r\n", text_begin());
         return first != std::string::npos && bytes_.compare(first, 5, "solid") == 0;
+    }
+    [[noreturn]] void fail_upper_case_solid() const {
+        fail("ASCII STL must start with 'solid', found 'SOLID' (STL keywords are lower case)");
+    }
+    bool starts_with_upper_case_solid() const {
+        const size_t first = bytes_.find_first_not_of(" \t\r\n", text_begin());
+        return first != std::string::npos && bytes_.compare(first, 5, "SOLID") == 0;
+    }
+
+    // " (STL keywords are lower case)" when `got` is `wanted` in other letter case.
+    static std::string case_note(std::string_view got, std::string_view wanted) {
+        const bool same = got.size() == wanted.size() &&
+                          std::equal(got.begin(), got.end(), wanted.begin(), [](char a, char b) {
+                              return std::tolower(static_cast<unsigned char>(a)) == b;
+                          });
+        return same ? " (STL keywords are lower case)" : "";
     }
     bool is_text() const {
         return std::none_of(bytes_.begin(), bytes_.end(), [](char c) {
@@ -152,7 +173,7 @@ class StlReader {
         if (got.empty()) fail_at_line("the file ends " + context + " (truncated?)");
         if (got != wanted) {
             fail_at_line("expected '" + std::string(wanted) + "' " + context + ", found '" +
-                         std::string(got.substr(0, 40)) + "'");
+                         std::string(got.substr(0, 40)) + "'" + case_note(got, wanted));
         }
     }
     double number(const std::string& context, bool coordinate) {
@@ -162,6 +183,10 @@ class StlReader {
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
         if (end == text.c_str() || *end != '\0' || got.size() > 60) fail_at_line("'" + text + "' is not a number " + context);
+        // As for every format: stream readers take "0x1p0" as 0 and fail on the rest.
+        if (std::isfinite(v) && !is_decimal_word(got)) {
+            fail_at_line("'" + text + "' is not a decimal number " + context + " (hex floats are not read)");
+        }
         if (coordinate && !valid(v)) {
             fail_at_line(std::isfinite(v) ? "coordinate beyond the limit of 1e18" : "non-finite coordinate");
         }
@@ -169,12 +194,15 @@ class StlReader {
     }
 
     void read_ascii() {
+        at_ = text_begin();
         line_ = 1;
         size_t facets = 0;
         bool in_solid = false;
         for (std::string_view w = word(); !w.empty(); w = word()) {
             if (!in_solid) {
-                if (w != "solid") fail_at_line("expected 'solid', found '" + std::string(w.substr(0, 40)) + "'");
+                if (w != "solid") {
+                    fail_at_line("expected 'solid', found '" + std::string(w.substr(0, 40)) + "'" + case_note(w, "solid"));
+                }
                 skip_rest_of_line();  // the solid's name
                 in_solid = true;
                 continue;
@@ -185,7 +213,8 @@ class StlReader {
                 continue;
             }
             if (w != "facet") {
-                fail_at_line("expected 'facet' or 'endsolid', found '" + std::string(w.substr(0, 40)) + "'");
+                fail_at_line("expected 'facet' or 'endsolid', found '" + std::string(w.substr(0, 40)) + "'" +
+                             case_note(w, "facet") + case_note(w, "endsolid"));
             }
             const std::string context = "in facet " + std::to_string(facets);
             expect("normal", context);

@@ -314,6 +314,151 @@ TEST_F(HostileReaders, LibraryOutputNeverReachesTheUser) {
     expect_refused(dir / "om.obj", "om.obj: face 2 references a vertex that does not exist");
 }
 
+// ---- round two: what the readers skipped silently ----
+
+// `inkline info MESH`: its output, after checking it succeeded.
+std::string info_of(const fs::path& mesh) {
+    const test::RunResult r = test::run_inkline("info '" + mesh.string() + "'");
+    EXPECT_EQ(r.code, 0) << r.output;
+    return r.output;
+}
+
+const std::string kBom = "\xef\xbb\xbf";
+
+TEST_F(HostileReaders, ObjByteOrderMarkKeepsTheFirstVertex) {
+    // The mark used to make the first line's keyword unknown: the vertex went, every index shifted.
+    const std::string body = "v 5 5 5\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    test::write_text(dir / "bom.obj", kBom + body);
+    test::write_text(dir / "bom_general.obj", kBom + body + " # read by the general reader\n");
+    for (const char* name : {"bom.obj", "bom_general.obj"}) {
+        SCOPED_TRACE(name);
+        const std::string out = info_of(dir / name);
+        EXPECT_NE(out.find("vertices: 4\n"), std::string::npos) << out;
+        EXPECT_NE(out.find("bounds: [0, 0, 0] .. [5, 5, 5]"), std::string::npos) << out;
+    }
+}
+
+TEST_F(HostileReaders, UnknownObjStatementIsRefusedWithItsLine) {
+    test::write_text(dir / "cap.obj", "v 0 0 0\nV 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    expect_refused(dir / "cap.obj", "cap.obj:2: unknown statement 'V'");
+    test::write_text(dir / "cap_general.obj", " v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nvx 1 2 3\n");
+    expect_refused(dir / "cap_general.obj", "cap_general.obj:5: unknown statement 'vx'");
+    // Every statement of the format is still read (and ignored where it carries no geometry).
+    test::write_text(dir / "all.obj",
+                     "mtllib a.mtl\no thing\ng part\ns 1\nmg off\nusemtl ink\nvp 0.5\nvn 0 0 1\nvt 0 0\n"
+                     "v 0 0 0\nv 1 0 0\nv 0 1 0\ncstype bezier\ndeg 3\nstep 1 1\nbmat u 1\ncurv 0 1 1 2\n"
+                     "curv2 1 2\nsurf 0 1 0 1 1 2\nparm u 0 1\ntrim 0 1 1\nhole 0 1 1\nscrv 0 1 1\nsp 1\n"
+                     "end\ncon 1 0 1 1 2 0 1 1\nbevel off\nc_interp off\nd_interp off\nlod 1\nmaplib a.map\n"
+                     "usemap off\nshadow_obj s.obj\ntrace_obj t.obj\nctech cparm 1\nstech cparma 1 1\n"
+                     "call x.mod\ncsh -ls\nl 1 2\np 1\nf 1 2 3\n");
+    const std::string out = info_of(dir / "all.obj");
+    EXPECT_NE(out.find("vertices: 3\nfaces: 1\n"), std::string::npos) << out;
+}
+
+TEST_F(HostileReaders, ObjTextureCoordinateProblemsNameTheTextureCoordinate) {
+    test::write_text(dir / "vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt inf 0\nf 1 2 3\n");
+    expect_refused(dir / "vt.obj", "vt.obj:4: texture coordinate 'inf' is not finite");
+}
+
+TEST_F(HostileReaders, ObjFaceLineMayEndInAComment) {
+    const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3 # first\nf 2 4 3 #second\n";
+    test::write_text(dir / "c.obj", body);
+    test::write_text(dir / "c_general.obj", " # read by the general reader\n" + body);
+    for (const char* name : {"c.obj", "c_general.obj"}) {
+        SCOPED_TRACE(name);
+        const std::string out = info_of(dir / name);
+        EXPECT_NE(out.find("vertices: 4\nfaces: 2\n"), std::string::npos) << out;
+    }
+}
+
+TEST_F(HostileReaders, ObjFaceWithARepeatedCornerIsCountedInTheWarning) {
+    const std::string body = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 2\nf 3 3 3 3\n";
+    test::write_text(dir / "r.obj", body);
+    test::write_text(dir / "r_general.obj", " # read by the general reader\n" + body);
+    for (const char* name : {"r.obj", "r_general.obj"}) {
+        SCOPED_TRACE(name);
+        const std::string out = info_of(dir / name);
+        EXPECT_NE(out.find("faces: 1\n"), std::string::npos) << out;
+        EXPECT_NE(out.find(std::string(name) + ": skipped 2 face(s) with fewer than 3"), std::string::npos) << out;
+    }
+}
+
+const std::string kOffSquare = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+
+TEST_F(HostileReaders, OffNumbersThatAreNotIntegersAreRefused) {
+    // strtol read the leading digits: "2.7" was vertex 2, "1.5" faces was 1.
+    for (const char* word : {"2.7", "2x", "2e5", "0x2"}) {
+        test::write_text(dir / "f.off", "OFF\n4 1 0\n" + kOffSquare + "3 0 1 " + word + "\n");
+        expect_refused(dir / "f.off", "f.off:7: '" + std::string(word) + "' is not an integer");
+    }
+    test::write_text(dir / "h.off", "OFF\n4 1.5 0\n" + kOffSquare + "3 0 1 2\n");
+    expect_refused(dir / "h.off", "h.off:2: '1.5' is not an integer");
+    test::write_text(dir / "n.off", "OFF\n-3 1 0\n" + kOffSquare + "3 0 1 2\n");
+    expect_refused(dir / "n.off", "n.off:2: the element counts must not be negative");
+}
+
+TEST_F(HostileReaders, OffHoldingMoreThanItDeclaresIsRefused) {
+    test::write_text(dir / "face.off", "OFF\n4 1 0\n" + kOffSquare + "3 0 1 2\n3 0 2 3\n");
+    expect_refused(dir / "face.off", "face.off:8: data after the 4 vertices and 1 faces the header declares");
+    test::write_text(dir / "junk.off", "OFF\n4 1 0\n" + kOffSquare + "3 0 1 2\ngarbage here\n");
+    expect_refused(dir / "junk.off", "junk.off:8: data after the 4 vertices and 1 faces the header declares");
+    test::write_text(dir / "fourth.off", "OFF\n4 1 0\n0 0 0\n1 0 0 0\n1 1 0\n0 1 0\n3 0 1 2\n");
+    expect_refused(dir / "fourth.off", "fourth.off:4: unexpected '0' after the vertex's three coordinates");
+    // What the format allows still reads: colours after vertices of COFF and after face indices,
+    // comments and blank lines at the end, counts on the header line, a byte order mark.
+    test::write_text(dir / "c.off", "COFF\n4 2 0\n0 0 0 1 0 0 1\n1 0 0 1 0 0 1\n1 1 0 1 0 0 1\n0 1 0 1 0 0 1\n"
+                                    "3 0 1 2 0.5 0.5 0.5\n3 0 2 3 255 0 0\n# end\n\n");
+    test::write_text(dir / "bom.off", kBom + "OFF 4 2\n" + kOffSquare + "3 0 1 2\n3 0 2 3\n");
+    for (const char* name : {"c.off", "bom.off"}) {
+        SCOPED_TRACE(name);
+        const std::string out = info_of(dir / name);
+        EXPECT_NE(out.find("vertices: 4\nfaces: 2\n"), std::string::npos) << out;
+    }
+}
+
+TEST_F(HostileReaders, HexFloatInAsciiPlyIsRefusedWithItsLine) {
+    // strtod read "0x1p3" as 8, where OBJ and OFF refuse it.
+    for (const char* word : {"0x1p3", "0X1P0", "-0x.8p1"}) {
+        test::write_text(dir / "hex.ply", ascii_ply_header(4, 2) + "0 0 0\n1 0 " + word + "\n1 1 0\n0 1 0\n" + kSquareFaces);
+        expect_refused(dir / "hex.ply", "hex.ply:11: vertex 1: '" + std::string(word) + "' is not a decimal number");
+    }
+}
+
+TEST_F(HostileReaders, PlyByteOrderMarkIsSkipped) {
+    test::write_text(dir / "bom.ply", kBom + ascii_ply_header(4, 2) + "0 0 0\n1 0 0\n1 1 3\n0 1 0\n" + kSquareFaces);
+    const std::string out = info_of(dir / "bom.ply");
+    EXPECT_NE(out.find("vertices: 4\nfaces: 2\n"), std::string::npos) << out;
+    EXPECT_NE(out.find("bounds: [0, 0, 0] .. [1, 1, 3]"), std::string::npos) << out;
+}
+
+TEST_F(HostileReaders, HexFloatInAsciiStlIsRefusedWithItsLine) {
+    for (const char* word : {"0x1p0", "0X1P0", "-0x.8p1"}) {
+        std::string facet = kFacet;
+        facet.replace(facet.find("vertex 1 0 0"), 12, "vertex " + std::string(word) + " 0 0");
+        test::write_text(dir / "hex.stl", "solid s\n" + facet + "endsolid s\n");
+        expect_refused(dir / "hex.stl", "hex.stl:5: '" + std::string(word) + "' is not a decimal number in facet 0");
+    }
+}
+
+TEST_F(HostileReaders, AsciiStlByteOrderMarkIsSkipped) {
+    // Read as binary before: "declares 1818521189 triangles".
+    test::write_text(dir / "bom.stl", kBom + "solid s\n" + kFacet + "endsolid s\n");
+    const std::string out = info_of(dir / "bom.stl");
+    EXPECT_NE(out.find("vertices: 3\nfaces: 1\n"), std::string::npos) << out;
+}
+
+TEST_F(HostileReaders, UpperCaseAsciiStlKeywordsAreNamedAsSuch) {
+    test::write_text(dir / "facet.stl", "solid s\nFACET normal 0 0 1\nendsolid s\n");
+    expect_refused(dir / "facet.stl",
+                   "facet.stl:2: expected 'facet' or 'endsolid', found 'FACET' (STL keywords are lower case)");
+    test::write_text(dir / "solid.stl", "SOLID s\n" + kFacet + "endsolid s\n");
+    expect_refused(dir / "solid.stl", "solid.stl: ASCII STL must start with 'solid', found 'SOLID' (STL keywords are lower case)");
+    std::string facet = kFacet;
+    facet.replace(facet.find("outer"), 5, "OUTER");
+    test::write_text(dir / "outer.stl", "solid s\n" + facet + "endsolid s\n");
+    expect_refused(dir / "outer.stl", "outer.stl:3: expected 'outer' in facet 0, found 'OUTER' (STL keywords are lower case)");
+}
+
 // ---- class 9: --max-faces while reading ----
 
 TEST_F(HostileReaders, MaxFacesIsCheckedWhileReadingEveryFormat) {

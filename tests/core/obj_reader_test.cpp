@@ -112,8 +112,23 @@ TEST_F(ObjReader, FaceFormsMatchTheGeneralReader) {
         {"CRLF, tabs, trailing blanks", "v 0 0 0\r\nv\t1 0 0  \r\nv 1\t1 0\r\n\r\nf 1 2 3\t\r\n"},
         {"no final newline", vertices + "f 1 2 3"},
         {"extra numbers", "v 0 0 0 1 0 0\nv 1 0 0 0.5\nv 1 1 0\nf 1 2 3\n"},
+        {"byte order mark", "\xef\xbb\xbf" + vertices + "f 1 2 3\n"},
+        {"comments after faces", vertices + "f 1 2 3 # first\nf 1 3 4 #second\nf 1 1 2 # repeated\n"},
     };
     for (const auto& [name, text] : cases) EXPECT_TRUE(agrees(text, name)) << name << ": declined";
+}
+
+TEST_F(ObjReader, UnknownStatementsAreLeftToTheGeneralReaderWhichRefusesThem) {
+    // OpenMesh skips an unknown keyword: "V" would drop a vertex and shift every later index.
+    const std::string text = "v 0 0 0\nV 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    EXPECT_FALSE(core::internal::read_plain_obj(text).has_value());
+    test::write_text(dir / "v.obj", text);
+    try {
+        core::load_mesh(dir / "v.obj");
+        ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("v.obj:2: unknown statement 'V'"), std::string::npos) << e.what();
+    }
 }
 
 TEST_F(ObjReader, LongPolygonsDropRepeatedCornersAsTheGeneralReaderDoes) {
