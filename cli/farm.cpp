@@ -62,7 +62,12 @@ std::string self_path() {
     return ec ? std::string("inkline") : exe.string();
 }
 
-std::string absolute(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
+std::string absolute(const std::string& path) {
+    std::error_code ec;
+    const fs::path whole = fs::absolute(path, ec);
+    if (ec) throw InputError(quote_value(path) + ": cannot resolve against the working folder: " + ec.message());
+    return whole.lexically_normal().string();
+}
 
 void write_script(const fs::path& path, const std::string& text) {
     output::write_file_atomically(path, text);

@@ -34,8 +34,11 @@ class CanonicalNames {
         auto it = folders_.find(folder);
         if (it == folders_.end()) {
             std::error_code ec;
-            fs::path resolved = fs::weakly_canonical(fs::absolute(folder.empty() ? fs::path(".") : fs::path(folder)), ec);
-            if (ec) resolved = fs::absolute(folder).lexically_normal();
+            // A folder that cannot be resolved (the working folder was removed) is compared as
+            // written; writing there fails later as an output error.
+            const fs::path given = folder.empty() ? fs::path(".") : fs::path(folder);
+            fs::path resolved = fs::weakly_canonical(given, ec);
+            if (ec) resolved = given.lexically_normal();
             it = folders_.emplace(folder, resolved.string()).first;
         }
         return (fs::path(it->second) / name.filename()).string();
