@@ -241,8 +241,20 @@ std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends
     };
     std::vector<size_t> order(ends.size());
     std::iota(order.begin(), order.end(), size_t(0));
-    std::sort(order.begin(), order.end(),
-              [&](size_t a, size_t b) { return ends[a].p.x < ends[b].p.x || (ends[a].p.x == ends[b].p.x && a < b); });
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return std::tie(ends[a].p.x, ends[a].p.y, a) < std::tie(ends[b].p.x, ends[b].p.y, b);
+    });
+    // Ends at the same point (thousands where a fan of edges meets) touch: one of them sweeps.
+    size_t kept = 0;
+    for (size_t k = 0; k < order.size(); ++k) {
+        if (kept > 0 && ends[order[kept - 1]].p == ends[order[k]].p) {
+            const size_t a = find(order[kept - 1]), b = find(order[k]);
+            parent[std::max(a, b)] = std::min(a, b);
+        } else {
+            order[kept++] = order[k];
+        }
+    }
+    order.resize(kept);
     for (size_t i = 0; i < order.size(); ++i) {
         for (size_t j = i + 1; j < order.size() && ends[order[j]].p.x - ends[order[i]].p.x <= kTouchPx; ++j) {
             if (glm::length(ends[order[i]].p - ends[order[j]].p) <= kTouchPx) {
