@@ -5,7 +5,10 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <map>
 #include <numeric>
+#include <optional>
+#include <set>
 #include <utility>
 
 #include "core/stroke_path.h"
@@ -238,8 +241,20 @@ std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends
     };
     std::vector<size_t> order(ends.size());
     std::iota(order.begin(), order.end(), size_t(0));
-    std::sort(order.begin(), order.end(),
-              [&](size_t a, size_t b) { return ends[a].p.x < ends[b].p.x || (ends[a].p.x == ends[b].p.x && a < b); });
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return std::tie(ends[a].p.x, ends[a].p.y, a) < std::tie(ends[b].p.x, ends[b].p.y, b);
+    });
+    // Ends at the same point (thousands where a fan of edges meets) touch: one of them sweeps.
+    size_t kept = 0;
+    for (size_t k = 0; k < order.size(); ++k) {
+        if (kept > 0 && ends[order[kept - 1]].p == ends[order[k]].p) {
+            const size_t a = find(order[kept - 1]), b = find(order[k]);
+            parent[std::max(a, b)] = std::min(a, b);
+        } else {
+            order[kept++] = order[k];
+        }
+    }
+    order.resize(kept);
     for (size_t i = 0; i < order.size(); ++i) {
         for (size_t j = i + 1; j < order.size() && ends[order[j]].p.x - ends[order[i]].p.x <= kTouchPx; ++j) {
             if (glm::length(ends[order[i]].p - ends[order[j]].p) <= kTouchPx) {
@@ -253,6 +268,92 @@ std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends
     std::erase_if(groups, [](const std::vector<size_t>& g) { return g.empty(); });
     return groups;
 }
+
+// Junctions up to this many ends are searched pair by pair.
+constexpr size_t kSmallJunction = 32;
+
+// A junction of many ends (a fan of thousands of edges meeting in one vertex): the ends on a grid
+// of cells 2 * kJoinPx wide, in each cell sorted by the angle of their direction, so that the
+// smoothest continuation of an end is found among the few that point nearly opposite to it. It
+// picks the same end as the pair-by-pair search: the least turn, on a tie the first in `order`.
+class Junction {
+  public:
+    // Only ends with finite positions and nonzero, finite directions are sorted by angle.
+    static bool fits(const std::vector<EndRef>& members, const std::vector<Piece>& pieces) {
+        return std::all_of(members.begin(), members.end(), [&](const EndRef& m) {
+            const glm::dvec2 d = pieces[m.piece].direction[size_t(m.end)];
+            return std::isfinite(m.p.x) && std::isfinite(m.p.y) && std::isfinite(d.x) && std::isfinite(d.y) &&
+                   glm::length(d) > 0.0;
+        });
+    }
+
+    Junction(const std::vector<EndRef>& members, const std::vector<size_t>& order, const std::vector<Piece>& pieces)
+        : rank_(members.size()), cell_(members.size()), angle_(members.size()), target_(members.size()) {
+        for (size_t r = 0; r < order.size(); ++r) rank_[order[r]] = r;
+        for (size_t m = 0; m < members.size(); ++m) {
+            const glm::dvec2 d = pieces[members[m].piece].direction[size_t(members[m].end)];
+            cell_[m] = cell(members[m].p);
+            angle_[m] = glm::degrees(std::atan2(d.y, d.x));
+            target_[m] = glm::degrees(std::atan2(-d.y, -d.x));
+            cells_[cell_[m]].insert({angle_[m], m});
+        }
+    }
+
+    // The end that `joins` and turns least (`turn`), among those not yet removed; kNone if none.
+    // Only ends that turn at most max_turn_deg can join.
+    template <typename Joins, typename Turn>
+    size_t smoothest(size_t i, double max_turn_deg, Joins&& joins, Turn&& turn) const {
+        size_t best = kNone;
+        double best_turn = 0.0;
+        auto consider = [&](size_t j) {
+            if (j == i || !joins(j)) return;
+            const double t = turn(j);
+            if (best == kNone || t < best_turn || (t == best_turn && rank_[j] < rank_[best])) best = j, best_turn = t;
+        };
+        // Angles from atan2 and turns from acos differ by far less than this margin (deg).
+        constexpr double kMarginDeg = 1e-3;
+        auto reach = [&] { return (best == kNone ? max_turn_deg : std::min(best_turn, max_turn_deg)) + kMarginDeg; };
+        auto off = [&](double angle) { return std::abs(std::remainder(angle - target_[i], 360.0)); };
+        for (int64_t dx = -1; dx <= 1; ++dx) {
+            for (int64_t dy = -1; dy <= 1; ++dy) {
+                const auto found = cells_.find({cell_[i].first + dx, cell_[i].second + dy});
+                if (found == cells_.end() || found->second.empty()) continue;
+                const auto& ring = found->second;
+                const auto start = ring.lower_bound({target_[i], size_t(0)});
+                auto it = start;
+                for (size_t n = 0; n < ring.size(); ++n) {  // counter-clockwise from the target
+                    if (it == ring.end()) it = ring.begin();
+                    if (off(it->first) > reach()) break;
+                    consider(it->second);
+                    ++it;
+                }
+                it = start;
+                for (size_t n = 0; n < ring.size(); ++n) {  // clockwise
+                    if (it == ring.begin()) it = ring.end();
+                    --it;
+                    if (off(it->first) > reach()) break;
+                    consider(it->second);
+                }
+            }
+        }
+        return best;
+    }
+
+    void remove(size_t m) { cells_[cell_[m]].erase({angle_[m], m}); }
+
+  private:
+    using Cell = std::pair<int64_t, int64_t>;
+    static Cell cell(const glm::dvec2& p) {
+        constexpr double kCell = 2.0 * kJoinPx;
+        return {int64_t(std::floor(std::clamp(p.x, -1e8, 1e8) / kCell)),
+                int64_t(std::floor(std::clamp(p.y, -1e8, 1e8) / kCell))};
+    }
+
+    std::vector<size_t> rank_;
+    std::vector<Cell> cell_;
+    std::vector<double> angle_, target_;
+    std::map<Cell, std::set<std::pair<double, size_t>>> cells_;
+};
 
 struct Link {
     size_t piece = kNone;
@@ -286,14 +387,22 @@ class Linker {
             return pieces_[members[a].piece].length > pieces_[members[b].piece].length;
         });
         std::vector<uint8_t> linked(members.size(), 0);
+        std::optional<Junction> big;
+        if (members.size() > kSmallJunction && Junction::fits(members, pieces_)) big.emplace(members, order, pieces_);
         for (size_t i : order) {
             if (linked[i]) continue;
             size_t best = kNone;
-            for (size_t j : order) {
-                if (j == i || linked[j] || !can_join(members[i], members[j])) continue;
-                if (best == kNone || turn(members[i], members[j]) < turn(members[i], members[best])) best = j;
+            if (big) {
+                best = big->smoothest(i, turn_, [&](size_t j) { return can_join(members[i], members[j]); },
+                                      [&](size_t j) { return turn(members[i], members[j]); });
+            } else {
+                for (size_t j : order) {
+                    if (j == i || linked[j] || !can_join(members[i], members[j])) continue;
+                    if (best == kNone || turn(members[i], members[j]) < turn(members[i], members[best])) best = j;
+                }
             }
             if (best == kNone) continue;
+            if (big) big->remove(i), big->remove(best);
             linked[i] = linked[best] = 1;
             links_[members[i].piece][size_t(members[i].end)] = {members[best].piece, members[best].end};
             links_[members[best].piece][size_t(members[best].end)] = {members[i].piece, members[i].end};

@@ -140,6 +140,33 @@ TEST_F(HostileScale, PolygonOfAQuarterMillionCornersRendersWhole) {
     expect_only_outputs(before, test::folder_state(dir), {"out/json/frame_0001.json", "out/svg/frame_0001.svg"});
 }
 
+TEST_F(HostileScale, StarPolygonOfThirtyThousandCornersRendersWhole) {
+    // A star-shaped face, fan-triangulated on reading: its fan edges are silhouettes that meet at
+    // the first corner, one junction of about 30000 stroke ends, whose joins were searched pair by
+    // pair (about 20 s; now about 5).
+    constexpr int kCorners = 30000;
+    {
+        std::ofstream obj(dir / "star.obj");
+        obj.precision(9);
+        for (int i = 0; i < kCorners; ++i) {
+            const double a = 2.0 * std::numbers::pi * double(i) / kCorners, r = 1.0 + 0.5 * (i % 2);
+            obj << "v " << r * std::cos(a) << " " << r * std::sin(a) << " 0\n";
+        }
+        obj << "f";
+        for (int i = 1; i <= kCorners; ++i) obj << ' ' << i;
+        obj << "\n";
+    }
+    const auto before = test::folder_state(dir);
+    const test::RunResult r = run_guarded("render " + (dir / "star.obj").string() +
+                                          " --frames 1 --size 256x256 --visibility raycast -q -o " +
+                                          (dir / "out").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    expect_whole_json(dir / "out/json/frame_0001.json", 1);
+    EXPECT_NE(test::read_text(dir / "out/json/frame_0001.json").find("\"faces\":" + std::to_string(kCorners - 2) + ","),
+              std::string::npos);
+    expect_only_outputs(before, test::folder_state(dir), {"out/json/frame_0001.json", "out/svg/frame_0001.svg"});
+}
+
 TEST_F(HostileScale, TensOfThousandsOfStrokesFromFrameTwoRenderWhole) {
     // Random terrain: frame 2 joins last frame's split strokes again, which compared every stroke
     // end with every other (13 s at 16k strokes, 48 s at 30k).

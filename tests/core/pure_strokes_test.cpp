@@ -137,6 +137,27 @@ TEST(PureStrokes, JunctionLinksTheLongestStrokeToItsSmoothestContinuation) {
     for (size_t i = 1; i < main.points_px.size(); ++i) EXPECT_GT(main.points_px[i].x, main.points_px[i - 1].x);
 }
 
+TEST(PureStrokes, JunctionOfManyEndsLinksEachToTheOneOppositeIt) {
+    // 64 rays from one point (more ends than are searched pair by pair): each ray continues into
+    // the one pointing the opposite way, 32 straight strokes through the centre.
+    constexpr int kRays = 64;
+    const dvec2 centre(200.0, 200.0);
+    std::vector<core::Polyline> rays;
+    for (int k = 0; k < kRays; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / kRays, length = 100.0 + k;
+        rays.push_back(line(segment(centre, centre + length * dvec2(std::cos(a), std::sin(a))), uint32_t(k) * 100));
+    }
+    const core::PureStrokes r = core::build_pure_strokes(rays, {});
+    EXPECT_EQ(r.pure_strokes, size_t(kRays));
+    EXPECT_EQ(r.links, size_t(kRays / 2));
+    ASSERT_EQ(r.strokes.size(), size_t(kRays / 2));
+    for (const core::StrokeGeometry& s : r.strokes) {
+        EXPECT_EQ(s.pure_strokes, 2u);
+        EXPECT_EQ(s.ends, (Ends{S, S}));
+        EXPECT_NEAR(glm::length(s.points_px.back() - s.points_px.front()), s.length_px(), 1e-6);
+    }
+}
+
 TEST(PureStrokes, TwoEndsMeetingSharplyAreCorners) {
     const std::vector<core::Polyline> lines = {line(segment({-50, 0}, {0, 0}), 0), line(segment({0, 0}, {0, 50}), 100)};
     const core::PureStrokes r = core::build_pure_strokes(lines, {});
