@@ -249,7 +249,10 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits
     bool ok = false;
     try {
         if (bom) {
-            std::istringstream text(std::move(bytes));
+            // Filled through str(): built from the moved string, the stream lost the file's first
+            // line to OpenMesh in the sanitizer build.
+            std::istringstream text;
+            text.str(bytes);
             ok = OpenMesh::IO::IOManager().read(text, "obj", importer, options);
         } else {
             ok = OpenMesh::IO::IOManager().read(name, importer, options);
