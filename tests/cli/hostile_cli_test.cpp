@@ -72,11 +72,15 @@ TEST_F(HostileCli, OutputNamingAFrameOfTheMeshSequenceIsRefused) {
                    "--svg would replace the mesh it reads");
 }
 
-TEST_F(HostileCli, PreviewNamingTheBrushTipIsRefused) {
+// A scene's brush tip is an input whether or not the preview draws with it.
+TEST_F(HostileCli, OutputNamingTheBrushTipIsRefused) {
     test::write_text(dir / "tip.png", "not read: the check comes first");
     test::write_text(dir / "tip.json", R"({"mesh": "cube.obj", "frames": [1, 1], "image": {"width": 64, "height": 64},
         "camera": {"eye": [3, 2.5, 4], "target": [0, 0, 0]}, "brush": {"tip": "tip.png"}})");
-    expect_refused(q(dir / "tip.json") + " --preview " + q(dir / "tip.png"), 2, "--preview would replace the brush tip");
+    for (const char* option : {"--preview", "--png"}) {
+        expect_refused(q(dir / "tip.json") + " " + option + " " + q(dir / "tip.png"), 2,
+                       std::string(option) + " would replace the brush tip");
+    }
 }
 
 // Class 3c: two outputs that expand to the same file, in the same frame or in different ones.
@@ -184,14 +188,6 @@ TEST_F(HostileCli, FarmRefusesWhatASlurmDirectiveCannotHold) {
         test::expect_one_line_error(r, 2, "cannot be written into a Slurm #SBATCH line");
         EXPECT_TRUE(test::changed_entries(before, test::folder_state(dir)).empty()) << option;
     }
-}
-
-// Class 3c: a scene's brush tip is an input whether or not the preview draws with it.
-TEST_F(HostileCli, AnyOutputNamingTheBrushTipIsRefused) {
-    test::write_text(dir / "tip.png", "the tip");
-    test::write_text(dir / "tip.json", R"({"mesh": "cube.obj", "frames": [1, 1], "image": {"width": 64, "height": 64},
-        "camera": {"eye": [3, 2.5, 4], "target": [0, 0, 0]}, "brush": {"tip": "tip.png"}})");
-    expect_refused(q(dir / "tip.json") + " --png " + q(dir / "tip.png"), 2, "--png would replace the brush tip");
 }
 
 // What can be known before the first frame is checked before the first frame: no run writes

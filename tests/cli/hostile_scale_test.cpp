@@ -82,15 +82,7 @@ TEST_F(HostileScale, DiscOfAMillionFacesAroundOneVertexIsDescribed) {
 
 TEST_F(HostileScale, TwoConesTouchingAtTheirApexOfOneHundredThousandFacesEach) {
     // 50000 faces at the shared apex from each cone: one non-manifold vertex, found as fast.
-    core::Mesh two = test::closed_cone(50000);
-    const auto n = uint32_t(two.positions.size());
-    for (uint32_t v = 1; v < n; ++v) two.positions.push_back({two.positions[v].x, 2.0f - two.positions[v].y, two.positions[v].z});
-    const size_t faces = two.triangles.size();
-    for (size_t f = 0; f < faces; ++f) {
-        glm::uvec3 t = two.triangles[f];
-        for (int c = 0; c < 3; ++c) t[c] = t[c] == 0 ? 0 : t[c] + n - 1;
-        two.triangles.push_back({t.x, t.z, t.y});
-    }
+    const core::Mesh two = test::twin_cones(50000);
     test::write_obj(dir / "cones.obj", two);
     const test::RunResult r = run_guarded("info " + (dir / "cones.obj").string());
     ASSERT_EQ(r.code, 0) << r.output;

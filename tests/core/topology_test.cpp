@@ -117,15 +117,7 @@ TEST(Topology, NonManifoldVerticesCountedOnMeshesWhereTheCountIsKnown) {
 
     // Two such cones touching apex to apex (the second mirrored through the apex): one
     // non-manifold vertex, however many faces meet there.
-    core::Mesh two = test::closed_cone(5000);
-    const auto n = uint32_t(two.positions.size());
-    for (size_t v = 1; v < n; ++v) two.positions.push_back({two.positions[v].x, 2.0f - two.positions[v].y, two.positions[v].z});
-    const size_t faces = two.triangles.size();
-    for (size_t f = 0; f < faces; ++f) {
-        glm::uvec3 t = two.triangles[f];
-        for (int c = 0; c < 3; ++c) t[c] = t[c] == 0 ? 0 : t[c] + n - 1;
-        two.triangles.push_back({t.x, t.z, t.y});  // mirrored: turned to face out again
-    }
+    const core::Mesh two = test::twin_cones(5000);
     r = core::describe_mesh(two, core::build_edge_table(two));
     EXPECT_EQ(r.non_manifold_vertices, 1u);
     EXPECT_EQ(r.non_manifold_edges, 0u);

@@ -194,6 +194,19 @@ core::Mesh closed_cone(uint32_t sides) {
     return m;
 }
 
+core::Mesh twin_cones(uint32_t sides) {
+    core::Mesh two = closed_cone(sides);
+    const auto n = uint32_t(two.positions.size());
+    for (uint32_t v = 1; v < n; ++v) two.positions.push_back({two.positions[v].x, 2.0f - two.positions[v].y, two.positions[v].z});
+    const size_t faces = two.triangles.size();
+    for (size_t f = 0; f < faces; ++f) {
+        glm::uvec3 t = two.triangles[f];
+        for (int c = 0; c < 3; ++c) t[c] = t[c] == 0 ? 0 : t[c] + n - 1;
+        two.triangles.push_back({t.x, t.z, t.y});  // mirrored: turned to face out again
+    }
+    return two;
+}
+
 core::Mesh disc_cap(uint32_t sides) {
     core::Mesh m;
     m.positions = {{0.0f, 0.0f, 0.0f}};

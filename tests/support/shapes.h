@@ -38,6 +38,9 @@ core::Mesh wavy_torus(int major_segments, int minor_segments, double wave, doubl
 // A closed cone of `sides` sides: apex 0 above, base centre 1, the ring 2.. sides+1 on the unit
 // circle in y = 0; every side face has the apex and every base face the centre (2 * sides faces).
 core::Mesh closed_cone(uint32_t sides);
+// Two closed cones touching apex to apex: closed_cone(sides) and its mirror through the apex
+// (y -> 2 - y, faces turned to face out), sharing vertex 0: one non-manifold vertex.
+core::Mesh twin_cones(uint32_t sides);
 // A flat disc in y = 0 of `sides` faces, all around its centre (vertex 0), as a CAD export's cap.
 core::Mesh disc_cap(uint32_t sides);
 // One convex polygon of `corners` corners on the unit circle in y = 0, fan-triangulated from
