@@ -2,7 +2,7 @@
 #include "cli/outputs.h"
 
 #include "core/error.h"
-#include "core/frame_pattern.h"
+#include "core/scene/frame_pattern.h"
 #include "export/atomic_file.h"
 
 #include <algorithm>

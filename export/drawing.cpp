@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "export/drawing.h"
 
-#include "core/brush.h"
 #include "core/error.h"
+#include "core/strokes/brush.h"
 
 #include <algorithm>
 #include <cctype>

@@ -3,8 +3,8 @@
 // each a filled outline or a stroked centerline. SVG, PDF and PNG all draw from this.
 #pragma once
 
-#include "core/frame_lines.h"
-#include "core/strokes.h"
+#include "core/pipeline/frame_lines.h"
+#include "core/strokes/strokes.h"
 
 #include <glm/vec2.hpp>
 

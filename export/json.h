@@ -2,8 +2,8 @@
 // The polylines JSON of one frame ("format": "inkline.polylines", version 1); see docs/polylines-json.md.
 #pragma once
 
-#include "core/frame_lines.h"
-#include "core/strokes.h"
+#include "core/pipeline/frame_lines.h"
+#include "core/strokes/strokes.h"
 
 #include <string>
 

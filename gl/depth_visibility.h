@@ -7,10 +7,10 @@
 // visibility mask of their section 7. Robustness at silhouettes: docs/visibility.md.
 #pragma once
 
-#include "core/camera.h"
-#include "core/mesh.h"
-#include "core/topology.h"
-#include "core/visibility.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/topology.h"
+#include "core/scene/camera.h"
+#include "core/visibility/visibility.h"
 #include "gl/context.h"
 
 #include <memory>

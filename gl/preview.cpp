@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "gl/preview.h"
 
-#include "core/camera.h"
 #include "core/error.h"
+#include "core/scene/camera.h"
 #include "gl/internal/functions.h"
 #include "gl/internal/quad_strip.h"
 

@@ -7,10 +7,10 @@
 // as polygonal quad strips, a grayscale stroke-tip image as the alpha of the line shader).
 #pragma once
 
-#include "core/brush_style.h"
-#include "core/frame_lines.h"
-#include "core/mesh.h"
-#include "core/strokes.h"
+#include "core/mesh/mesh.h"
+#include "core/pipeline/frame_lines.h"
+#include "core/strokes/brush_style.h"
+#include "core/strokes/strokes.h"
 #include "gl/brush_tip.h"
 #include "gl/context.h"
 

@@ -10,15 +10,15 @@
 // Real meshes, e.g. from Debian's libcgal-dev:
 //   tar xzf /usr/share/doc/libcgal-dev/data.tar.gz data/meshes/armadillo.off
 
-#include "core/chaining.h"
-#include "core/exact_visibility.h"
-#include "core/features.h"
-#include "core/mesh.h"
-#include "core/mesh_io.h"
-#include "core/raycast_visibility.h"
-#include "core/scene.h"
-#include "core/topology.h"
-#include "core/visibility.h"
+#include "core/lines/chaining.h"
+#include "core/lines/features.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/mesh_io.h"
+#include "core/mesh/topology.h"
+#include "core/scene/scene.h"
+#include "core/visibility/exact_visibility.h"
+#include "core/visibility/raycast_visibility.h"
+#include "core/visibility/visibility.h"
 #include "tests/support/shapes.h"
 
 #include <glm/geometric.hpp>

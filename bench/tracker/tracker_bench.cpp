@@ -8,12 +8,12 @@
 // --only runs the cases whose name contains TEXT; --mesh adds a mesh file (OBJ, OFF, PLY, STL),
 // for example the models of Debian's libcgal-demo data.
 
-#include "core/features.h"
-#include "core/mesh.h"
-#include "core/mesh_io.h"
-#include "core/scene.h"
-#include "core/silhouette_tracker.h"
-#include "core/topology.h"
+#include "core/lines/features.h"
+#include "core/lines/silhouette_tracker.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/mesh_io.h"
+#include "core/mesh/topology.h"
+#include "core/scene/scene.h"
 #include "tests/support/shapes.h"
 
 #include <glm/geometric.hpp>

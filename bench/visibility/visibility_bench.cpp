@@ -10,14 +10,14 @@
 // Real meshes, e.g. from Debian's libcgal-demo:
 //   tar xzf /usr/share/doc/libcgal-dev/data.tar.gz data/meshes/armadillo.off
 
-#include "core/chaining.h"
-#include "core/exact_visibility.h"
-#include "core/features.h"
-#include "core/mesh.h"
-#include "core/mesh_io.h"
-#include "core/scene.h"
-#include "core/topology.h"
-#include "core/visibility.h"
+#include "core/lines/chaining.h"
+#include "core/lines/features.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/mesh_io.h"
+#include "core/mesh/topology.h"
+#include "core/scene/scene.h"
+#include "core/visibility/exact_visibility.h"
+#include "core/visibility/visibility.h"
 #include "gl/context.h"
 #include "gl/depth_visibility.h"
 #include "tests/support/agreement.h"

@@ -30,14 +30,14 @@
 #include <string>
 #include <vector>
 
-#include "core/chaining.h"
-#include "core/frame_lines.h"
-#include "core/raycast_visibility.h"
-#include "core/scene.h"
-#include "core/silhouette_tracker.h"
-#include "core/strokes.h"
-#include "core/topology.h"
-#include "core/visibility.h"
+#include "core/lines/chaining.h"
+#include "core/lines/silhouette_tracker.h"
+#include "core/mesh/topology.h"
+#include "core/pipeline/frame_lines.h"
+#include "core/scene/scene.h"
+#include "core/strokes/strokes.h"
+#include "core/visibility/raycast_visibility.h"
+#include "core/visibility/visibility.h"
 #include "tests/support/shapes.h"
 
 namespace {

@@ -2,7 +2,7 @@
 #include "gl/internal/quad_strip.h"
 
 #include "core/error.h"
-#include "core/outline.h"
+#include "core/strokes/outline.h"
 
 #include <glm/geometric.hpp>
 
@@ -13,9 +13,9 @@
 namespace inkline::gl::internal {
 namespace {
 
-// Consecutive centerline points closer than this (px) are one point (core/outline.cpp's value).
+// Consecutive centerline points closer than this (px) are one point (core/strokes/outline.cpp's value).
 constexpr double kSamePointPx = 1e-9;
-// Ends narrower than this (px) are a point: no cap (core/outline.cpp's kCapMinWidthPx).
+// Ends narrower than this (px) are a point: no cap (core/strokes/outline.cpp's kCapMinWidthPx).
 constexpr double kCapMinWidthPx = 1e-3;
 
 glm::dvec2 perp(const glm::dvec2& v) { return {-v.y, v.x}; }

@@ -6,7 +6,7 @@
 // line thickness at both ends of every silhouette edge, four vertices per quad).
 #pragma once
 
-#include "core/strokes.h"
+#include "core/strokes/strokes.h"
 
 #include <glm/vec2.hpp>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/bezier_fit.h"
+#include "core/strokes/bezier_fit.h"
 
 #include <gtest/gtest.h>
 

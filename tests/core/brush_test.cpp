@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/brush.h"
+#include "core/strokes/brush.h"
 
 #include <gtest/gtest.h>
 
@@ -7,8 +7,8 @@
 #include <glm/geometric.hpp>
 #include <vector>
 
-#include "core/strokes.h"
-#include "core/topology.h"
+#include "core/mesh/topology.h"
+#include "core/strokes/strokes.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/shapes.h"
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "core/chaining.h"
+#include "core/lines/chaining.h"
 
-#include "core/features.h"
-#include "core/topology.h"
+#include "core/lines/features.h"
+#include "core/mesh/topology.h"
 #include "tests/support/shapes.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "core/internal/cone_tree.h"
+#include "core/lines/internal/cone_tree.h"
 
-#include "core/features.h"
-#include "core/topology.h"
+#include "core/lines/features.h"
+#include "core/mesh/topology.h"
 #include "tests/support/shapes.h"
 
 #include <glm/geometric.hpp>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Visible feature lines of analytic shapes against their known answers.
-#include "core/exact_visibility.h"
+#include "core/visibility/exact_visibility.h"
 
-#include "core/topology.h"
+#include "core/mesh/topology.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/shapes.h"
 

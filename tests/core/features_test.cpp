@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "core/features.h"
+#include "core/lines/features.h"
 
-#include "core/topology.h"
+#include "core/mesh/topology.h"
 #include "tests/support/shapes.h"
 
 #include <gtest/gtest.h>

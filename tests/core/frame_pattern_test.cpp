@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/frame_pattern.h"
+#include "core/scene/frame_pattern.h"
 
 #include "core/error.h"
 

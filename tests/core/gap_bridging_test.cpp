@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/gap_bridging.h"
+#include "core/strokes/gap_bridging.h"
 
 #include <gtest/gtest.h>
 

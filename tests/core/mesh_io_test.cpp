@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/mesh_io.h"
+#include "core/mesh/mesh_io.h"
 
 #include "core/error.h"
 #include "tests/support/obj.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/internal/obj_reader.h"
+#include "core/mesh/internal/obj_reader.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/mesh_io.h"
+#include "core/mesh/mesh_io.h"
 #include "tests/support/obj.h"
 #include "tests/support/shapes.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/outline.h"
+#include "core/strokes/outline.h"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "core/brush.h"
-#include "core/pure_strokes.h"
-#include "core/stroke_path.h"
+#include "core/strokes/brush.h"
+#include "core/strokes/pure_strokes.h"
+#include "core/strokes/stroke_path.h"
 
 namespace inkline {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/pure_strokes.h"
+#include "core/strokes/pure_strokes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Ray-cast occlusion against the exact reference: analytic shapes, the torus sample, random
 // points and a deforming mesh refitted in place.
-#include "core/raycast_visibility.h"
+#include "core/visibility/raycast_visibility.h"
 
 #include "core/error.h"
-#include "core/exact_visibility.h"
-#include "core/features.h"
-#include "core/mesh_frames.h"
-#include "core/scene.h"
-#include "core/topology.h"
+#include "core/lines/features.h"
+#include "core/mesh/mesh_frames.h"
+#include "core/mesh/topology.h"
+#include "core/scene/scene.h"
+#include "core/visibility/exact_visibility.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/shapes.h"
 

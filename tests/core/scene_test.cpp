@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 #include "core/error.h"
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 #include "tests/support/obj.h"
 
 #include <glm/geometric.hpp>

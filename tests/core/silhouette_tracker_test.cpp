@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-#include "core/silhouette_tracker.h"
+#include "core/lines/silhouette_tracker.h"
 
-#include "core/camera.h"
-#include "core/features.h"
-#include "core/mesh_frames.h"
-#include "core/scene.h"
-#include "core/topology.h"
+#include "core/lines/features.h"
+#include "core/mesh/mesh_frames.h"
+#include "core/mesh/topology.h"
+#include "core/scene/camera.h"
+#include "core/scene/scene.h"
 #include "tests/support/shapes.h"
 
 #include <glm/geometric.hpp>

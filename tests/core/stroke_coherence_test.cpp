@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/stroke_coherence.h"
+#include "core/strokes/stroke_coherence.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/stroke_path.h"
+#include "core/strokes/stroke_path.h"
 
 #include <gtest/gtest.h>
 

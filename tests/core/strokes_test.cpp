@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/strokes.h"
+#include "core/strokes/strokes.h"
 
 #include <gtest/gtest.h>
 
@@ -14,13 +14,13 @@
 #include <string>
 #include <vector>
 
-#include "core/chaining.h"
-#include "core/exact_visibility.h"
-#include "core/features.h"
-#include "core/mesh_frames.h"
-#include "core/scene.h"
-#include "core/stroke_path.h"
-#include "core/visibility.h"
+#include "core/lines/chaining.h"
+#include "core/lines/features.h"
+#include "core/mesh/mesh_frames.h"
+#include "core/scene/scene.h"
+#include "core/strokes/stroke_path.h"
+#include "core/visibility/exact_visibility.h"
+#include "core/visibility/visibility.h"
 
 namespace inkline {
 namespace {

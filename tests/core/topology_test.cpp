@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/topology.h"
+#include "core/mesh/topology.h"
 
 #include "tests/support/shapes.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "core/visibility.h"
+#include "core/visibility/visibility.h"
 
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>

@@ -6,8 +6,8 @@
 #include "export/svg.h"
 
 #include "core/error.h"
-#include "core/strokes.h"
-#include "core/topology.h"
+#include "core/mesh/topology.h"
+#include "core/strokes/strokes.h"
 #include "tests/support/obj.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/raster.h"

@@ -2,9 +2,9 @@
 #include "tests/fuzz/targets.h"
 
 #include "core/error.h"
-#include "core/mesh_io.h"
-#include "core/scene.h"
-#include "core/topology.h"
+#include "core/mesh/mesh_io.h"
+#include "core/mesh/topology.h"
+#include "core/scene/scene.h"
 
 #include <filesystem>
 #include <fstream>

@@ -2,12 +2,12 @@
 // The GL preview against the Cairo PNG of the filled outlines (ink coverage), on both back-ends.
 #include "gl/preview.h"
 
-#include "core/chaining.h"
 #include "core/error.h"
-#include "core/features.h"
-#include "core/strokes.h"
-#include "core/topology.h"
-#include "core/visibility.h"
+#include "core/lines/chaining.h"
+#include "core/lines/features.h"
+#include "core/mesh/topology.h"
+#include "core/strokes/strokes.h"
+#include "core/visibility/visibility.h"
 #include "export/drawing.h"
 #include "export/png.h"
 #include "gl/depth_visibility.h"

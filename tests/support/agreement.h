@@ -5,10 +5,10 @@
 // occlusion tests directly (the test alone, without the splitter's sampling and bisection).
 #pragma once
 
-#include "core/camera.h"
-#include "core/chaining.h"
-#include "core/mesh.h"
-#include "core/visibility.h"
+#include "core/lines/chaining.h"
+#include "core/mesh/mesh.h"
+#include "core/scene/camera.h"
+#include "core/visibility/visibility.h"
 
 #include <vector>
 

@@ -2,7 +2,7 @@
 // Test helpers: write meshes and text files into a per-test temporary folder.
 #pragma once
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 #include <filesystem>
 #include <string>

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "tests/support/pipeline.h"
 
-#include "core/exact_visibility.h"
-#include "core/features.h"
-#include "core/topology.h"
-#include "core/visibility.h"
+#include "core/lines/features.h"
+#include "core/mesh/topology.h"
+#include "core/visibility/exact_visibility.h"
+#include "core/visibility/visibility.h"
 
 #include <glm/geometric.hpp>
 

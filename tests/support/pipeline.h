@@ -2,10 +2,10 @@
 // Runs the core pipeline (brute extraction, chaining, exact visibility) on one mesh and camera.
 #pragma once
 
-#include "core/chaining.h"
-#include "core/frame_lines.h"
-#include "core/mesh.h"
-#include "core/scene.h"
+#include "core/lines/chaining.h"
+#include "core/mesh/mesh.h"
+#include "core/pipeline/frame_lines.h"
+#include "core/scene/scene.h"
 
 #include <glm/vec3.hpp>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "tests/support/shapes.h"
 
-#include "core/topology.h"
+#include "core/mesh/topology.h"
 
 #include <glm/geometric.hpp>
 

@@ -2,7 +2,7 @@
 // Analytic test meshes with known silhouettes and boundaries. All are outward-facing, CCW.
 #pragma once
 
-#include "core/mesh.h"
+#include "core/mesh/mesh.h"
 
 #include <cstdint>
 

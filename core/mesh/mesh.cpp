@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+#include "core/mesh/mesh.h"
+
+#include <glm/geometric.hpp>
+
+namespace inkline::core {
+
+void Bounds::add(const glm::dvec3& p) {
+    if (!valid) {
+        min = max = p;
+        valid = true;
+        return;
+    }
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+}
+
+double Bounds::radius() const { return valid ? 0.5 * glm::length(max - min) : 0.0; }
+
+Bounds bounds_of(const std::vector<glm::vec3>& positions) {
+    Bounds b;
+    for (const glm::vec3& p : positions) b.add(glm::dvec3(p));
+    return b;
+}
+
+Bounds transformed(const Bounds& b, const glm::dmat4& transform) {
+    Bounds out;
+    if (!b.valid) return out;
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y, (i & 4) ? b.max.z : b.min.z);
+        out.add(glm::dvec3(transform * glm::dvec4(corner, 1.0)));
+    }
+    return out;
+}
+
+glm::dvec3 face_normal(const std::vector<glm::vec3>& positions, const glm::uvec3& tri) {
+    const glm::dvec3 a(positions[tri.x]);
+    const glm::dvec3 b(positions[tri.y]);
+    const glm::dvec3 c(positions[tri.z]);
+    return glm::cross(b - a, c - a);
+}
+
+}  // namespace inkline::core

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+#include "core/mesh/mesh_frames.h"
+
+#include "core/error.h"
+#include "core/mesh/mesh_io.h"
+#include "core/scene/frame_pattern.h"
+
+namespace inkline::core {
+
+MeshFrames::MeshFrames(const MeshSource& source, int first_frame, const MeshLimits& limits)
+    : source_(source), limits_(limits), loaded_frame_(first_frame), reference_file_(path_of(first_frame)) {
+    LoadedMesh loaded = load_mesh(reference_file_, limits_);
+    mesh_ = std::move(loaded.mesh);
+    warnings_ = std::move(loaded.warnings);
+    table_ = build_edge_table(mesh_);
+    for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_))) {
+        warnings_.push_back(reference_file_.string() + ": " + w);
+    }
+}
+
+std::filesystem::path MeshFrames::path_of(int frame) const {
+    if (!source_.is_sequence) return source_.path;
+    return format_frame(source_.path.string(), frame);
+}
+
+const Mesh& MeshFrames::at(int frame) {
+    if (!source_.is_sequence || frame == loaded_frame_) return mesh_;
+    const std::filesystem::path file = path_of(frame);
+    LoadedMesh loaded = load_mesh(file, limits_);
+    if (loaded.mesh.positions.size() != mesh_.positions.size() ||
+        loaded.mesh.triangles != mesh_.triangles) {
+        throw InputError(file.string() + ": frame " + std::to_string(frame) +
+                         " has a different topology from " + reference_file_.string() + " (" +
+                         std::to_string(loaded.mesh.positions.size()) + " vertices, " +
+                         std::to_string(loaded.mesh.triangles.size()) + " faces vs " +
+                         std::to_string(mesh_.positions.size()) + ", " +
+                         std::to_string(mesh_.triangles.size()) + ")");
+    }
+    mesh_.positions = std::move(loaded.mesh.positions);
+    loaded_frame_ = frame;
+    return mesh_;
+}
+
+}  // namespace inkline::core

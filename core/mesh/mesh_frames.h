@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// The mesh of every frame: one file for all frames, or one file per frame of a sequence with
+// the same topology. The edge table is built once from the first frame loaded.
+#pragma once
+
+#include "core/mesh/mesh.h"
+#include "core/mesh/mesh_io.h"
+#include "core/mesh/topology.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace inkline::core {
+
+// Where the meshes come from (scene "mesh").
+struct MeshSource {
+    std::filesystem::path path;  // a file, or a pattern with a frame field for a sequence
+    bool is_sequence = false;
+};
+
+class MeshFrames {
+  public:
+    // Loads the mesh of `first_frame` (the only one for a single file). Throws InputError, also
+    // for a mesh over `limits` (checked while reading, for every frame's file).
+    MeshFrames(const MeshSource& source, int first_frame, const MeshLimits& limits = {});
+
+    // The mesh at a frame; for a sequence this reads the frame's file and checks that its
+    // topology matches, throwing InputError naming the file when it does not.
+    const Mesh& at(int frame);
+
+    const EdgeTable& edges() const { return table_; }
+    bool is_sequence() const { return source_.is_sequence; }
+    // Warnings gathered while loading (skipped faces, degenerate faces, non-manifold edges).
+    const std::vector<std::string>& warnings() const { return warnings_; }
+    std::filesystem::path path_of(int frame) const;
+
+  private:
+    MeshSource source_;
+    MeshLimits limits_;
+    Mesh mesh_;
+    int loaded_frame_;
+    std::filesystem::path reference_file_;
+    EdgeTable table_;
+    std::vector<std::string> warnings_;
+};
+
+}  // namespace inkline::core

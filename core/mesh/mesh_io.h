@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// Mesh files (OBJ, OFF, PLY, STL) read into a plain Mesh: OFF, PLY and STL by inkline's own strict
+// readers (core/internal/), OBJ by a fast reader of its own or through OpenMesh after check_obj.
+#pragma once
+
+#include "core/mesh/mesh.h"
+
+#include <cstddef>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace inkline::core {
+
+struct LoadedMesh {
+    Mesh mesh;
+    std::vector<std::string> warnings;  // drawable oddities, e.g. skipped faces of < 3 vertices
+};
+
+struct MeshLimits {
+    // The most triangles (after fan triangulation) a mesh may have; checked while reading, from
+    // the header's count where the format has one, so a larger mesh is refused before its
+    // memory is spent.
+    size_t max_faces = std::numeric_limits<size_t>::max();
+};
+
+// Reads a mesh file; polygons are fan-triangulated. Throws InputError naming the file (and the
+// line or element) when it is missing, unreadable, not a regular file, empty, has no faces,
+// non-finite coordinates, out-of-range indices, anything a reader would have to guess at (counts
+// that disagree with the data, truncation), or more faces than `limits` allow. Nothing a
+// library prints reaches the user.
+LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits = {});
+
+}  // namespace inkline::core

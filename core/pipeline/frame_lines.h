@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+// What one frame produces: its camera, light, visible feature polylines and statistics.
+// The writers in export/ read this; nothing here knows about file formats.
+#pragma once
+
+#include "core/lines/features.h"
+#include "core/scene/camera.h"
+#include "core/strokes/brush_style.h"
+#include "core/visibility/visibility.h"
+
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace inkline::core {
+
+struct FrameStats {
+    size_t faces = 0;
+    size_t edges = 0;
+    size_t edges_tested = 0;
+    size_t faces_tested = 0;
+    size_t silhouette_edges = 0;
+    std::string tracker;            // "incremental" or "brute"
+    std::string visibility;         // the occlusion test used: "gl", "raycast" or "exact"
+    std::string visibility_reason;  // why that one (with --visibility auto)
+    std::string gl_context;         // "egl: <renderer>" when a GL context was used
+    std::array<size_t, kLineKindCount> feature_edges{};         // by LineKind
+    std::array<double, kLineKindCount> visible_length_px{};     // by LineKind
+    std::vector<std::pair<std::string, double>> ms;             // stage name -> milliseconds
+};
+
+struct FrameLines {
+    int frame = 0;
+    ImageSize image;
+    Camera camera;
+    Light light;
+    std::vector<Polyline> strokes;
+    // Occluded parts not output (lines.hidden off): the stroke stage draws short ones across
+    // where they bridge a stroke (core/strokes/gap_bridging.h). With lines.hidden they are in strokes.
+    std::vector<Polyline> occluded;
+    FrameStats stats;
+};
+
+// Moves the occluded polylines of frame.strokes into frame.occluded (kept for the stroke stage,
+// not output) and numbers the visible ones again in order, as if only they had been found.
+void set_aside_occluded(FrameLines& frame);
+
+// Sums the visible length of the strokes per kind into stats.visible_length_px.
+void tally_visible_length(FrameLines& frame);
+
+}  // namespace inkline::core

@@ -1,0 +1,508 @@
+// SPDX-License-Identifier: MIT
+#include "core/scene/scene.h"
+
+#include "core/error.h"
+#include "core/scene/frame_pattern.h"
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/gtx/rotate_vector.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+
+namespace inkline::core {
+namespace {
+
+using nlohmann::json;
+
+// Below this, two unit directions count as parallel (the up vector along the view direction).
+constexpr double kParallelSine = 1e-6;
+
+// The eye counts as on the target when their distance is below this fraction of their
+// magnitude: the view direction would have fewer than a few significant digits.
+constexpr double kCoincidentRatio = 1e-12;
+
+// Characters of a file name an error message keeps (quote_value): enough for a long path.
+constexpr size_t kMaxQuotedPathChars = 160;
+
+// The largest coordinate of a camera, rotation centre or light position, world units. Ten times
+// the mesh limit (kMaxCoordinate, 1e18): a camera stands back from the mesh it frames (the bare
+// mesh turntable puts it at up to about 8e18). The occlusion tests clip their rays to the mesh
+// (core/visibility/visibility.h), so no distance reaches Embree's float ray range, and every product the
+// camera matrices form stays far inside double and, for the GL pass, float range.
+constexpr double kMaxWorldCoordinate = 1e19;
+
+// The narrowest field of view, degrees: 1/tan of half of it (about 1.1e5) times a coordinate at
+// the limit keeps clip-space values inside float range for the GL pass.
+constexpr double kMinFovDeg = 1e-3;
+
+// v scaled to unit length without overflow or underflow of its squared length; nullopt for the
+// zero vector. Lengths whose square is a normal double are divided directly, so ordinary
+// directions normalise to the same bits as glm::normalize.
+std::optional<glm::dvec3> unit_direction(const glm::dvec3& v) {
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(largest > 0.0)) return std::nullopt;
+    if (largest > 1e-150 && largest < 1e150) return glm::normalize(v);
+    return glm::normalize(v / largest);
+}
+
+// Shortest decimal form of a value for messages ("1e+20", "0.5").
+std::string number_text(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+// Largest accepted brush width or smoothing, px: wider strokes than this are a typo, and the
+// stroke stages scale their search windows with these values.
+constexpr double kMaxBrushWidthPx = 256.0;
+
+// Reads one JSON object strictly: every key is known, every value has the right type, and
+// every error names the file and the dotted key path.
+class Reader {
+  public:
+    Reader(std::string file, const json& value, std::string path)
+        : file_(quote_value(file, kMaxQuotedPathChars)), value_(value), path_(std::move(path)) {}
+
+    [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+        throw InputError(file_ + ": key '" + join(key) + "': " + message);
+    }
+
+    void expect_object() const {
+        if (!value_.is_object()) fail("", "expected an object");
+    }
+
+    void allow_only(std::initializer_list<const char*> keys) const {
+        expect_object();
+        const std::set<std::string> allowed(keys.begin(), keys.end());
+        for (const auto& item : value_.items()) {
+            if (!allowed.count(item.key())) {
+                std::string list;
+                for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
+                fail(quote_value(item.key()), "unknown key (allowed here: " + list + ")");
+            }
+        }
+    }
+
+    bool has(const std::string& key) const { return value_.contains(key); }
+    const json& at(const std::string& key) const {
+        if (!value_.contains(key)) fail(key, "is required");
+        return value_.at(key);
+    }
+    Reader child(const std::string& key) const { return Reader(file_, at(key), join(key)); }
+
+    double number(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_number()) fail(key, "expected a number, got " + type_name(v));
+        const double d = v.get<double>();
+        if (!std::isfinite(d)) fail(key, "must be finite");
+        return d;
+    }
+    double number_or(const std::string& key, double fallback) const {
+        return has(key) ? number(key) : fallback;
+    }
+    int integer(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_number_integer()) fail(key, "expected an integer, got " + type_name(v));
+        const auto i = v.get<int64_t>();
+        if (i < -1000000000 || i > 1000000000) fail(key, "out of range");
+        return int(i);
+    }
+    bool boolean_or(const std::string& key, bool fallback) const {
+        if (!has(key)) return fallback;
+        const json& v = at(key);
+        if (!v.is_boolean()) fail(key, "expected true or false, got " + type_name(v));
+        return v.get<bool>();
+    }
+    std::string string(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_string()) fail(key, "expected a string, got " + type_name(v));
+        return v.get<std::string>();
+    }
+    glm::dvec3 vec3(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_array() || v.size() != 3) fail(key, "expected an array of 3 numbers");
+        glm::dvec3 out;
+        for (int i = 0; i < 3; ++i) {
+            if (!v[size_t(i)].is_number()) fail(key, "expected an array of 3 numbers");
+            out[i] = v[size_t(i)].get<double>();
+            if (!std::isfinite(out[i])) fail(key, "must be finite");
+        }
+        return out;
+    }
+
+    // A point in world space: each coordinate within kMaxWorldCoordinate.
+    glm::dvec3 position(const std::string& key) const {
+        const glm::dvec3 p = vec3(key);
+        for (int i = 0; i < 3; ++i) {
+            if (std::abs(p[i]) > kMaxWorldCoordinate) {
+                fail(key, "coordinate " + number_text(p[i]) + " exceeds the limit of " + number_text(kMaxWorldCoordinate));
+            }
+        }
+        return p;
+    }
+    // A direction of any non-zero length, returned as a unit vector.
+    glm::dvec3 direction(const std::string& key) const {
+        const std::optional<glm::dvec3> unit = unit_direction(vec3(key));
+        if (!unit) fail(key, "must not be the zero vector");
+        return *unit;
+    }
+    // A frame number within kMinFrame..kMaxFrame (core/scene/frame_pattern.h).
+    int frame(const std::string& key) const {
+        const json& v = at(key);
+        if (!v.is_number_integer()) fail(key, "expected an integer frame number, got " + type_name(v));
+        check_frame_range(frame_value(v), frame_value(v), file_ + ": key '" + join(key) + "'");
+        return int(v.get<int64_t>());
+    }
+    // An integer JSON value as a long long; unsigned values past its range saturate.
+    static long long frame_value(const json& v) {
+        if (v.is_number_unsigned()) return (long long)std::min<uint64_t>(v.get<uint64_t>(), uint64_t(INT64_MAX));
+        return (long long)v.get<int64_t>();
+    }
+
+    const json& value() const { return value_; }
+    const std::string& file() const { return file_; }
+    std::string join(const std::string& key) const {
+        if (key.empty()) return path_;
+        return path_.empty() ? key : path_ + "." + key;
+    }
+
+  private:
+    static std::string type_name(const json& v) { return v.type_name(); }
+
+    std::string file_;
+    const json& value_;
+    std::string path_;
+};
+
+Rotation read_rotation(const Reader& r) {
+    r.allow_only({"axis", "degrees", "center"});
+    Rotation rot;
+    rot.axis = r.direction("axis");
+    rot.degrees = r.number("degrees");
+    if (r.has("center")) rot.center = r.position("center");
+    return rot;
+}
+
+void check_pose(const Reader& r, const CameraPose& pose) {
+    if (!(pose.fov_y_deg >= kMinFovDeg && pose.fov_y_deg < 180.0))
+        r.fail("fov_y_deg", "must be at least " + number_text(kMinFovDeg) + " and below 180 degrees");
+    const glm::dvec3 view = pose.target - pose.eye;
+    const double magnitude = std::max({std::abs(pose.eye.x), std::abs(pose.eye.y), std::abs(pose.eye.z),
+                                       std::abs(pose.target.x), std::abs(pose.target.y), std::abs(pose.target.z)});
+    const std::optional<glm::dvec3> forward = unit_direction(view);
+    if (!forward || glm::length(view) <= kCoincidentRatio * magnitude)
+        r.fail("eye", "equals the target; the camera has no view direction");
+    if (glm::length(glm::cross(*forward, pose.up)) < kParallelSine) r.fail("up", "is parallel to the view direction");
+}
+
+CameraPose read_pose(const Reader& r) {
+    CameraPose pose;
+    pose.eye = r.position("eye");
+    pose.target = r.position("target");
+    pose.up = r.has("up") ? r.direction("up") : glm::dvec3(0.0, 1.0, 0.0);
+    pose.fov_y_deg = r.number_or("fov_y_deg", 35.0);
+    check_pose(r, pose);
+    return pose;
+}
+
+CameraSpec read_camera(const Reader& r) {
+    CameraSpec spec;
+    if (r.has("frames")) {
+        r.allow_only({"frames", "near", "far"});
+        const json& list = r.at("frames");
+        if (!list.is_array() || list.empty()) r.fail("frames", "expected a non-empty array of camera objects");
+        for (size_t i = 0; i < list.size(); ++i) {
+            const Reader item(r.file(), list[i], r.join("frames") + "[" + std::to_string(i) + "]");
+            item.allow_only({"frame", "eye", "target", "up", "fov_y_deg"});
+            const int frame = item.frame("frame");
+            if (spec.per_frame.count(frame)) item.fail("frame", "frame " + std::to_string(frame) + " is given twice");
+            spec.per_frame[frame] = read_pose(item);
+        }
+    } else {
+        r.allow_only({"eye", "target", "up", "fov_y_deg", "orbit", "near", "far"});
+        spec.pose = read_pose(r);
+        if (r.has("orbit")) spec.orbit = read_rotation(r.child("orbit"));
+    }
+    if (r.has("near")) {
+        spec.near = r.number("near");
+        if (!(*spec.near > 0.0)) r.fail("near", "must be greater than 0");
+    }
+    if (r.has("far")) {
+        spec.far = r.number("far");
+        if (!(*spec.far > spec.near.value_or(0.0))) r.fail("far", "must be greater than near");
+    }
+    return spec;
+}
+
+MeshSource read_mesh(const Reader& r, const std::filesystem::path& base) {
+    MeshSource source;
+    const json& v = r.at("mesh");
+    std::string path;
+    if (v.is_string()) {
+        path = v.get<std::string>();
+    } else if (v.is_object()) {
+        const Reader m = r.child("mesh");
+        m.allow_only({"sequence"});
+        path = m.string("sequence");
+        if (!has_frame_field(path)) m.fail("sequence", "needs a frame field such as %04d");
+        source.is_sequence = true;
+    } else {
+        r.fail("mesh", "expected a file path or {\"sequence\": \"pattern\"}");
+    }
+    if (path.empty()) r.fail("mesh", "is empty");
+    source.path = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : base / path;
+    return source;
+}
+
+
+// "#rrggbb" or [r, g, b] with components in [0, 1].
+glm::dvec3 read_color(const Reader& r, const std::string& key) {
+    const json& v = r.at(key);
+    if (v.is_string()) {
+        const std::string text = v.get<std::string>();
+        const bool hex = text.size() == 7 && text[0] == '#' &&
+                         std::all_of(text.begin() + 1, text.end(), [](char c) { return std::isxdigit(uint8_t(c)); });
+        if (!hex) r.fail(key, "expected a color \"#rrggbb\" or [r, g, b] in 0..1");
+        glm::dvec3 color;
+        for (int i = 0; i < 3; ++i) {
+            color[i] = double(std::stoi(text.substr(size_t(1 + 2 * i), 2), nullptr, 16)) / 255.0;
+        }
+        return color;
+    }
+    if (!v.is_array()) r.fail(key, "expected a color \"#rrggbb\" or [r, g, b] in 0..1");
+    const glm::dvec3 color = r.vec3(key);
+    for (int i = 0; i < 3; ++i) {
+        if (!(color[i] >= 0.0 && color[i] <= 1.0)) r.fail(key, "components must be between 0 and 1");
+    }
+    return color;
+}
+
+BrushStyle read_brush(const Reader& r, const std::filesystem::path& base) {
+    r.allow_only({"width_min_px", "width_max_px", "gamma", "invert", "taper_px", "min_length_px", "smooth_px",
+                  "max_deviation_px", "turn_angle_deg", "color", "opacity", "tip"});
+    BrushStyle b;
+    auto non_negative = [&r](const char* key, double fallback) {
+        const double v = r.number_or(key, fallback);
+        if (v < 0.0) r.fail(key, "must not be negative");
+        return v;
+    };
+    b.width_min_px = non_negative("width_min_px", b.width_min_px);
+    b.width_max_px = non_negative("width_max_px", b.width_max_px);
+    if (b.width_max_px < b.width_min_px) r.fail("width_max_px", "must not be less than width_min_px");
+    const std::string limit = "exceeds the limit of " + std::to_string(int(kMaxBrushWidthPx)) + " px";
+    if (b.width_max_px > kMaxBrushWidthPx) r.fail("width_max_px", limit);
+    b.gamma = r.number_or("gamma", b.gamma);
+    if (!(b.gamma > 0.0 && b.gamma <= 100.0)) r.fail("gamma", "must be greater than 0 and at most 100");
+    b.invert = r.boolean_or("invert", b.invert);
+    b.taper_px = non_negative("taper_px", b.taper_px);
+    b.min_length_px = non_negative("min_length_px", b.min_length_px);
+    b.smooth_px = non_negative("smooth_px", b.smooth_px);
+    if (b.smooth_px > kMaxBrushWidthPx) r.fail("smooth_px", limit);
+    b.max_deviation_px = non_negative("max_deviation_px", b.max_deviation_px);
+    b.turn_angle_deg = r.number_or("turn_angle_deg", b.turn_angle_deg);
+    if (!(b.turn_angle_deg > 0.0 && b.turn_angle_deg <= 180.0)) {
+        r.fail("turn_angle_deg", "must be greater than 0 and at most 180");
+    }
+    if (r.has("color")) b.color = read_color(r, "color");
+    b.opacity = r.number_or("opacity", b.opacity);
+    if (!(b.opacity >= 0.0 && b.opacity <= 1.0)) r.fail("opacity", "must be between 0 and 1");
+    if (r.has("tip")) {
+        const std::string tip = r.string("tip");
+        if (tip.empty()) r.fail("tip", "is empty");
+        b.tip = std::filesystem::path(tip).is_absolute() ? std::filesystem::path(tip) : base / tip;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(b.tip, ec)) {
+            r.fail("tip", "no such file: " + quote_value(b.tip.string(), kMaxQuotedPathChars));
+        }
+    }
+    return b;
+}
+
+// The radius a camera frames: the bounds' own, or, for a single point, one a millionth of the
+// point's distance from the origin (at least 1e-6), so that the camera still stands apart from
+// it in double precision.
+double framing_radius(const Bounds& bounds) {
+    const double radius = bounds.radius();
+    if (radius > 0.0) return radius;
+    const glm::dvec3 c = bounds.center();
+    return 1e-6 * std::max({1.0, std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file, int max_image_side) {
+    const std::string name = scene_file.string();
+    json root;
+    try {
+        root = json::parse(json_text);
+    } catch (const json::exception& e) {
+        // Syntax errors and numbers beyond double range; nlohmann's message after its
+        // "[json.exception...]" prefix is one line and names the byte offset.
+        std::string what = e.what();
+        const auto prefix_end = what.find("] ");
+        // Its "last read" part quotes the input, so it is cut like any quoted value.
+        throw InputError(quote_value(name, kMaxQuotedPathChars) + ": not valid JSON: " +
+                         quote_value(prefix_end == std::string::npos ? what : what.substr(prefix_end + 2), kMaxQuotedPathChars));
+    }
+    const Reader r(name, root, "");
+    r.allow_only({"version", "mesh", "frames", "image", "camera", "object", "light", "lines", "brush"});
+
+    Scene scene;
+    scene.file = scene_file;
+    if (r.has("version") && r.integer("version") != 1) r.fail("version", "only version 1 is supported");
+    scene.mesh = read_mesh(r, scene_file.parent_path());
+
+    if (r.has("frames")) {
+        const json& f = r.at("frames");
+        if (!f.is_array() || f.size() != 2 || !f[0].is_number_integer() || !f[1].is_number_integer())
+            r.fail("frames", "expected [first, last] as two integers");
+        check_frame_range(Reader::frame_value(f[0]), Reader::frame_value(f[1]), r.file() + ": key 'frames'");
+        scene.first_frame = int(f[0].get<int64_t>());
+        scene.last_frame = int(f[1].get<int64_t>());
+    }
+    if (r.has("image")) {
+        const Reader img = r.child("image");
+        img.allow_only({"width", "height"});
+        scene.image = {img.integer("width"), img.integer("height")};
+        for (const char* key : {"width", "height"}) {
+            const int side = std::string(key) == "width" ? scene.image.width : scene.image.height;
+            if (side <= 0) img.fail(key, "must be a positive number of pixels");
+            if (side > max_image_side) {
+                img.fail(key, "exceeds the limit of " + std::to_string(max_image_side) + " px (see --max-image-side)");
+            }
+        }
+    }
+    scene.camera = read_camera(r.child("camera"));
+    if (r.has("object")) {
+        const Reader obj = r.child("object");
+        obj.allow_only({"rotate"});
+        if (obj.has("rotate")) scene.object_rotation = read_rotation(obj.child("rotate"));
+    }
+    if (r.has("light")) {
+        const Reader l = r.child("light");
+        l.allow_only({"direction", "position"});
+        if (l.has("direction") == l.has("position")) l.fail("", "give exactly one of direction or position");
+        if (l.has("direction")) {
+            scene.light.direction = l.direction("direction");
+        } else {
+            scene.light.is_point = true;
+            scene.light.position = l.position("position");
+        }
+    }
+    if (r.has("lines")) {
+        const Reader l = r.child("lines");
+        l.allow_only({"silhouette", "boundary", "crease", "crease_angle_deg", "hidden"});
+        scene.lines.silhouette = l.boolean_or("silhouette", true);
+        scene.lines.boundary = l.boolean_or("boundary", true);
+        scene.lines.crease = l.boolean_or("crease", true);
+        scene.lines.crease_angle_deg = l.number_or("crease_angle_deg", 60.0);
+        if (!(scene.lines.crease_angle_deg >= 0.0 && scene.lines.crease_angle_deg <= 180.0))
+            l.fail("crease_angle_deg", "must be between 0 and 180");
+        scene.lines.hidden = l.boolean_or("hidden", false);
+    }
+    if (r.has("brush")) scene.brush = read_brush(r.child("brush"), scene_file.parent_path());
+    return scene;
+}
+
+Scene load_scene(const std::filesystem::path& scene_file, int max_image_side) {
+    std::ifstream in(scene_file, std::ios::binary);
+    if (!in) {
+        throw InputError(quote_value(scene_file.string(), kMaxQuotedPathChars) + ": cannot read: " + std::strerror(errno));
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_scene(text.str(), scene_file, max_image_side);
+}
+
+Scene default_turntable_scene(const std::filesystem::path& mesh_file, const Bounds& bounds) {
+    Scene scene;
+    scene.mesh.path = mesh_file;
+    scene.first_frame = 1;
+    scene.last_frame = 48;
+    const glm::dvec3 center = bounds.center();
+    const double radius = framing_radius(bounds);
+    constexpr double kFovDeg = 35.0;
+    constexpr double kElevationDeg = 20.0;
+    // Fit the bounding sphere in the vertical field of view with a 10% margin.
+    const double distance = 1.1 * radius / std::sin(glm::radians(kFovDeg / 2.0));
+    const double elevation = glm::radians(kElevationDeg);
+    scene.camera.pose.target = center;
+    scene.camera.pose.eye = center + distance * glm::dvec3(0.0, std::sin(elevation), std::cos(elevation));
+    scene.camera.pose.up = {0.0, 1.0, 0.0};
+    scene.camera.pose.fov_y_deg = kFovDeg;
+    scene.camera.orbit = Rotation{{0.0, 1.0, 0.0}, 360.0, center};
+    return scene;
+}
+
+double motion_fraction(const Scene& scene, int frame) {
+    const double count = double(scene.last_frame) - double(scene.first_frame) + 1.0;
+    return (double(frame) - double(scene.first_frame)) / count;
+}
+
+glm::dmat4 world_from_object_at(const Scene& scene, int frame) {
+    if (!scene.object_rotation) return glm::dmat4(1.0);
+    const Rotation& r = *scene.object_rotation;
+    const double angle = glm::radians(r.degrees * motion_fraction(scene, frame));
+    return glm::translate(glm::dmat4(1.0), r.center) * glm::rotate(glm::dmat4(1.0), angle, r.axis) *
+           glm::translate(glm::dmat4(1.0), -r.center);
+}
+
+namespace {
+[[noreturn]] void no_camera_for(const Scene& scene, int frame) {
+    throw InputError(quote_value(scene.file.string(), kMaxQuotedPathChars) +
+                     ": key 'camera.frames': no camera for frame " + std::to_string(frame));
+}
+}  // namespace
+
+void check_cameras(const Scene& scene, int first, int last) {
+    const std::map<int, CameraPose>& per_frame = scene.camera.per_frame;
+    if (per_frame.empty()) return;
+    // The keys in [first, last] are sorted: the first frame that is not the next key is missing.
+    long long expected = first;
+    for (auto it = per_frame.lower_bound(first); it != per_frame.end() && it->first <= last; ++it, ++expected) {
+        if (it->first != expected) no_camera_for(scene, int(expected));
+    }
+    if (expected <= last) no_camera_for(scene, int(expected));
+}
+
+Camera camera_at(const Scene& scene, int frame, const Bounds& world_bounds) {
+    const CameraSpec& spec = scene.camera;
+    CameraPose pose = spec.pose;
+    if (!spec.per_frame.empty()) {
+        const auto it = spec.per_frame.find(frame);
+        if (it == spec.per_frame.end()) no_camera_for(scene, frame);
+        pose = it->second;
+    } else if (spec.orbit) {
+        const Rotation& orbit = *spec.orbit;
+        const double angle = glm::radians(orbit.degrees * motion_fraction(scene, frame));
+        pose.eye = pose.target + glm::rotate(pose.eye - pose.target, angle, orbit.axis);
+        pose.up = glm::rotate(pose.up, angle, orbit.axis);
+    }
+    Camera camera{pose.eye, pose.target, pose.up, pose.fov_y_deg, 0.0, 0.0};
+
+    // Fit near/far to the bounding sphere; a camera inside it gets a small positive near.
+    const double radius = framing_radius(world_bounds);
+    const double distance = glm::length(world_bounds.center() - camera.eye);
+    camera.near = spec.near.value_or(std::max(0.9 * (distance - radius), 1e-3 * radius));
+    camera.far = spec.far.value_or(std::max(1.1 * (distance + radius), camera.near * 2.0));
+    // The scene's limits keep every value here finite; a NaN would be a bug, not a bad key.
+    INKLINE_CHECK(std::isfinite(camera.near) && std::isfinite(camera.far) && std::isfinite(glm::length(camera.eye)));
+    if (!(camera.far > camera.near)) {
+        throw InputError(quote_value(scene.file.string(), kMaxQuotedPathChars) +
+                         ": key 'camera.far': must be greater than near (" + number_text(camera.near) +
+                         ", fitted to the mesh at frame " + std::to_string(frame) + ")");
+    }
+    return camera;
+}
+
+}  // namespace inkline::core

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// The scene file (JSON, version 1): mesh or mesh sequence, frames, image, camera, object motion,
+// light and line kinds. docs/scene.md describes every key. Each stage owns its options (LineOptions
+// in core/lines/features.h, BrushStyle and Light in core/strokes/brush_style.h, MeshSource in
+// core/mesh/mesh_frames.h); the scene holds them.
+#pragma once
+
+#include "core/lines/features.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/mesh_frames.h"
+#include "core/scene/camera.h"
+#include "core/strokes/brush_style.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace inkline::core {
+
+// Largest accepted image side by default, px: keeps a typo from allocating gigabytes
+// (`--max-image-side` changes it).
+inline constexpr int kMaxImageSide = 16384;
+
+struct Rotation {
+    glm::dvec3 axis{0.0, 1.0, 0.0};
+    double degrees = 0.0;  // over the scene's frame range
+    glm::dvec3 center{0.0};
+};
+
+struct CameraPose {
+    glm::dvec3 eye{0.0, 0.0, 4.0};
+    glm::dvec3 target{0.0};
+    glm::dvec3 up{0.0, 1.0, 0.0};
+    double fov_y_deg = 35.0;
+};
+
+struct CameraSpec {
+    CameraPose pose;                      // the single-pose form
+    std::optional<Rotation> orbit;        // turntable about pose.target
+    std::map<int, CameraPose> per_frame;  // the explicit form; non-empty selects it
+    std::optional<double> near, far;      // default: fitted to the mesh bounds each frame
+};
+
+struct Scene {
+    std::filesystem::path file;  // where it was read from; empty for a built-in scene
+    MeshSource mesh;
+    int first_frame = 1;
+    int last_frame = 1;
+    ImageSize image{1024, 1024};
+    CameraSpec camera;
+    std::optional<Rotation> object_rotation;
+    Light light;
+    LineOptions lines;
+    BrushStyle brush;
+};
+
+// Reads and validates a scene file; relative paths resolve against its folder.
+// Throws InputError naming the file and key.
+Scene load_scene(const std::filesystem::path& scene_file, int max_image_side = kMaxImageSide);
+
+// Parses scene JSON text; scene_file names errors and anchors relative paths.
+Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file,
+                  int max_image_side = kMaxImageSide);
+
+// A 48-frame turntable around a mesh whose object-space bounds are given.
+Scene default_turntable_scene(const std::filesystem::path& mesh_file, const Bounds& bounds);
+
+// Object motion at a frame (identity without "object").
+glm::dmat4 world_from_object_at(const Scene& scene, int frame);
+
+// Throws InputError naming the first frame of [first, last] that the explicit per-frame camera
+// form has no camera for; nothing for the other forms.
+void check_cameras(const Scene& scene, int first, int last);
+
+// Camera at a frame; near/far fitted to world_bounds unless the scene gives them.
+// Throws InputError when the explicit form lacks the frame.
+Camera camera_at(const Scene& scene, int frame, const Bounds& world_bounds);
+
+// Fraction of the scene's frame range elapsed at a frame: 0 at the first frame, and a full
+// turn of 360 degrees returns to the start one frame after the last (seamless loops).
+double motion_fraction(const Scene& scene, int frame);
+
+}  // namespace inkline::core

@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: MIT
+#include "core/strokes/outline.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <numbers>
+#include <optional>
+
+namespace inkline::core {
+namespace {
+
+// Widths below this (px) are a point: no cap is drawn around it.
+constexpr double kCapMinWidthPx = 1e-3;
+// Consecutive outline points closer than this (px) are merged.
+constexpr double kSamePointPx = 1e-9;
+// Simplification error stays below this fraction of a stroke's mean width (and simplify_px).
+constexpr double kSimplifyWidthFraction = 0.02;
+// Folds are looked for this far (px of centerline, beyond the widest width) ahead of a segment.
+constexpr double kFoldReachPx = 2.0;
+
+double cross(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
+glm::dvec2 perp(const glm::dvec2& v) { return {-v.y, v.x}; }
+glm::dvec2 rotate(const glm::dvec2& v, double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+// Where segments ab and cd cross, if they do.
+std::optional<glm::dvec2> intersect(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c,
+                                    const glm::dvec2& d) {
+    const glm::dvec2 r = b - a, s = d - c;
+    const double denom = cross(r, s);
+    if (std::abs(denom) < 1e-18) return std::nullopt;
+    const double t = cross(c - a, s) / denom;
+    const double u = cross(c - a, r) / denom;
+    if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0) return std::nullopt;
+    return a + r * t;
+}
+
+struct Side {
+    std::vector<glm::dvec2> points;
+    std::vector<double> arc;  // centerline arc of each point's source, for the fold search
+};
+
+// One side's offset points, with extra points wherever the normal turns by more than a step.
+Side offset_side(std::span<const glm::dvec2> c, std::span<const double> w, const std::vector<glm::dvec2>& t,
+                 bool closed, double sign, double step_rad) {
+    Side side;
+    const size_t n = c.size();
+    double arc = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        const glm::dvec2 normal = perp(t[i]) * sign;
+        side.points.push_back(c[i] + normal * (0.5 * w[i]));
+        side.arc.push_back(arc);
+        const size_t j = i + 1 < n ? i + 1 : (closed ? 0 : n);
+        if (j == n) break;
+        const glm::dvec2 next = perp(t[j]) * sign;
+        const double turn = std::atan2(cross(normal, next), glm::dot(normal, next));
+        const int steps = int(std::ceil(std::abs(turn) / step_rad));
+        const double seg = glm::length(c[j] - c[i]);
+        for (int k = 1; k < steps; ++k) {
+            const double f = double(k) / steps;
+            const glm::dvec2 center = c[i] + (c[j] - c[i]) * f;
+            side.points.push_back(center + rotate(normal, turn * f) * (0.5 * (w[i] + (w[j] - w[i]) * f)));
+            side.arc.push_back(arc + seg * f);
+        }
+        arc += seg;
+    }
+    return side;
+}
+
+// Cuts the loops an offset makes where the centerline bends tighter than the half-width:
+// a segment that crosses a later one within reach skips everything in between.
+std::vector<glm::dvec2> remove_folds(const Side& side, double reach) {
+    const std::vector<glm::dvec2>& p = side.points;
+    const size_t n = p.size();
+    std::vector<glm::dvec2> out;
+    if (n == 0) return out;
+    out.push_back(p[0]);
+    size_t i = 0;
+    while (i + 1 < n) {
+        const glm::dvec2 a = out.back(), b = p[i + 1];
+        size_t hit = 0;
+        glm::dvec2 x{};
+        for (size_t j = i + 2; j + 1 < n && side.arc[j] - side.arc[i + 1] <= reach; ++j) {
+            if (const auto q = intersect(a, b, p[j], p[j + 1])) hit = j, x = *q;
+        }
+        if (hit) {
+            out.push_back(x);
+            i = hit;
+        } else {
+            out.push_back(b);
+            ++i;
+        }
+    }
+    return out;
+}
+
+// Half circle of radius r around c from `from` (a unit normal) turning through `through`.
+void cap(const glm::dvec2& c, const glm::dvec2& from, const glm::dvec2& through, double r, double step_rad,
+         std::vector<glm::dvec2>& out) {
+    const int steps = std::max(2, int(std::ceil(std::numbers::pi / step_rad)));
+    for (int k = 1; k < steps; ++k) {
+        const double a = std::numbers::pi * double(k) / steps;
+        out.push_back(c + (from * std::cos(a) + through * std::sin(a)) * r);
+    }
+}
+
+Ring dedupe(std::vector<glm::dvec2> ring) {
+    Ring out;
+    for (const glm::dvec2& p : ring) {
+        if (out.empty() || glm::length(p - out.back()) > kSamePointPx) out.push_back(p);
+    }
+    while (out.size() > 1 && glm::length(out.front() - out.back()) <= kSamePointPx) out.pop_back();
+    return out;
+}
+
+}  // namespace
+
+std::vector<Ring> build_outline(std::span<const glm::dvec2> c, std::span<const double> w, bool closed,
+                                const OutlineOptions& options) {
+    std::vector<Ring> rings;
+    const size_t n = c.size();
+    if (n < 2 || w.size() != n) return rings;
+    const double step = glm::radians(std::max(options.join_step_deg, 1.0));
+    const std::vector<glm::dvec2> t = centerline_tangents(c, closed);
+    const double reach = *std::max_element(w.begin(), w.end()) + kFoldReachPx;
+    const std::vector<glm::dvec2> left = remove_folds(offset_side(c, w, t, closed, 1.0, step), reach);
+    const std::vector<glm::dvec2> right = remove_folds(offset_side(c, w, t, closed, -1.0, step), reach);
+
+    if (closed) {
+        rings.push_back(dedupe(left));
+        rings.push_back(dedupe({right.rbegin(), right.rend()}));
+    } else {
+        // Left side forwards, round cap, right side backwards, round cap.
+        std::vector<glm::dvec2> ring = left;
+        if (w.back() > kCapMinWidthPx) cap(c.back(), perp(t.back()), t.back(), 0.5 * w.back(), step, ring);
+        ring.insert(ring.end(), right.rbegin(), right.rend());
+        if (w.front() > kCapMinWidthPx) cap(c.front(), -perp(t.front()), -t.front(), 0.5 * w.front(), step, ring);
+        rings.push_back(dedupe(std::move(ring)));
+    }
+    // Thin strokes simplify finer, so that the tolerance stays a small part of their width.
+    double mean_width = 0.0;
+    for (const double x : w) mean_width += x / double(n);
+    const double tolerance = std::min(options.simplify_px, kSimplifyWidthFraction * mean_width);
+    for (Ring& ring : rings) {
+        if (!(tolerance > 0.0)) continue;
+        // Simplification can make a thin ring touch itself; then the full ring is kept.
+        Ring simple = simplify_ring(ring, tolerance);
+        if (simple.size() >= 3 && is_simple(simple)) ring = std::move(simple);
+    }
+    std::erase_if(rings, [](const Ring& r) { return r.size() < 3; });
+    return rings;
+}
+
+std::vector<glm::dvec2> centerline_tangents(std::span<const glm::dvec2> c, bool closed) {
+    const auto n = std::ptrdiff_t(c.size());
+    std::vector<glm::dvec2> t(c.size(), glm::dvec2(1.0, 0.0));
+    auto at = [&](std::ptrdiff_t i) {
+        return c[size_t(closed ? ((i % n) + n) % n : std::clamp<std::ptrdiff_t>(i, 0, n - 1))];
+    };
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+        for (std::ptrdiff_t k = 1; k < n; ++k) {
+            const glm::dvec2 d = at(i + k) - at(i - k);
+            if (glm::length(d) > kSamePointPx) {
+                t[size_t(i)] = glm::normalize(d);
+                break;
+            }
+        }
+    }
+    return t;
+}
+
+double signed_area(const Ring& ring) {
+    double sum = 0.0;
+    for (size_t i = 0; i < ring.size(); ++i) sum += cross(ring[i], ring[(i + 1) % ring.size()]);
+    return 0.5 * sum;
+}
+
+double outline_area(const std::vector<Ring>& rings) {
+    double sum = 0.0;
+    for (const Ring& ring : rings) sum += signed_area(ring);
+    return std::abs(sum);
+}
+
+bool is_simple(const Ring& ring) {
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    std::vector<Kernel::Point_2> points;
+    for (const glm::dvec2& p : ring) points.emplace_back(p.x, p.y);
+    return points.size() >= 3 && CGAL::is_simple_2(points.begin(), points.end(), Kernel());
+}
+
+Ring simplify_ring(const Ring& ring, double tolerance) {
+    const size_t n = ring.size();
+    if (n < 4) return ring;
+    // Split at the first point and the point farthest from it; simplify both chains.
+    size_t far = 0;
+    double far_d = -1.0;
+    for (size_t i = 1; i < n; ++i) {
+        const double d = glm::length(ring[i] - ring[0]);
+        if (d > far_d) far_d = d, far = i;
+    }
+    std::vector<uint8_t> keep(n, 0);
+    keep[0] = keep[far] = 1;
+    auto point = [&](size_t i) { return ring[i % n]; };
+    std::vector<std::pair<size_t, size_t>> stack = {{0, far}, {far, n}};
+    while (!stack.empty()) {
+        const auto [lo, hi] = stack.back();
+        stack.pop_back();
+        if (hi <= lo + 1) continue;
+        const glm::dvec2 a = point(lo), b = point(hi);
+        const glm::dvec2 ab = b - a;
+        const double len2 = glm::dot(ab, ab);
+        size_t worst = 0;
+        double worst_d = -1.0, worst_d2 = -1.0;
+        for (size_t i = lo + 1; i < hi; ++i) {
+            const glm::dvec2 p = point(i);
+            const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+            const glm::dvec2 off = p - (a + ab * t);
+            // sqrt is monotone: a squared distance no larger than the worst's cannot beat it.
+            const double d2 = glm::dot(off, off);
+            if (d2 <= worst_d2) continue;
+            const double d = std::sqrt(d2);
+            if (d > worst_d) worst_d = d, worst_d2 = d2, worst = i;
+        }
+        if (worst_d > tolerance) {
+            keep[worst % n] = 1;
+            stack.emplace_back(lo, worst);
+            stack.emplace_back(worst, hi);
+        }
+    }
+    Ring out;
+    for (size_t i = 0; i < n; ++i) {
+        if (keep[i]) out.push_back(ring[i]);
+    }
+    return out;
+}
+
+}  // namespace inkline::core

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: MIT
+// Brush strokes of one frame: the visible polylines made into pure strokes, given stable ids, a
+// propagated arc-length parameter u, a light-weighted width with tapered ends and a filled
+// outline. build_strokes() is the single entry point; StrokeCoherence carries frame to frame.
+// Based on: pure strokes and hierarchical linking (procedural silhouette-stroke framework), the
+// light-weighted brush (N. Sirikulpiboon) and propagated arc-length parameterization (Bourdev).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/mesh/topology.h"
+#include "core/pipeline/frame_lines.h"
+#include "core/scene/camera.h"
+#include "core/strokes/brush_style.h"
+#include "core/strokes/outline.h"
+#include "core/strokes/pure_strokes.h"
+#include "core/strokes/stroke_coherence.h"
+
+namespace inkline::core {
+
+struct Stroke {
+    uint32_t id = 0;  // stable across frames; unique within a frame
+    LineKind kind = LineKind::kSilhouette;
+    bool visible = true;
+    bool closed = false;  // a loop: points repeat the first point last and it starts where u = 0
+    bool drawn = true;    // false when shorter than min_length_px: kept in the data, no outline
+    std::array<StrokeEnd, 2> ends{StrokeEnd::kFree, StrokeEnd::kFree};  // at the first and last point
+
+    // Exact geometry, per point (px, world) and per segment (mesh edge), in drawing direction.
+    std::vector<glm::dvec2> points_px;
+    std::vector<glm::dvec3> points_world;
+    std::vector<uint32_t> edges;
+    // Per segment: 1 where the segment is occluded but drawn, bridging a short gap of a visible
+    // stroke (core/strokes/gap_bridging.h); empty when there is none.
+    std::vector<uint8_t> hidden;
+    std::vector<double> u;          // per point: arc-length parameter, px, carried between frames
+    std::vector<double> intensity;  // per point: light intensity in [0, 1], smoothed along u
+    std::vector<double> width;      // per point: brush width, px
+
+    // The drawn centerline (cleaned, smoothed within max_deviation_px, resampled).
+    std::vector<glm::dvec2> centerline_px;
+    std::vector<double> centerline_u;
+    std::vector<double> centerline_width;  // px
+    std::vector<Ring> outline;             // one ring, or outer and inner for a loop (nonzero fill)
+
+    double deviation_px = 0.0;  // largest distance of the drawn centerline from the exact points
+    double removed_px = 0.0;    // largest distance of an exact point from the drawn centerline
+
+    double length_px() const;  // of the exact points
+};
+
+struct StrokeStats {
+    size_t polylines = 0;              // input polylines
+    size_t pure_strokes = 0;           // after splitting at corners, before linking
+    size_t corners = 0;                // splits at sharp turns
+    size_t links = 0;                  // joins through junctions
+    size_t bridges = 0;                // short occluded gaps drawn across, split strokes joined again
+    size_t drawn = 0;                  // strokes with an outline
+    size_t inherited = 0;              // strokes whose id was present last frame
+    double visible_length_px = 0.0;    // exact length of the visible strokes (bridged gaps left out)
+    double inherited_length_px = 0.0;  // ... of those whose id was present last frame
+    double max_deviation_px = 0.0;     // over drawn strokes
+    double max_removed_px = 0.0;       // over drawn strokes: back-tracking removed
+};
+
+struct FrameStrokes {
+    int frame = 0;
+    std::vector<Stroke> strokes;
+    StrokeStats stats;
+};
+
+// Builds one frame's brush strokes from its polylines (frame.strokes) and light (frame.light).
+// mesh and table are the frame's mesh and edge table, projection its camera and object motion.
+// Reads the previous frame's strokes from r_coherence and leaves this frame's there; short
+// occluded gaps (frame.occluded) are bridged as gap_bridge_options says.
+// Deterministic: the same frames in the same order give the same strokes, bit for bit.
+FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
+                           const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence);
+
+}  // namespace inkline::core
