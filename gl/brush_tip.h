@@ -2,8 +2,8 @@
 // The brush-tip texture of the GL preview: a grayscale image used as the strokes' alpha, x along
 // the stroke (its head on the left, its tail on the right) and y across it. A built-in tip made
 // procedurally (soft ink edge, bristle streaks, dry-brush breaks toward the tail), or a PNG.
-// Based on: the stroke-tip image of the light-weighted brush thesis ("Creating Chinese brush
-// style": quad strips textured with a grayscale image of the brush tip used as alpha).
+// Strokes drawn as textured strips, as in J. D. Northrup, L. Markosian. Artistic Silhouettes:
+// A Hybrid Approach. NPAR 2000.
 #pragma once
 
 #include <cstdint>
@@ -44,8 +44,7 @@ struct BrushTip {
 // open up toward the tail. Deterministic.
 BrushTip default_brush_tip();
 
-// A tip from a PNG: brightness is ink (white full, black none), as the thesis's stroke-tip
-// image; an image with transparency uses its alpha channel instead. Head and tail take a quarter
+// A tip from a PNG: brightness is ink (white full, black none); an image with transparency uses its alpha channel instead. Head and tail take a quarter
 // of the width each, and the ink reaches the border (edge_margin 0). Throws InputError naming
 // the file when it cannot be read or a side is not 2..kMaxBrushTipSide texels.
 BrushTip load_brush_tip(const std::filesystem::path& png);

@@ -3,8 +3,9 @@
 // float framebuffer at the image size times a supersampling factor and read back; every chain
 // sample is then tested against it on the CPU. Sampling, bisection and splitting stay in
 // core::split_by_visibility, which asks this class through core::Occlusion.
-// Based on: the depth-map test of the seed notes ("Reducing data by using depth map") and the
-// visibility mask of their section 7. Robustness at silhouettes: docs/visibility.md.
+// Based on: the visibility mask of X. Yuan, M. X. Nguyen, N. Zhang, B. Chen. Stippling and
+// Silhouettes Rendering in Geometry-Image Space. Eurographics Symposium on Rendering 2005,
+// section 7. Robustness at silhouettes: docs/visibility.md.
 #pragma once
 
 #include "core/mesh/mesh.h"

@@ -3,8 +3,8 @@
 // brush-tip image used as alpha, offscreen and multisampled, read back as RGBA pixels. It is fed
 // by the same strokes as the SVG/PDF (centerline, width, u), so it shows what they show, with
 // ink texture on top; export/png.h's png_from_rgba() writes the pixels out.
-// Based on: the thesis's Chinese brush rendering ("Creating Chinese brush style": silhouettes
-// as polygonal quad strips, a grayscale stroke-tip image as the alpha of the line shader).
+// Strokes as textured strips: J. D. Northrup, L. Markosian. Artistic Silhouettes: A Hybrid
+// Approach. NPAR 2000.
 #pragma once
 
 #include "core/mesh/mesh.h"

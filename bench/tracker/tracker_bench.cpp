@@ -232,8 +232,8 @@ int main(int argc, char** argv) {
     for (const Case& c : cases) {
         if (c.faces > max_faces || c.name.find(only) == std::string::npos) continue;
         const Row r = run(c, frames, csv);
-        // Silhouette edges that only the hierarchy found, summed over frames: the thesis's
-        // method alone would have lost them.
+        // Silhouette edges that only the hierarchy found, summed over frames: the walk
+        // alone would have lost them.
         const std::string missed =
             c.search == core::TrackerSearch::kWalkAndHierarchy ? std::to_string(r.proven) : std::string("-");
         std::printf("| %s | %zu | %zu | %.0f | %.2f%% | %.2f%% | %.2f%% | %.2f | %.2f | %.1fx | %.1f | %.0f | %s | %d/%d |\n",

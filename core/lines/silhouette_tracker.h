@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Incremental silhouette tracker: each frame's feature edges, identical to extract_feature_edges,
 // testing only the edges that a hierarchy of normal cones cannot prove silhouette-free, with
-// boundary and crease edges cached per topology. Holds the only frame-to-frame state. The
-// thesis's walk from last frame's silhouette is kept as an option to compare (TrackerSearch).
+// boundary and crease edges cached per topology. Holds the only frame-to-frame state. A walk
+// from last frame's silhouette alone (N. Thongthungwong, R. Lipikorn. Data Reduction for Finding
+// Silhouette Edges on 3D-Animated Model. ICFCC 2013) is kept as an option to compare (TrackerSearch).
 // Based on: P. Sander, X. Gu, S. Gortler, H. Hoppe, J. Snyder. Silhouette Clipping. SIGGRAPH 2000.
 //           A. Johannsen, M. Carter. Clustered Backface Culling. Journal of Graphics Tools, 1998.
 #pragma once
@@ -29,8 +30,8 @@ struct ListedEdge;
 // How frames after a full pass search for silhouette edges.
 enum class TrackerSearch : uint8_t {
     kHierarchy,         // the cone hierarchy alone: exact, and the fastest
-    kWalkAndHierarchy,  // the thesis's walk from last frame's silhouette, then the hierarchy: exact
-    kWalkOnly,          // the thesis's walk alone: loses lines that appear or jump (comparison only)
+    kWalkAndHierarchy,  // the walk from last frame's silhouette, then the hierarchy: exact
+    kWalkOnly,          // the walk alone: loses lines that appear or jump (comparison only)
 };
 
 struct TrackerOptions {

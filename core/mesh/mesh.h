@@ -15,7 +15,7 @@ struct Mesh {
     std::vector<glm::uvec3> triangles;  // #F, counter-clockwise vertex indices
 };
 
-// Axis-aligned bounds of a set of points; empty() when there are none.
+// Axis-aligned bounds of a set of points; not valid when there are none.
 struct Bounds {
     glm::dvec3 min{0.0};
     glm::dvec3 max{0.0};

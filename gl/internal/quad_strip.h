@@ -2,8 +2,8 @@
 // A stroke's drawn centerline as triangles for the preview: a quad strip (two points offset by
 // the half-width along the normal at every centerline sample) and half-disc fans on ends that
 // keep their width, the same shape as core::build_outline's filled outline.
-// Based on: the thesis's quad strips ("Creating Chinese brush style": perpendiculars of half the
-// line thickness at both ends of every silhouette edge, four vertices per quad).
+// Strokes as textured strips: J. D. Northrup, L. Markosian. Artistic Silhouettes: A Hybrid
+// Approach. NPAR 2000.
 #pragma once
 
 #include "core/strokes/strokes.h"

@@ -189,7 +189,7 @@ TEST(SilhouetteTracker, BumpsEnteringAndLeavingSilhouetteMatchBrute) {
 }
 
 TEST(SilhouetteTracker, WalkAloneLosesLinesThatTheHierarchyFinds) {
-    // The thesis's method (kWalkOnly) misses loops that open away from last frame's
+    // The walk alone (kWalkOnly) misses loops that open away from last frame's
     // silhouette; this is the failure the cone hierarchy exists to prevent.
     const core::Mesh mesh = bumpy_sphere(128, 64, 40, 0.06, 0.12);
     const core::EdgeTable table = core::build_edge_table(mesh);
