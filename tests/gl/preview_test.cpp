@@ -283,10 +283,10 @@ TEST(Preview, SharesTheContextWithTheDepthPass) {
     const auto context = context_or_skip(gl::Backend::kAuto);
     gl::DepthOcclusion depth(*context);
     gl::PreviewRenderer renderer(*context, {}, gl::default_brush_tip());
-    depth.prepare(frame.mesh, table, projection, gl::MeshChange::kTopology);
+    depth.prepare(frame.mesh, table, projection, core::MeshChange::kTopology);
     const size_t before = visible_points(depth);
     const gl::PreviewImage shared = renderer.render(frame.lines, frame.strokes);
-    depth.prepare(frame.mesh, table, projection, gl::MeshChange::kNone);
+    depth.prepare(frame.mesh, table, projection, core::MeshChange::kNone);
     EXPECT_EQ(visible_points(depth), before);
     EXPECT_EQ(renderer.render(frame.lines, frame.strokes).rgba, shared.rgba);
     EXPECT_EQ(shared.rgba, alone.rgba);
