@@ -38,14 +38,10 @@ struct Frame {
 };
 
 Frame frame_of(core::Mesh mesh, const test::View& view, const core::BrushStyle& style = {}) {
-    Frame f;
-    f.mesh = std::move(mesh);
-    const core::EdgeTable table = core::build_edge_table(f.mesh);
-    f.lines = test::trace(f.mesh, view);
-    const core::Projection projection(f.lines.camera, f.lines.image, glm::dmat4(1.0));
-    core::StrokeCoherence coherence;
-    f.strokes = core::build_strokes(f.lines, f.mesh, table, projection, style, coherence);
-    return f;
+    core::Scene scene = test::scene_for(view, mesh);
+    scene.brush = style;
+    test::Drawn drawn = test::draw(mesh, scene);
+    return {std::move(mesh), std::move(drawn.lines), std::move(drawn.strokes)};
 }
 
 // The torus of the sample, seen as samples/torus/scene.json sees it, at half its size.
