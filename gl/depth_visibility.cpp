@@ -142,13 +142,13 @@ struct DepthOcclusion::Impl {
         fn.DeleteProgram(program);
     }
 
-    void upload(const core::Mesh& mesh, MeshChange change) {
-        const bool everything = !uploaded || change == MeshChange::kTopology;
+    void upload(const core::Mesh& mesh, core::MeshChange change) {
+        const bool everything = !uploaded || change == core::MeshChange::kTopology;
         if (!everything) {
             // Same topology promised: a different mesh here would draw stale buffers.
             INKLINE_CHECK_EQ(mesh.positions.size(), vertex_count);
             INKLINE_CHECK_EQ(GLsizei(3 * mesh.triangles.size()), index_count);
-            if (change == MeshChange::kNone) return;
+            if (change == core::MeshChange::kNone) return;
         }
         const auto position_bytes = GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3));
         fn.BindVertexArray(vao);
@@ -350,7 +350,7 @@ DepthOcclusion::DepthOcclusion(const Context& context, const DepthVisibilityOpti
 DepthOcclusion::~DepthOcclusion() = default;
 
 void DepthOcclusion::prepare(const core::Mesh& mesh, const core::EdgeTable& table, const core::Projection& projection,
-                             MeshChange change) {
+                             core::MeshChange change) {
     INKLINE_CHECK_EQ(table.face_valid.size(), mesh.triangles.size());
     Impl& m = *impl_;
     const core::ImageSize image = projection.image();
@@ -422,5 +422,21 @@ void DepthOcclusion::occluded(const glm::dvec3& eye_object, std::span<const core
 }
 
 const DepthPassStats& DepthOcclusion::last_pass() const { return impl_->stats; }
+
+DepthOcclusionSource::DepthOcclusionSource(const Context& context, const DepthVisibilityOptions& options)
+    : context_(context), options_(options) {}
+
+DepthOcclusionSource::~DepthOcclusionSource() = default;
+
+const core::Occlusion& DepthOcclusionSource::prepare(const core::Mesh& mesh, const core::EdgeTable& table,
+                                                     const core::Projection& projection, core::MeshChange change) {
+    if (!depth_) depth_ = std::make_unique<DepthOcclusion>(context_, options_);
+    depth_->prepare(mesh, table, projection, change);
+    return *depth_;
+}
+
+std::string DepthOcclusionSource::device() const {
+    return context_.backend_name() + std::string(": ") + context_.renderer();
+}
 
 }  // namespace inkline::gl

@@ -11,6 +11,7 @@
 #include "core/mesh/mesh.h"
 #include "core/mesh/topology.h"
 #include "core/scene/camera.h"
+#include "core/visibility/occlusion_source.h"
 #include "core/visibility/visibility.h"
 #include "gl/context.h"
 
@@ -30,13 +31,6 @@ struct DepthVisibilityOptions {
     // seen there. Off: the depth map alone decides, which disagrees with the exact test on a
     // fifth to half of the visible length of dense meshes.
     bool local_ray_test = true;
-};
-
-// What changed in the mesh since the previous prepare().
-enum class MeshChange {
-    kNone,       // same mesh; only the projection may differ (camera, rigid object motion)
-    kPositions,  // same triangles, new vertex positions (a deforming sequence)
-    kTopology,   // a different mesh
 };
 
 // Size and timings of the last depth pass.
@@ -68,7 +62,7 @@ class DepthOcclusion final : public core::Occlusion {
     // kPositions, nothing for kNone: rigid motion travels in the projection's matrix.
     // Throws InputError when even one texel per pixel exceeds GL's framebuffer size limit.
     void prepare(const core::Mesh& mesh, const core::EdgeTable& table, const core::Projection& projection,
-                 MeshChange change);
+                 core::MeshChange change);
 
     // Tests each query against the depth map of the last prepare(); eye_object must be that
     // projection's eye. The point's own faces pass both tests: their planes contain it, and the
@@ -81,6 +75,28 @@ class DepthOcclusion final : public core::Occlusion {
   private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
+};
+
+// The depth pass as core's occlusion provider (`--visibility gl`), for core::FramePipeline: sets
+// up its DepthOcclusion on the first prepare(), on `context`, which must be current on this
+// thread and outlive this object.
+class DepthOcclusionSource final : public core::OcclusionSource {
+  public:
+    explicit DepthOcclusionSource(const Context& context, const DepthVisibilityOptions& options = {});
+    ~DepthOcclusionSource() override;
+
+    // Renders this frame's depth map (DepthOcclusion::prepare). Throws ContextError when the
+    // context cannot run the pass, InputError when the image exceeds GL's framebuffer size.
+    const core::Occlusion& prepare(const core::Mesh& mesh, const core::EdgeTable& table,
+                                   const core::Projection& projection, core::MeshChange change) override;
+    core::VisibilityMode mode() const override { return core::VisibilityMode::kGl; }
+    // "<backend>: <renderer>", e.g. "egl: llvmpipe (LLVM 15.0.6, 256 bits)".
+    std::string device() const override;
+
+  private:
+    const Context& context_;
+    DepthVisibilityOptions options_;
+    std::unique_ptr<DepthOcclusion> depth_;
 };
 
 }  // namespace inkline::gl

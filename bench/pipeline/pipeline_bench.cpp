@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: MIT
-// Where a scene's render time goes: every stage of `inkline render --svg` for each frame, as
-// cli/render.cpp's Sequence and Writers run them (incremental tracker, chaining, ray-cast
-// visibility, brush strokes, SVG built and written), in wall-clock and whole-process CPU time,
-// plus the one-time costs (mesh file, edge table, cone tree, BVH) and the peak memory.
+// Where a scene's render time goes: every stage of `inkline render --visibility raycast --svg`
+// for each frame, drawn by the CLI's own core::FramePipeline (incremental tracker, chaining,
+// ray-cast visibility with the occluded parts that gap bridging needs, brush strokes) and its
+// SVG built and written as the CLI's writers do, in wall-clock and whole-process CPU time, plus
+// the one-time costs (mesh file, edge table, cone tree, BVH) and the peak memory.
 //
 //   inkline_pipeline_bench SCENE.json [--frames A:B] [--svg DIR] [--repeat N]
 //
 // Prints a markdown table: per stage, the median over frames 2.. (frame 1 pays the one-time
-// builds, listed apart). CPU time is summed over threads, so on a shared machine it measures
-// this work alone where wall time also measures the neighbours. --repeat renders the frames
-// N times over (after the first pass) for steadier medians.
+// builds, listed apart; "load" is the mesh file of a sequence's frame). CPU time is summed over
+// threads, so on a shared machine it measures this work alone where wall time also measures the
+// neighbours. --repeat draws the frames N times over (after the first pass, on the same
+// pipeline) for steadier medians.
 
 #include <sys/resource.h>
 #include <time.h>
@@ -25,16 +27,10 @@
 #include <string>
 #include <vector>
 
-#include "core/lines/chaining.h"
-#include "core/lines/features.h"
-#include "core/lines/silhouette_tracker.h"
 #include "core/mesh/mesh_frames.h"
-#include "core/mesh/topology.h"
-#include "core/pipeline/frame_lines.h"
+#include "core/pipeline/frame_pipeline.h"
 #include "core/scene/scene.h"
-#include "core/strokes/strokes.h"
-#include "core/visibility/raycast_visibility.h"
-#include "core/visibility/visibility.h"
+#include "core/visibility/occlusion_source.h"
 #include "export/atomic_file.h"
 #include "export/drawing.h"
 #include "export/svg.h"
@@ -48,7 +44,8 @@ namespace output = inkline::output;
 class Laps {
   public:
     struct Lap {
-        double wall_ms, cpu_ms;
+        double wall_ms = 0.0, cpu_ms = 0.0;
+        Lap operator+(const Lap& o) const { return {wall_ms + o.wall_ms, cpu_ms + o.cpu_ms}; }
     };
     Lap lap() {
         const auto wall = std::chrono::steady_clock::now();
@@ -90,7 +87,7 @@ double peak_rss_mb() {
     std::exit(2);
 }
 
-const char* const kStages[] = {"extract", "chain", "visibility", "strokes", "svg"};
+const char* const kStages[] = {"load", "extract", "chain", "visibility", "strokes", "svg"};
 
 int run(int argc, char** argv) {
     if (argc < 2) usage_error("no scene");
@@ -123,63 +120,42 @@ int run(int argc, char** argv) {
     const core::EdgeTable& table = meshes.edges();
     const size_t faces = meshes.at(first).triangles.size();
 
-    std::optional<core::SilhouetteTracker> tracker;
-    std::optional<core::RaycastOcclusion> occlusion;
-    core::StrokeCoherence coherence;
     output::DrawStyle style;
     style.color = output::hex_color(scene.brush.color);
     style.opacity = scene.brush.opacity;
     std::map<std::string, std::vector<double>> wall, cpu;
     std::map<std::string, Laps::Lap> first_frame;
-    Laps::Lap tree{0, 0}, bvh{0, 0};
+    Laps::Lap tree, bvh;
     size_t strokes = 0, frames_done = 0;
 
+    // Each step of a frame, lapped as the pipeline ends it.
+    std::map<std::string, Laps::Lap> stage;
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast),
+                                 {.frame_count = last - first + 1,
+                                  .step_done = [&](const char* step) { stage[step] = laps.lap(); }});
     for (int pass = 0; pass <= repeat; ++pass) {
         for (int frame = first; frame <= last; ++frame) {
+            stage.clear();
             laps.lap();
-            const core::Mesh& mesh = meshes.at(frame);
-            core::FrameLines lines;
-            lines.frame = frame;
-            lines.image = scene.image;
-            lines.light = scene.light;
-            const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
-            lines.camera =
-                core::camera_at(scene, frame, core::transformed(core::bounds_of(mesh.positions), world_from_object));
-            const core::Projection projection(lines.camera, scene.image, world_from_object);
-            std::map<std::string, Laps::Lap> stage;
-
-            if (!tracker) {
-                laps.lap();
-                tracker.emplace(table, mesh, core::TrackerOptions{.deforming = meshes.is_sequence()});
-                tree = laps.lap();
-            } else if (pass == 0 && frame != first) {
-                laps.lap();
-            }
-            const core::FeatureEdges features = tracker->update(mesh, projection.eye_object(), scene.lines);
-            stage["extract"] = laps.lap();
-            const std::vector<core::Chain> chains = core::chain_feature_edges(features, table);
-            stage["chain"] = laps.lap();
-            if (!occlusion) {
-                occlusion.emplace(mesh, table);
-                bvh = laps.lap();
-            } else if (meshes.is_sequence() && frame != first) {
-                occlusion->update_positions(mesh);
-            }
-            lines.strokes =
-                core::split_by_visibility(chains, mesh, projection, *occlusion, {.keep_hidden = scene.lines.hidden});
-            stage["visibility"] = laps.lap();
-            core::tally_visible_length(lines);
-            const core::FrameStrokes drawn =
-                core::build_strokes(lines, mesh, table, projection, scene.brush, coherence);
-            stage["strokes"] = laps.lap();
-            const output::Drawing drawing = output::brush_drawing(lines, drawn, style, false);
+            const core::FrameResult drawn = pipeline.run(frame);
+            const output::Drawing drawing = output::brush_drawing(drawn.lines, drawn.strokes, style, false);
             char name[32];
             std::snprintf(name, sizeof name, "frame_%04d.svg", frame);
             output::write_file_atomically(svg_dir / name, output::svg_document(drawing, {}));
             stage["svg"] = laps.lap();
-            strokes += drawn.strokes.size();
+            strokes += drawn.strokes.strokes.size();
             ++frames_done;
 
+            // The first frame builds the cone tree and the BVH (listed apart); later frames'
+            // occlusion step (a refit for a sequence) is part of their visibility.
+            if (pass == 0 && frame == first) {
+                tree = stage["tracker build"];
+                bvh = stage["occlusion"];
+            } else {
+                stage["visibility"] = stage["occlusion"] + stage["visibility"];
+            }
+            stage.erase("tracker build");
+            stage.erase("occlusion");
             if (pass == 0 && frame == first) {
                 first_frame = stage;
                 continue;

@@ -3,7 +3,9 @@
 // meshes of 10k to 1M+ faces at 1024x1024: a rigid turntable (trees built once, the eye moves in
 // object space) and a deforming variant (exact rebuilds its tree every frame, raycast refits).
 // Mesh files given on the command line join the generated ones, moved to centre on the origin.
-// Prints a markdown table.
+// Prints a markdown table. Times the visibility stage alone on purpose: it calls
+// split_by_visibility with each occlusion test directly, not core::FramePipeline
+// (inkline_pipeline_bench times the whole pipeline).
 //
 //   inkline_raycast_bench [--max-faces N] [--frames N] [--size PX] [MESH ...]
 //

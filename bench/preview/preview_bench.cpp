@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Time per frame of the GL preview on a scene, next to Cairo's PNG of the same strokes, and the
-// files docs/preview.md shows. Runs the pipeline as `inkline render` does (brute extraction,
-// exact visibility, brush strokes), then for every frame: the preview (strips, render, read
-// back), its PNG encoding, and Cairo's PNG. Prints a markdown table of medians and how well the
+// files docs/preview.md shows. Draws each frame with the CLI's own core::FramePipeline (as
+// `inkline render --visibility exact` does: incremental tracker, exact visibility, gap bridging,
+// brush strokes), then times the preview (strips, render, read back), its PNG encoding, and
+// Cairo's PNG. Prints a markdown table of medians and how well the
 // two PNGs' ink coverage (alpha > 1/2) agrees (intersection over union).
 //
 //   inkline_preview_bench [--scene samples/torus/scene.json] [--frames A:B] [--gl auto|egl|osmesa]
@@ -11,15 +12,11 @@
 // With --out, writes DIR/preview_%04d.png, DIR/cairo_%04d.png, DIR/frame_%04d.svg and the brush
 // tip as DIR/tip.png.
 
-#include "core/lines/chaining.h"
-#include "core/lines/features.h"
 #include "core/mesh/mesh_frames.h"
-#include "core/pipeline/frame_lines.h"
+#include "core/pipeline/frame_pipeline.h"
 #include "core/scene/frame_pattern.h"
 #include "core/scene/scene.h"
-#include "core/strokes/strokes.h"
-#include "core/visibility/exact_visibility.h"
-#include "core/visibility/visibility.h"
+#include "core/visibility/occlusion_source.h"
 #include "export/drawing.h"
 #include "export/png.h"
 #include "export/svg.h"
@@ -103,7 +100,8 @@ int run(const Args& args) {
         last = colon == std::string::npos ? first : std::stoi(args.frames.substr(colon + 1));
     }
     core::MeshFrames meshes(scene.mesh, first);
-    const core::EdgeTable& table = meshes.edges();
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact),
+                                 {.frame_count = last - first + 1});
 
     const auto context = gl::create_context(gl::parse_backend(args.backend));
     gl::PreviewOptions options;
@@ -123,29 +121,16 @@ int run(const Args& args) {
     output::DrawStyle style;
     style.color = output::hex_color(scene.brush.color);
     style.opacity = scene.brush.opacity;
-    core::StrokeCoherence coherence;
     std::vector<double> geometry, render, readback, encode, preview_total, cairo_total, overlap;
     size_t triangles = 0;
     for (int frame = first; frame <= last; ++frame) {
-        const core::Mesh& mesh = meshes.at(frame);
-        core::FrameLines lines;
-        lines.frame = frame;
-        lines.image = scene.image;
-        lines.light = scene.light;
-        const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
-        lines.camera =
-            core::camera_at(scene, frame, core::transformed(core::bounds_of(mesh.positions), world_from_object));
-        const core::Projection projection(lines.camera, scene.image, world_from_object);
-        const core::FeatureEdges features =
-            core::extract_feature_edges(mesh, table, projection.eye_object(), scene.lines);
-        const std::vector<core::Chain> chains = core::chain_feature_edges(features, table);
-        const core::ExactOcclusion occlusion(mesh, table);
-        lines.strokes = core::split_by_visibility(chains, mesh, projection, occlusion, {});
-        const core::FrameStrokes strokes = core::build_strokes(lines, mesh, table, projection, scene.brush, coherence);
+        const core::FrameResult drawn = pipeline.run(frame);
+        const core::FrameLines& lines = drawn.lines;
+        const core::FrameStrokes& strokes = drawn.strokes;
 
         auto start = std::chrono::steady_clock::now();
         const gl::PreviewImage image =
-            renderer.render(lines, strokes, {.mesh = &mesh, .world_from_object = world_from_object});
+            renderer.render(lines, strokes, {.mesh = drawn.mesh, .world_from_object = drawn.world_from_object});
         const std::string png = output::png_from_rgba(image.width, image.height, image.rgba);
         preview_total.push_back(ms_since(start));
         const gl::PreviewStats& stats = renderer.last_render();

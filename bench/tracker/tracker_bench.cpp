@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Brute-force feature edges vs SilhouetteTracker on generated meshes of 5k to 1.3M faces, side by
 // side in one run: a 120-frame turntable at 3 degrees a frame. Prints a markdown table; with
-// --csv FILE also every frame's fraction of edges tested and extraction times.
+// --csv FILE also every frame's fraction of edges tested and extraction times. Times the
+// extraction stage alone on purpose: it calls extract_feature_edges and SilhouetteTracker
+// directly, not core::FramePipeline (inkline_pipeline_bench times the whole pipeline).
 //
 //   inkline_tracker_bench [--max-faces N] [--frames N] [--csv FILE] [--only TEXT] [--mesh FILE]...
 //

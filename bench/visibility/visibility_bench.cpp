@@ -2,6 +2,8 @@
 // GL depth-map visibility vs exact ray casting (CGAL AABB tree) on generated meshes of 5k to 1M
 // faces and on mesh files given on the command line: time per frame of a 1024x1024 turntable,
 // and how closely the depth pass agrees with the exact reference. Prints a markdown table.
+// Times the visibility stage alone on purpose: it calls split_by_visibility with each occlusion
+// test directly, not core::FramePipeline (inkline_pipeline_bench times the whole pipeline).
 //
 //   inkline_visibility_bench [--frames N] [--size PX] [--min-faces N] [--max-faces N]
 //                            [--gl auto|egl|osmesa]
@@ -197,11 +199,11 @@ std::vector<Row> run(const std::string& name, const core::Mesh& mesh, const Args
             row.exact_ms = exact_ms / double(frames.size());
             gl::DepthOcclusion depth(context, {.supersampling = ss, .local_ray_test = ray_test});
             // Warm-up: uploads the mesh and compiles the pipeline, as the first frame of a run would.
-            depth.prepare(mesh, table, frames[0].projection, gl::MeshChange::kTopology);
+            depth.prepare(mesh, table, frames[0].projection, core::MeshChange::kTopology);
             for (size_t i = 0; i < frames.size(); ++i) {
                 const TurntableFrame& f = frames[i];
                 start = Clock::now();
-                depth.prepare(mesh, table, f.projection, gl::MeshChange::kNone);
+                depth.prepare(mesh, table, f.projection, core::MeshChange::kNone);
                 row.pass_ms += ms_since(start);
                 start = Clock::now();
                 const std::vector<core::Polyline> lines = core::split_by_visibility(f.chains, mesh, f.projection, depth, options);

@@ -12,9 +12,10 @@
 //   terrain  an n x n heightfield of random heights: tens of thousands of short strokes, joined
 //            again from frame 2 on (noisy scans, terrain)
 //   frames   a small torus over 20000 frames: per-frame time and memory must stay flat
-// The first three render two frames of the default turntable (1024 x 1024, ray-cast visibility,
-// the CLI's stage order) and report the one-time builds and frame 2's stages; --scale K divides
-// every size by K (a quick run). CPU time of the whole process (all threads), ms.
+// The first three render two frames of the default turntable (1024 x 1024, ray-cast visibility)
+// through the CLI's own core::FramePipeline and report the one-time builds and frame 2's stages;
+// --scale K divides every size by K (a quick run). CPU time of the whole process (all threads),
+// ms.
 
 #include <sys/resource.h>
 #include <time.h>
@@ -28,16 +29,14 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "core/lines/chaining.h"
-#include "core/lines/silhouette_tracker.h"
+#include "core/mesh/mesh_frames.h"
 #include "core/mesh/topology.h"
-#include "core/pipeline/frame_lines.h"
+#include "core/pipeline/frame_pipeline.h"
 #include "core/scene/scene.h"
-#include "core/strokes/strokes.h"
-#include "core/visibility/raycast_visibility.h"
-#include "core/visibility/visibility.h"
+#include "core/visibility/occlusion_source.h"
 #include "tests/support/shapes.h"
 
 namespace {
@@ -78,7 +77,7 @@ struct Row {
 
 // Renders frames 1 and 2 of the default turntable of `mesh` as the CLI does; one-time builds and
 // frame 2's stages in CPU ms.
-Row render_two_frames(const core::Mesh& mesh, const std::string& size) {
+Row render_two_frames(core::Mesh mesh, const std::string& size) {
     Row row;
     row.size = size;
     row.faces = mesh.triangles.size();
@@ -88,37 +87,35 @@ Row render_two_frames(const core::Mesh& mesh, const std::string& size) {
         row.ms[stage] += now - t;
         t = now;
     };
-    const core::EdgeTable table = core::build_edge_table(mesh);
-    lap("edge table");
-    const core::MeshReport report = core::describe_mesh(mesh, table);
-    lap("describe");
-    if (report.faces == 0) std::abort();
+    // The edge table and the mesh checks on their own (MeshFrames repeats both, untimed).
+    {
+        const core::EdgeTable table = core::build_edge_table(mesh);
+        lap("edge table");
+        const core::MeshReport report = core::describe_mesh(mesh, table);
+        lap("describe");
+        if (report.faces == 0) std::abort();
+    }
     const core::Scene scene = core::default_turntable_scene("bench.obj", core::bounds_of(mesh.positions));
-    core::SilhouetteTracker tracker(table, mesh, {});
-    lap("cone tree");
-    const core::RaycastOcclusion occlusion(mesh, table);
-    lap("BVH");
-    core::StrokeCoherence coherence;
-    for (int frame = 1; frame <= 2; ++frame) {
+    core::MeshFrames meshes(std::move(mesh));
+    int frame = 1;
+    // The pipeline's steps as the table's stages: its first occlusion step builds the BVH.
+    const auto step_done = [&](const char* step) {
+        const std::string name = step;
+        if (name == "load") {
+            t = cpu_ms();
+        } else if (name == "tracker build") {
+            lap("cone tree");
+        } else if (name == "occlusion") {
+            lap(frame == 1 ? "BVH" : "visibility");
+        } else {
+            lap(step);
+        }
+    };
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast),
+                                 {.step_done = step_done});
+    for (; frame <= 2; ++frame) {
         if (frame == 2) row.ms.erase("extract"), row.ms.erase("chain"), row.ms.erase("visibility"), row.ms.erase("strokes");
-        t = cpu_ms();
-        core::FrameLines lines;
-        lines.frame = frame;
-        lines.image = scene.image;
-        lines.light = scene.light;
-        const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
-        lines.camera = core::camera_at(scene, frame, core::transformed(core::bounds_of(mesh.positions), world_from_object));
-        const core::Projection projection(lines.camera, scene.image, world_from_object);
-        const core::FeatureEdges features = tracker.update(mesh, projection.eye_object(), scene.lines);
-        lap("extract");
-        const std::vector<core::Chain> chains = core::chain_feature_edges(features, table);
-        lap("chain");
-        lines.strokes = core::split_by_visibility(chains, mesh, projection, occlusion, {.keep_hidden = true});
-        core::set_aside_occluded(lines);
-        lap("visibility");
-        const core::FrameStrokes drawn = core::build_strokes(lines, mesh, table, projection, scene.brush, coherence);
-        lap("strokes");
-        row.strokes = drawn.strokes.size();
+        row.strokes = pipeline.run(frame).strokes.strokes.size();
     }
     for (const auto& [stage, ms] : row.ms) row.total += ms;
     return row;
@@ -157,31 +154,17 @@ void print_table(const std::string& title, const std::vector<Row>& rows) {
 // A small torus over 20000 frames (one turn): mean CPU ms per frame in each quarter of the run,
 // and the resident memory at the end of each (stroke coherence must not grow with the frames).
 void long_run(int scale) {
-    const core::Mesh mesh = test::torus(1.0, 0.35, 48, 16);
-    const core::EdgeTable table = core::build_edge_table(mesh);
     const int frames = 20000 / scale;
-    core::Scene scene = core::default_turntable_scene("bench.obj", core::bounds_of(mesh.positions));
+    core::MeshFrames meshes(test::torus(1.0, 0.35, 48, 16));
+    core::Scene scene = core::default_turntable_scene("bench.obj", core::bounds_of(meshes.at(1).positions));
     scene.last_frame = frames;
-    core::SilhouetteTracker tracker(table, mesh, {});
-    const core::RaycastOcclusion occlusion(mesh, table);
-    core::StrokeCoherence coherence;
-    std::printf("\n### frames: a %zu-face torus, %d frames (one turn)\n\n", mesh.triangles.size(), frames);
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast));
+    std::printf("\n### frames: a %zu-face torus, %d frames (one turn)\n\n", meshes.at(1).triangles.size(), frames);
     std::printf("| frames | ms/frame | RSS at end (MB) |\n|---|---:|---:|\n");
     double sum = 0.0;
     for (int frame = 1; frame <= frames; ++frame) {
         const double t = cpu_ms();
-        core::FrameLines lines;
-        lines.frame = frame;
-        lines.image = scene.image;
-        const glm::dmat4 world_from_object = core::world_from_object_at(scene, frame);
-        lines.camera = core::camera_at(scene, frame, core::transformed(core::bounds_of(mesh.positions), world_from_object));
-        const core::Projection projection(lines.camera, scene.image, world_from_object);
-        const core::FeatureEdges features = tracker.update(mesh, projection.eye_object(), scene.lines);
-        lines.strokes = core::split_by_visibility(core::chain_feature_edges(features, table), mesh, projection,
-                                                  occlusion, {.keep_hidden = true});
-        core::set_aside_occluded(lines);
-        const core::FrameStrokes drawn = core::build_strokes(lines, mesh, table, projection, scene.brush, coherence);
-        if (drawn.strokes.empty()) std::abort();
+        if (pipeline.run(frame).strokes.strokes.empty()) std::abort();
         sum += cpu_ms() - t;
         if (frame % (frames / 4) == 0) {
             std::printf("| %d..%d | %.2f | %.1f |\n", frame - frames / 4 + 1, frame, sum / (frames / 4), rss_mb());

@@ -10,6 +10,7 @@
 #include <bit>
 #include <cmath>
 #include <span>
+#include <string>
 
 namespace inkline::core {
 namespace {
@@ -22,6 +23,22 @@ using internal::ClusterFacing;
 constexpr int kStoppedWalkRings = 2;
 
 }  // namespace
+
+const char* tracker_mode_name(TrackerMode mode) {
+    return mode == TrackerMode::kBrute ? "brute" : "incremental";
+}
+
+std::optional<TrackerMode> tracker_mode_from_name(std::string_view name) {
+    for (const TrackerMode mode : {TrackerMode::kIncremental, TrackerMode::kBrute}) {
+        if (name == tracker_mode_name(mode)) return mode;
+    }
+    return std::nullopt;
+}
+
+TrackerMode parse_tracker_mode(std::string_view text, const char* key) {
+    if (const std::optional<TrackerMode> mode = tracker_mode_from_name(text)) return *mode;
+    throw InputError(std::string(key) + " '" + quote_value(text) + "': expected incremental or brute");
+}
 
 SilhouetteTracker::SilhouetteTracker(const EdgeTable& table, const Mesh& mesh, const TrackerOptions& options)
     : table_(&table), options_(options), face_count_(mesh.triangles.size()) {

@@ -17,9 +17,23 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 namespace inkline::core {
+
+// How a run finds each frame's feature edges (`--tracker`): both give the same edges.
+enum class TrackerMode : uint8_t {
+    kIncremental,  // SilhouetteTracker: a full pass on the first frame, then what it cannot rule out
+    kBrute,        // extract_feature_edges: every edge, every frame
+};
+
+// "incremental" or "brute".
+const char* tracker_mode_name(TrackerMode mode);
+// The mode of that name; nullopt for any other text.
+std::optional<TrackerMode> tracker_mode_from_name(std::string_view name);
+// The mode of that name; throws InputError "KEY 'TEXT': expected incremental or brute".
+TrackerMode parse_tracker_mode(std::string_view text, const char* key);
 
 namespace internal {
 class ConeTree;

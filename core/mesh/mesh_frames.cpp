@@ -5,6 +5,8 @@
 #include "core/mesh/mesh_io.h"
 #include "core/scene/frame_pattern.h"
 
+#include <utility>
+
 namespace inkline::core {
 
 MeshFrames::MeshFrames(const MeshSource& source, int first_frame, const MeshLimits& limits)
@@ -16,6 +18,10 @@ MeshFrames::MeshFrames(const MeshSource& source, int first_frame, const MeshLimi
     for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_))) {
         warnings_.push_back(reference_file_.string() + ": " + w);
     }
+}
+
+MeshFrames::MeshFrames(Mesh mesh) : mesh_(std::move(mesh)), loaded_frame_(0), table_(build_edge_table(mesh_)) {
+    warnings_ = mesh_warnings(describe_mesh(mesh_, table_));
 }
 
 std::filesystem::path MeshFrames::path_of(int frame) const {

@@ -24,6 +24,8 @@ class MeshFrames {
     // Loads the mesh of `first_frame` (the only one for a single file). Throws InputError, also
     // for a mesh over `limits` (checked while reading, for every frame's file).
     MeshFrames(const MeshSource& source, int first_frame, const MeshLimits& limits = {});
+    // A mesh already in memory, the same at every frame (a generated shape); path_of() is empty.
+    explicit MeshFrames(Mesh mesh);
 
     // The mesh at a frame; for a sequence this reads the frame's file and checks that its
     // topology matches, throwing InputError naming the file when it does not.

@@ -63,14 +63,10 @@ TEST(Brush, WidthIsMonotoneInShadowOnASideLitSphere) {
     // Sphere seen from +z, lit from +x: along the silhouette loop the intensity runs from 1 to 0
     // and back, and the width must be a monotone function of 1 - I everywhere (a loop has no taper).
     const core::Mesh sphere = test::uv_sphere(96, 48, 1.0);
-    const test::View view;
-    core::FrameLines frame = test::trace(sphere, view);
-    frame.light.direction = {-1.0, 0.0, 0.0};
-    const core::EdgeTable table = core::build_edge_table(sphere);
-    const core::Projection projection(frame.camera, frame.image, glm::dmat4(1.0));
-    core::StrokeCoherence coherence;
-    const core::BrushStyle style;
-    const core::FrameStrokes strokes = core::build_strokes(frame, sphere, table, projection, style, coherence);
+    core::Scene scene = test::scene_for({}, sphere);
+    scene.light.direction = {-1.0, 0.0, 0.0};
+    const core::BrushStyle& style = scene.brush;
+    const core::FrameStrokes strokes = test::draw(sphere, scene).strokes;
     ASSERT_EQ(strokes.strokes.size(), 1u);
     const core::Stroke& loop = strokes.strokes[0];
     EXPECT_TRUE(loop.closed);

@@ -6,8 +6,6 @@
 #include "export/svg.h"
 
 #include "core/error.h"
-#include "core/mesh/topology.h"
-#include "core/strokes/strokes.h"
 #include "tests/support/obj.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/raster.h"
@@ -55,13 +53,9 @@ TEST_F(Raster, SvgIsWellFormedAndRendersLikeCairo) {
 
 TEST_F(Raster, BrushOutlinesRenderAlikeInSvgAndCairo) {
     const core::Mesh torus = test::torus(1.0, 0.4, 64, 32);
-    const core::EdgeTable table = core::build_edge_table(torus);
     const test::View view{.eye = {0.0, 2.6, 4.6}, .fov_y_deg = 40.0, .size = 512};
-    const core::FrameLines frame = test::trace(torus, view);
-    const core::Projection projection(frame.camera, frame.image, glm::dmat4(1.0));
-    core::StrokeCoherence coherence;
-    const core::FrameStrokes strokes = core::build_strokes(frame, torus, table, projection, {}, coherence);
-    const output::Drawing d = output::brush_drawing(frame, strokes, {}, false);
+    const test::Drawn drawn = test::draw(torus, test::scene_for(view, torus));
+    const output::Drawing d = output::brush_drawing(drawn.lines, drawn.strokes, {}, false);
     size_t filled = 0;
     for (const output::Shape& s : d.shapes) filled += s.filled;
     ASSERT_GT(filled, 0u);

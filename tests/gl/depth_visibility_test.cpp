@@ -58,12 +58,12 @@ class Scene {
     // Renders the frame with the object turned by world_from_object; change says what the
     // depth pass must upload.
     Frame frame(gl::DepthOcclusion& depth, const test::View& view, const glm::dmat4& world_from_object,
-                gl::MeshChange change = gl::MeshChange::kNone, bool hidden = false) {
+                core::MeshChange change = core::MeshChange::kNone, bool hidden = false) {
         return frame(depth, test::camera_for(view, mesh_), view.size, world_from_object, change, hidden);
     }
 
     Frame frame(gl::DepthOcclusion& depth, const core::Camera& camera, int size, const glm::dmat4& world_from_object,
-                gl::MeshChange change, bool hidden) {
+                core::MeshChange change, bool hidden) {
         core::LineOptions lines;
         lines.hidden = hidden;
         Frame f{{}, core::Projection(camera, {size, size}, world_from_object), {}, {}};
@@ -72,7 +72,7 @@ class Scene {
         f.chains = core::chain_feature_edges(features, table_);
         core::VisibilityOptions options;
         options.keep_hidden = hidden;
-        if (!exact_ || change != gl::MeshChange::kNone) exact_ = std::make_unique<core::ExactOcclusion>(mesh_, table_);
+        if (!exact_ || change != core::MeshChange::kNone) exact_ = std::make_unique<core::ExactOcclusion>(mesh_, table_);
         f.exact = core::split_by_visibility(f.chains, mesh_, f.projection, *exact_, options);
         depth.prepare(mesh_, table_, f.projection, change);
         f.depth = core::split_by_visibility(f.chains, mesh_, f.projection, depth, options);
@@ -170,7 +170,7 @@ TEST(DepthVisibility, SampleTorusSceneAgreesWithExact) {
         const core::Projection projection(core::camera_at(scene, frame, world_bounds), scene.image, world_from_object);
         const std::vector<core::Chain> chains = core::chain_feature_edges(
             core::extract_feature_edges(mesh, table, projection.eye_object(), scene.lines), table);
-        depth.prepare(mesh, table, projection, frame == scene.first_frame ? gl::MeshChange::kTopology : gl::MeshChange::kNone);
+        depth.prepare(mesh, table, projection, frame == scene.first_frame ? core::MeshChange::kTopology : core::MeshChange::kNone);
         const auto reference = core::split_by_visibility(chains, mesh, projection, exact, options);
         const auto lines = core::split_by_visibility(chains, mesh, projection, depth, options);
         const test::VisibilityAgreement a = test::compare_visibility(chains, mesh, projection, reference, lines);
@@ -187,7 +187,7 @@ TEST(DepthVisibility, EglAndOsmesaGiveTheSameResult) {
         const auto context = context_or_skip(backends[b]);
         gl::DepthOcclusion depth(*context);
         Scene scene(torus_and_sphere());
-        for (double angle : {0.0, 100.0, 230.0}) frames[b].push_back(scene.frame(depth, kTurntableView, turned(angle), gl::MeshChange::kNone, true));
+        for (double angle : {0.0, 100.0, 230.0}) frames[b].push_back(scene.frame(depth, kTurntableView, turned(angle), core::MeshChange::kNone, true));
     }
     for (size_t i = 0; i < frames[0].size(); ++i) {
         const std::vector<core::Polyline>& egl = frames[0][i].depth;
@@ -210,7 +210,7 @@ TEST(DepthVisibility, SphereSilhouetteOnTheDepthEdgeIsFullyVisible) {
     Scene scene(test::uv_sphere(64, 32, 1.0));
     for (int size : {256, 1024}) {
         const Frame f = scene.frame(depth, {.eye = {0.3, 0.5, 4.0}, .size = size}, glm::dmat4(1.0),
-                                    gl::MeshChange::kNone, true);
+                                    core::MeshChange::kNone, true);
         ASSERT_FALSE(f.depth.empty());
         for (const core::Polyline& line : f.depth) EXPECT_TRUE(line.visible) << "at " << size << " px";
         EXPECT_EQ(scene.compare(f).disagree_px, 0.0);
@@ -222,7 +222,7 @@ TEST(DepthVisibility, CubeShowsTheSameEdgesAsExact) {
     gl::DepthOcclusion depth(*context);
     Scene scene(test::cube(1.0));
     const Frame f = scene.frame(depth, {.eye = {3.0, 2.5, 4.0}, .fov_y_deg = 40.0}, glm::dmat4(1.0),
-                                gl::MeshChange::kNone, true);
+                                core::MeshChange::kNone, true);
     auto edges_by_visibility = [](const std::vector<core::Polyline>& lines, bool visible) {
         std::set<uint32_t> edges;
         for (const core::Polyline& line : lines) {
@@ -247,7 +247,7 @@ TEST(DepthVisibility, DeformedPositionsAreUploaded) {
     for (size_t v = torus_vertices; v < scene.mesh().positions.size(); ++v) {
         scene.mesh().positions[v] += glm::vec3(-1.4f, -0.2f, 0.5f);
     }
-    const Frame after = scene.frame(depth, view, glm::dmat4(1.0), gl::MeshChange::kPositions);
+    const Frame after = scene.frame(depth, view, glm::dmat4(1.0), core::MeshChange::kPositions);
     const test::VisibilityAgreement a = scene.compare(after);
     EXPECT_GE(a.agreement(), kMinAgreement);
     EXPECT_LE(a.longest_disagreement_px, kMaxDisagreementPx);
@@ -269,10 +269,10 @@ TEST(DepthVisibility, OccludersBeforeTheNearPlaneCount) {
         return length;
     };
     Scene torus(test::torus(1.0, 0.35, 64, 32));
-    const double unoccluded = visible_px(torus.frame(depth, camera, 512, glm::dmat4(1.0), gl::MeshChange::kTopology, false).exact);
+    const double unoccluded = visible_px(torus.frame(depth, camera, 512, glm::dmat4(1.0), core::MeshChange::kTopology, false).exact);
 
     Scene scene(merged(test::torus(1.0, 0.35, 64, 32), test::uv_sphere(24, 12, 0.08), {0.07f, 0.0f, 3.7f}));
-    const Frame f = scene.frame(depth, camera, 512, glm::dmat4(1.0), gl::MeshChange::kTopology, false);
+    const Frame f = scene.frame(depth, camera, 512, glm::dmat4(1.0), core::MeshChange::kTopology, false);
     ASSERT_LT(f.projection.clip(glm::dvec3(0.07, 0.0, 3.62)).w, camera.near) << "the sphere lies before the near plane";
     EXPECT_LT(visible_px(f.exact), 0.9 * unoccluded) << "the sphere hides part of the torus";
     const test::VisibilityAgreement a = scene.compare(f);
@@ -297,7 +297,7 @@ TEST(DepthVisibility, SupersamplingSetsTheDepthMapSize) {
     tri.triangles = {{0, 1, 2}};
     const core::EdgeTable table = core::build_edge_table(tri);
     big.prepare(tri, table, core::Projection(test::camera_for({}, tri), {6000, 6000}, glm::dmat4(1.0)),
-                gl::MeshChange::kTopology);
+                core::MeshChange::kTopology);
     EXPECT_EQ(big.last_pass().supersampling, 1);
     EXPECT_EQ(big.last_pass().width, 6000);
 }
@@ -308,9 +308,9 @@ TEST(DepthVisibility, ADifferentMeshWithoutKTopologyIsABug) {
     const core::Mesh cube = test::cube(1.0), sphere = test::uv_sphere(16, 8, 1.0);
     const core::EdgeTable cube_table = core::build_edge_table(cube), sphere_table = core::build_edge_table(sphere);
     const core::Projection projection(test::camera_for({}, cube), {64, 64}, glm::dmat4(1.0));
-    depth.prepare(cube, cube_table, projection, gl::MeshChange::kNone);  // the first call uploads anyway
-    EXPECT_THROW(depth.prepare(sphere, sphere_table, projection, gl::MeshChange::kPositions), InternalError);
-    EXPECT_NO_THROW(depth.prepare(sphere, sphere_table, projection, gl::MeshChange::kTopology));
+    depth.prepare(cube, cube_table, projection, core::MeshChange::kNone);  // the first call uploads anyway
+    EXPECT_THROW(depth.prepare(sphere, sphere_table, projection, core::MeshChange::kPositions), InternalError);
+    EXPECT_NO_THROW(depth.prepare(sphere, sphere_table, projection, core::MeshChange::kTopology));
 }
 
 TEST(DepthVisibility, QueryBeforePrepareIsABug) {

@@ -38,14 +38,10 @@ struct Frame {
 };
 
 Frame frame_of(core::Mesh mesh, const test::View& view, const core::BrushStyle& style = {}) {
-    Frame f;
-    f.mesh = std::move(mesh);
-    const core::EdgeTable table = core::build_edge_table(f.mesh);
-    f.lines = test::trace(f.mesh, view);
-    const core::Projection projection(f.lines.camera, f.lines.image, glm::dmat4(1.0));
-    core::StrokeCoherence coherence;
-    f.strokes = core::build_strokes(f.lines, f.mesh, table, projection, style, coherence);
-    return f;
+    core::Scene scene = test::scene_for(view, mesh);
+    scene.brush = style;
+    test::Drawn drawn = test::draw(mesh, scene);
+    return {std::move(mesh), std::move(drawn.lines), std::move(drawn.strokes)};
 }
 
 // The torus of the sample, seen as samples/torus/scene.json sees it, at half its size.
@@ -283,10 +279,10 @@ TEST(Preview, SharesTheContextWithTheDepthPass) {
     const auto context = context_or_skip(gl::Backend::kAuto);
     gl::DepthOcclusion depth(*context);
     gl::PreviewRenderer renderer(*context, {}, gl::default_brush_tip());
-    depth.prepare(frame.mesh, table, projection, gl::MeshChange::kTopology);
+    depth.prepare(frame.mesh, table, projection, core::MeshChange::kTopology);
     const size_t before = visible_points(depth);
     const gl::PreviewImage shared = renderer.render(frame.lines, frame.strokes);
-    depth.prepare(frame.mesh, table, projection, gl::MeshChange::kNone);
+    depth.prepare(frame.mesh, table, projection, core::MeshChange::kNone);
     EXPECT_EQ(visible_points(depth), before);
     EXPECT_EQ(renderer.render(frame.lines, frame.strokes).rgba, shared.rgba);
     EXPECT_EQ(shared.rgba, alone.rgba);

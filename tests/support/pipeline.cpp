@@ -2,11 +2,14 @@
 #include "tests/support/pipeline.h"
 
 #include "core/lines/features.h"
+#include "core/mesh/mesh_frames.h"
 #include "core/mesh/topology.h"
-#include "core/visibility/exact_visibility.h"
-#include "core/visibility/visibility.h"
+#include "core/pipeline/frame_pipeline.h"
+#include "core/visibility/occlusion_source.h"
 
 #include <glm/geometric.hpp>
+
+#include <algorithm>
 
 namespace inkline::test {
 
@@ -17,26 +20,32 @@ core::Camera camera_for(const View& view, const core::Mesh& mesh) {
             std::max(0.5 * (d - b.radius()), 1e-3), 2.0 * (d + b.radius())};
 }
 
+core::Scene scene_for(const View& view, const core::Mesh& mesh) {
+    const core::Camera camera = camera_for(view, mesh);
+    core::Scene scene;
+    scene.image = {view.size, view.size};
+    scene.camera.pose = {camera.eye, camera.target, camera.up, camera.fov_y_deg};
+    scene.camera.near = camera.near;
+    scene.camera.far = camera.far;
+    return scene;
+}
+
 std::vector<core::Chain> feature_chains(const core::Mesh& mesh, const View& view, const core::LineOptions& lines) {
     const core::EdgeTable table = core::build_edge_table(mesh);
     return core::chain_feature_edges(core::extract_feature_edges(mesh, table, view.eye, lines), table);
 }
 
+Drawn draw(const core::Mesh& mesh, const core::Scene& scene) {
+    core::MeshFrames meshes(mesh);
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+    core::FrameResult result = pipeline.run(scene.first_frame);
+    return {std::move(result.lines), std::move(result.strokes)};
+}
+
 core::FrameLines trace(const core::Mesh& mesh, const View& view, const core::LineOptions& lines) {
-    const core::EdgeTable table = core::build_edge_table(mesh);
-    core::FrameLines frame;
-    frame.image = {view.size, view.size};
-    frame.camera = camera_for(view, mesh);
-    const core::Projection projection(frame.camera, frame.image, glm::dmat4(1.0));
-    const core::FeatureEdges features = core::extract_feature_edges(mesh, table, projection.eye_object(), lines);
-    const std::vector<core::Chain> chains = core::chain_feature_edges(features, table);
-    const core::ExactOcclusion occlusion(mesh, table);
-    core::VisibilityOptions options;
-    options.keep_hidden = lines.hidden;
-    frame.strokes = core::split_by_visibility(chains, mesh, projection, occlusion, options);
-    frame.stats.feature_edges = features.count_by_kind();
-    core::tally_visible_length(frame);
-    return frame;
+    core::Scene scene = scene_for(view, mesh);
+    scene.lines = lines;
+    return draw(mesh, scene).lines;
 }
 
 }  // namespace inkline::test

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
-// Runs the core pipeline (brute extraction, chaining, exact visibility) on one mesh and camera.
+// One mesh seen from one view, drawn by core::FramePipeline as `inkline render --visibility
+// exact` draws a single frame (brute-force extraction, exact visibility, gap bridging, strokes).
 #pragma once
 
 #include "core/lines/chaining.h"
 #include "core/mesh/mesh.h"
 #include "core/pipeline/frame_lines.h"
 #include "core/scene/scene.h"
+#include "core/strokes/strokes.h"
 
 #include <glm/vec3.hpp>
 
@@ -18,11 +20,24 @@ struct View {
     int size = 1024;
 };
 
+// The view's camera, near and far fitted to the mesh's bounding sphere.
 core::Camera camera_for(const View& view, const core::Mesh& mesh);
+
+// A one-frame scene (frame 1) of `mesh` seen from `view` with camera_for's camera, size x size.
+core::Scene scene_for(const View& view, const core::Mesh& mesh);
 
 // Feature chains (before visibility) seen from a view.
 std::vector<core::Chain> feature_chains(const core::Mesh& mesh, const View& view, const core::LineOptions& lines);
 
+struct Drawn {
+    core::FrameLines lines;
+    core::FrameStrokes strokes;
+};
+
+// Frame 1 of `scene` with `mesh` as its mesh, through core::FramePipeline with exact visibility.
+Drawn draw(const core::Mesh& mesh, const core::Scene& scene);
+
+// The lines of scene_for(view, mesh) with `lines` as its line options.
 core::FrameLines trace(const core::Mesh& mesh, const View& view, const core::LineOptions& lines = {});
 
 }  // namespace inkline::test

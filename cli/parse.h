@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+// The render options that are more than a word: frame ranges, image sizes, chunks, the input kind.
+#pragma once
+
+#include "core/scene/camera.h"
+
+#include <string>
+#include <utility>
+
+namespace inkline::cli {
+
+struct FrameRange {
+    int first = 1;
+    int last = 1;
+    int count() const { return last - first + 1; }
+};
+
+// "A:B" or "A" -> inclusive frame range, within core's frame numbers. Throws InputError.
+FrameRange parse_frames(const std::string& text);
+
+// "WxH" -> image size, each side 1..max_side px. Throws InputError.
+core::ImageSize parse_size(const std::string& text, int max_side);
+
+// "K/N" or "slurm" (SLURM_ARRAY_TASK_ID within SLURM_ARRAY_TASK_MIN..SLURM_ARRAY_TASK_MAX) ->
+// (K, N), 1 <= K <= N. Throws InputError.
+std::pair<int, int> parse_chunk(const std::string& text);
+
+// A scene file (.json) rather than a mesh.
+bool is_scene_file(const std::string& path);
+
+}  // namespace inkline::cli

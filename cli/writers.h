@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+// What a render writes for each drawn frame (SVG, PNG, PDF, polylines JSON), and the progress
+// line on a terminal.
+#pragma once
+
+#include "cli/outputs.h"
+#include "cli/render.h"
+#include "core/pipeline/frame_pipeline.h"
+#include "core/scene/scene.h"
+#include "export/drawing.h"
+#include "export/pdf.h"
+
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace inkline::cli {
+
+// Writes every per-frame file of a drawn frame; collects pages of a multi-page PDF.
+class Writers {
+  public:
+    // Refuses, before any file is written, a background, page, margin or dpi that cannot be
+    // used and an image Cairo cannot draw (InputError).
+    Writers(const Outputs& outputs, const RenderArgs& args, const core::Scene& scene);
+
+    // Writes the frame's files; adds the "svg", "png" and "pdf" times to its stats.ms. Returns
+    // the number of files written.
+    size_t write(core::FrameResult& drawn);
+
+    // Writes the multi-page PDF with the pages so far, also after a failure, so no drawn frame
+    // is lost; but a run that failed never replaces a PDF already there, which may hold more of
+    // the sequence (it says so through `warn`). Returns the number of files written.
+    size_t finish(bool complete, const std::function<void(const std::string&)>& warn);
+
+  private:
+    const Outputs& outputs_;
+    bool centerline_;
+    output::DrawStyle style_;
+    output::PdfOptions pdf_options_;
+    std::unique_ptr<output::PdfDocument> pdf_;
+};
+
+// A progress line rewritten in place on a terminal: frames done, frames per second, time left.
+class Progress {
+  public:
+    // Prints nothing unless enabled and stderr is a terminal.
+    Progress(int total, bool enabled);
+    void frame_done();
+
+  private:
+    int total_;
+    int done_ = 0;
+    bool enabled_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace inkline::cli

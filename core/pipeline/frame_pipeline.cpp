@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: MIT
+#include "core/pipeline/frame_pipeline.h"
+
+#include "core/error.h"
+#include "core/lines/chaining.h"
+#include "core/lines/features.h"
+#include "core/visibility/visibility.h"
+
+#include <glm/vector_relational.hpp>
+
+#include <chrono>
+#include <utility>
+#include <vector>
+
+namespace inkline::core {
+namespace {
+
+// Milliseconds since the last lap.
+class Laps {
+  public:
+    double lap_ms() {
+        const auto now = std::chrono::steady_clock::now();
+        const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+        last_ = now;
+        return ms;
+    }
+
+  private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+bool inside(const Bounds& b, const glm::dvec3& p) {
+    return glm::all(glm::greaterThanEqual(p, b.min)) && glm::all(glm::lessThanEqual(p, b.max));
+}
+
+}  // namespace
+
+FramePipeline::FramePipeline(const Scene& scene, MeshFrames& meshes, std::unique_ptr<OcclusionSource> occlusion,
+                             PipelineOptions options)
+    : scene_(scene), meshes_(meshes), occlusion_(std::move(occlusion)), options_(std::move(options)) {
+    INKLINE_CHECK(occlusion_ != nullptr);
+    const long long frames =
+        options_.frame_count > 0 ? options_.frame_count : (long long)scene_.last_frame - scene_.first_frame + 1;
+    tracker_mode_ = frames > 1 ? options_.tracker : TrackerMode::kBrute;
+}
+
+FramePipeline::~FramePipeline() = default;
+
+FrameResult FramePipeline::run(int frame) {
+    Laps laps;
+    const auto step = [&](const char* name) {
+        const double ms = laps.lap_ms();
+        if (options_.step_done) options_.step_done(name);
+        return ms;
+    };
+    FrameResult out;
+    FrameLines& result = out.lines;
+    result.frame = frame;
+    result.image = scene_.image;
+    result.light = scene_.light;
+    const Mesh& mesh = meshes_.at(frame);
+    const double load_ms = step("load");
+    const EdgeTable& table = meshes_.edges();
+
+    // The camera, fitted to the object's bounds where it moves (object space: extraction and
+    // occlusion move the eye instead of the mesh).
+    const glm::dmat4 world_from_object = world_from_object_at(scene_, frame);
+    const Bounds object_bounds = bounds_of(mesh.positions);
+    result.camera = camera_at(scene_, frame, transformed(object_bounds, world_from_object));
+    const Projection projection(result.camera, scene_.image, world_from_object);
+    if (!warned_inside_ && inside(object_bounds, projection.eye_object())) {
+        warned_inside_ = true;
+        if (options_.warn) {
+            options_.warn("frame " + std::to_string(frame) + ": the camera is inside the mesh's bounds; lines may be hidden");
+        }
+    }
+
+    // Feature edges and chains.
+    double tracker_build_ms = 0.0;
+    FeatureEdges features;
+    if (tracker_mode_ == TrackerMode::kBrute) {
+        features = extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
+    } else {
+        if (!tracker_) {
+            tracker_.emplace(table, mesh, TrackerOptions{.deforming = meshes_.is_sequence()});
+            tracker_build_ms = step("tracker build");
+        }
+        features = tracker_->update(mesh, projection.eye_object(), scene_.lines);
+    }
+    const double extract_ms = tracker_build_ms + step("extract");
+    const std::vector<Chain> chains = chain_feature_edges(features, table);
+    const double chain_ms = step("chain");
+
+    // Visibility. Occluded parts are always found (the samples are classified anyway): the
+    // stroke stage bridges short ones. Without lines.hidden they stay out of the output.
+    const MeshChange change = first_frame_             ? MeshChange::kTopology
+                              : meshes_.is_sequence() ? MeshChange::kPositions
+                                                      : MeshChange::kNone;
+    const Occlusion& occlusion = occlusion_->prepare(mesh, table, projection, change);
+    const double occlusion_ms = step("occlusion");
+    result.strokes = split_by_visibility(chains, mesh, projection, occlusion, {.keep_hidden = true});
+    if (!scene_.lines.hidden) set_aside_occluded(result);
+    const double visibility_ms = occlusion_ms + step("visibility");
+
+    // Strokes, coherent with the last frame's.
+    out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_);
+    out.mesh = &mesh;
+    out.world_from_object = world_from_object;
+    const double strokes_ms = step("strokes");
+    first_frame_ = false;
+
+    FrameStats& stats = result.stats;
+    stats.faces = mesh.triangles.size();
+    stats.edges = table.edge_count();
+    stats.edges_tested = features.edges_tested;
+    stats.faces_tested = features.faces_tested;
+    stats.feature_edges = features.count_by_kind();
+    stats.silhouette_edges = stats.feature_edges[size_t(LineKind::kSilhouette)];
+    stats.tracker = tracker_mode_name(tracker_mode_);
+    stats.visibility = visibility_mode_name(occlusion_->mode());
+    stats.visibility_reason = options_.visibility_reason;
+    stats.gl_context = occlusion_->device();
+    tally_visible_length(result);
+    stats.ms = {{"load", load_ms},
+                {"extract", extract_ms},
+                {"chain", chain_ms},
+                {"visibility", visibility_ms},
+                {"strokes", strokes_ms}};
+    return out;
+}
+
+}  // namespace inkline::core

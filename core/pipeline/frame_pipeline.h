@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: MIT
+// One frame from mesh to strokes, as `inkline render` draws it, with the state that carries from
+// frame to frame: the silhouette tracker, the occlusion test and stroke coherence.
+//
+//   MeshFrames::at -> camera_at -> SilhouetteTracker::update (or extract_feature_edges)
+//   -> chain_feature_edges -> OcclusionSource::prepare -> split_by_visibility
+//   -> set_aside_occluded (without lines.hidden) -> build_strokes
+//
+// Writers (export/) take the result: output::polylines_json(result.lines, &result.strokes),
+// output::brush_drawing(result.lines, result.strokes, ...).
+#pragma once
+
+#include "core/lines/silhouette_tracker.h"
+#include "core/mesh/mesh.h"
+#include "core/mesh/mesh_frames.h"
+#include "core/pipeline/frame_lines.h"
+#include "core/scene/scene.h"
+#include "core/strokes/strokes.h"
+#include "core/visibility/occlusion_source.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace inkline::core {
+
+struct PipelineOptions {
+    TrackerMode tracker = TrackerMode::kIncremental;
+    // The number of frames the run draws; 0: the scene's frame range. A run of one frame finds
+    // its feature edges by brute force whatever `tracker` says: the tracker's cone hierarchy
+    // costs about one brute-force pass per few hundred thousand faces to build and repays it
+    // only over later frames, and both give the same edges.
+    int frame_count = 0;
+    // Why the occlusion test is the one given, for FrameStats::visibility_reason. The default is
+    // what `inkline render --visibility MODE` says.
+    std::string visibility_reason = "asked for";
+    // Receives warnings about drawable but odd input (the camera inside the mesh's bounds, once
+    // a run); none: they are dropped.
+    std::function<void(const std::string& message)> warn{};
+    // Called as each step of run() ends, with its name: "load", "tracker build" (the cone
+    // hierarchy, on the tracker's first frame), "extract", "chain", "occlusion" (prepare: a BVH
+    // or tree built or refitted, a depth pass), "visibility", "strokes". For benchmarks that time
+    // the steps with clocks of their own; FrameStats::ms counts the tracker build in "extract"
+    // and the occlusion step in "visibility".
+    std::function<void(const char* step)> step_done{};
+};
+
+// One frame drawn.
+struct FrameResult {
+    FrameLines lines;      // camera, light, visible polylines (occluded ones too with lines.hidden), stats
+    FrameStrokes strokes;  // brush strokes of lines
+    const Mesh* mesh = nullptr;  // the frame's mesh (object space), valid until the next run()
+    glm::dmat4 world_from_object{1.0};
+};
+
+class FramePipeline {
+  public:
+    // `meshes` must outlive the pipeline; the scene is copied. The occlusion test is prepared
+    // for every frame (gl::DepthOcclusionSource, make_cpu_occlusion); it must not be null.
+    FramePipeline(const Scene& scene, MeshFrames& meshes, std::unique_ptr<OcclusionSource> occlusion,
+                  PipelineOptions options = {});
+    ~FramePipeline();
+    FramePipeline(const FramePipeline&) = delete;
+    FramePipeline& operator=(const FramePipeline&) = delete;
+
+    // Draws a frame. Stroke ids and coherence carry from one call to the next, so frames are
+    // drawn in order (a chunk of a sequence replays the frames before it). Throws InputError
+    // for a frame that cannot be drawn (its mesh file, its camera); the next call may go on.
+    FrameResult run(int frame);
+
+    // The extraction in use: options.tracker, or kBrute for a run of one frame.
+    TrackerMode tracker_mode() const { return tracker_mode_; }
+    const OcclusionSource& occlusion() const { return *occlusion_; }
+
+  private:
+    Scene scene_;
+    MeshFrames& meshes_;
+    std::unique_ptr<OcclusionSource> occlusion_;
+    PipelineOptions options_;
+    TrackerMode tracker_mode_;
+    std::optional<SilhouetteTracker> tracker_;
+    StrokeCoherence coherence_;
+    bool first_frame_ = true;
+    bool warned_inside_ = false;
+};
+
+}  // namespace inkline::core

@@ -1,0 +1,358 @@
+// SPDX-License-Identifier: MIT
+// core::FramePipeline: the frame-to-frame state the CLI relies on (tracker, occlusion test,
+// stroke coherence), the modes parsed from their names, and the steps it reports.
+#include "core/pipeline/frame_pipeline.h"
+
+#include "core/error.h"
+#include "core/mesh/mesh_frames.h"
+#include "core/visibility/occlusion_source.h"
+#include "core/visibility/raycast_visibility.h"
+#include "tests/support/obj.h"
+#include "tests/support/pipeline.h"
+#include "tests/support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace inkline {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Raycast and exact must agree on at least this fraction of the visible length (as in
+// raycast_visibility_test).
+constexpr double kMinAgreement = 0.999;
+
+// `b` moved by `offset`, appended to `a`.
+core::Mesh combine(core::Mesh a, const core::Mesh& b, const glm::vec3& offset) {
+    const uint32_t base = uint32_t(a.positions.size());
+    for (const glm::vec3& p : b.positions) a.positions.push_back(p + offset);
+    for (const glm::uvec3& t : b.triangles) a.triangles.push_back(t + glm::uvec3(base));
+    return a;
+}
+
+// A torus with a sphere in front of it, the sphere moved along x by `shift`: the sphere hides
+// parts of the torus's silhouettes and creases.
+core::Mesh torus_behind_sphere(float shift) {
+    return combine(test::torus(1.0, 0.35, 48, 24), test::uv_sphere(32, 16, 0.45), {shift, 0.3f, 1.2f});
+}
+
+const test::View kView{.eye = {0.4, 1.6, 4.2}, .fov_y_deg = 40.0, .size = 512};
+
+// A turntable of `frames` frames around `mesh` as seen from kView, 360 degrees in all.
+core::Scene turntable(const core::Mesh& mesh, int frames) {
+    core::Scene scene = test::scene_for(kView, mesh);
+    scene.last_frame = frames;
+    scene.camera.orbit = core::Rotation{.axis = {0.0, 1.0, 0.0}, .degrees = 360.0};
+    // The fitted near and far of one view do not hold all around: fitted per frame instead.
+    scene.camera.near.reset();
+    scene.camera.far.reset();
+    return scene;
+}
+
+// Every frame of `scene` through one pipeline.
+std::vector<core::FrameResult> run_all(const core::Scene& scene, core::MeshFrames& meshes,
+                                       std::unique_ptr<core::OcclusionSource> occlusion,
+                                       core::PipelineOptions options = {}) {
+    core::FramePipeline pipeline(scene, meshes, std::move(occlusion), std::move(options));
+    std::vector<core::FrameResult> out;
+    for (int frame = scene.first_frame; frame <= scene.last_frame; ++frame) out.push_back(pipeline.run(frame));
+    return out;
+}
+
+// Same polylines, bit for bit, in the same order.
+void expect_same_lines(const core::FrameLines& a, const core::FrameLines& b) {
+    ASSERT_EQ(a.strokes.size(), b.strokes.size()) << "frame " << a.frame;
+    for (size_t i = 0; i < a.strokes.size(); ++i) {
+        const core::Polyline &p = a.strokes[i], &q = b.strokes[i];
+        EXPECT_EQ(p.id, q.id);
+        EXPECT_EQ(p.kind, q.kind);
+        EXPECT_EQ(p.visible, q.visible);
+        EXPECT_EQ(p.closed, q.closed);
+        EXPECT_EQ(p.edges, q.edges);
+        EXPECT_EQ(p.points_px, q.points_px) << "frame " << a.frame << ", polyline " << i;
+    }
+    EXPECT_EQ(a.occluded.size(), b.occluded.size());
+}
+
+// Same strokes: ids, ends and outline geometry.
+void expect_same_strokes(const core::FrameStrokes& a, const core::FrameStrokes& b) {
+    ASSERT_EQ(a.strokes.size(), b.strokes.size());
+    for (size_t i = 0; i < a.strokes.size(); ++i) {
+        EXPECT_EQ(a.strokes[i].id, b.strokes[i].id);
+        EXPECT_EQ(a.strokes[i].points_px, b.strokes[i].points_px) << "stroke " << i;
+        EXPECT_EQ(a.strokes[i].hidden, b.strokes[i].hidden) << "stroke " << i;
+        EXPECT_EQ(a.strokes[i].width, b.strokes[i].width) << "stroke " << i;
+    }
+}
+
+double visible_length(const core::FrameLines& frame) {
+    double sum = 0.0;
+    for (const double px : frame.stats.visible_length_px) sum += px;
+    return sum;
+}
+
+// Passes each prepare() on to a real test and records what the pipeline said had changed.
+class RecordingOcclusion final : public core::OcclusionSource {
+  public:
+    RecordingOcclusion(core::VisibilityMode mode, std::vector<core::MeshChange>& r_changes)
+        : inner_(core::make_cpu_occlusion(mode)), changes_(r_changes) {}
+    const core::Occlusion& prepare(const core::Mesh& mesh, const core::EdgeTable& table,
+                                   const core::Projection& projection, core::MeshChange change) override {
+        changes_.push_back(change);
+        return inner_->prepare(mesh, table, projection, change);
+    }
+    core::VisibilityMode mode() const override { return inner_->mode(); }
+
+  private:
+    std::unique_ptr<core::OcclusionSource> inner_;
+    std::vector<core::MeshChange>& changes_;
+};
+
+TEST(Modes, ParseFromTheirNamesAndRefuseOthersNamingTheKey) {
+    for (const core::TrackerMode mode : {core::TrackerMode::kIncremental, core::TrackerMode::kBrute}) {
+        EXPECT_EQ(core::parse_tracker_mode(core::tracker_mode_name(mode), "--tracker"), mode);
+    }
+    for (const core::VisibilityMode mode :
+         {core::VisibilityMode::kGl, core::VisibilityMode::kRaycast, core::VisibilityMode::kExact}) {
+        EXPECT_EQ(core::parse_visibility_mode(core::visibility_mode_name(mode), "--visibility"), mode);
+    }
+    EXPECT_STREQ(core::tracker_mode_name(core::TrackerMode::kBrute), "brute");
+    EXPECT_STREQ(core::visibility_mode_name(core::VisibilityMode::kRaycast), "raycast");
+    try {
+        core::parse_tracker_mode("Brute", "--tracker");
+        ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "--tracker 'Brute': expected incremental or brute");
+    }
+    try {
+        core::parse_visibility_mode("auto", "visibility");
+        ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "visibility 'auto': expected gl, raycast or exact");
+    }
+    EXPECT_FALSE(core::visibility_mode_from_name("").has_value());
+    EXPECT_THROW(core::make_cpu_occlusion(core::VisibilityMode::kGl), InternalError);
+}
+
+TEST(FramePipeline, BruteAndIncrementalDrawTheSameLinesAndStrokes) {
+    const core::Mesh mesh = torus_behind_sphere(0.0f);
+    const core::Scene scene = turntable(mesh, 8);
+    core::MeshFrames brute_meshes(mesh), tracked_meshes(mesh);
+    const auto brute = run_all(scene, brute_meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact),
+                               {.tracker = core::TrackerMode::kBrute});
+    const auto tracked = run_all(scene, tracked_meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact),
+                                 {.tracker = core::TrackerMode::kIncremental});
+    size_t tested_brute = 0, tested_tracked = 0;
+    for (size_t f = 0; f < brute.size(); ++f) {
+        SCOPED_TRACE("frame " + std::to_string(f + 1));
+        expect_same_lines(brute[f].lines, tracked[f].lines);
+        expect_same_strokes(brute[f].strokes, tracked[f].strokes);
+        EXPECT_EQ(brute[f].lines.stats.tracker, "brute");
+        EXPECT_EQ(tracked[f].lines.stats.tracker, "incremental");
+        EXPECT_EQ(brute[f].lines.stats.feature_edges, tracked[f].lines.stats.feature_edges);
+        if (f > 0) {
+            tested_brute += brute[f].lines.stats.edges_tested;
+            tested_tracked += tracked[f].lines.stats.edges_tested;
+        }
+    }
+    EXPECT_LT(tested_tracked, tested_brute / 2) << "after the first frame the tracker tests fewer edges";
+}
+
+TEST(FramePipeline, ARunOfOneFrameFindsEdgesByBruteForce) {
+    const core::Mesh mesh = test::cube(1.0);
+    core::MeshFrames meshes(mesh);
+    core::Scene scene = test::scene_for(kView, mesh);  // frames 1..1
+    const auto exact = [] { return core::make_cpu_occlusion(core::VisibilityMode::kExact); };
+    EXPECT_EQ(core::FramePipeline(scene, meshes, exact()).tracker_mode(), core::TrackerMode::kBrute);
+    EXPECT_EQ(core::FramePipeline(scene, meshes, exact(), {.frame_count = 2}).tracker_mode(),
+              core::TrackerMode::kIncremental);
+    scene.last_frame = 48;
+    EXPECT_EQ(core::FramePipeline(scene, meshes, exact()).tracker_mode(), core::TrackerMode::kIncremental);
+    EXPECT_EQ(core::FramePipeline(scene, meshes, exact(), {.frame_count = 1}).tracker_mode(), core::TrackerMode::kBrute);
+    core::FramePipeline one(scene, meshes, exact(), {.frame_count = 1});
+    EXPECT_EQ(one.run(5).lines.stats.tracker, "brute");
+}
+
+TEST(FramePipeline, RaycastAndExactAgreeOnASphereInFrontOfATorus) {
+    if (!core::raycast_available()) GTEST_SKIP() << "this build has no Embree";
+    const core::Mesh mesh = torus_behind_sphere(0.0f);
+    const core::Scene scene = turntable(mesh, 6);
+    core::MeshFrames exact_meshes(mesh), raycast_meshes(mesh);
+    const auto exact = run_all(scene, exact_meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+    const auto raycast = run_all(scene, raycast_meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast));
+    for (size_t f = 0; f < exact.size(); ++f) {
+        SCOPED_TRACE("frame " + std::to_string(f + 1));
+        EXPECT_EQ(exact[f].lines.stats.visibility, "exact");
+        EXPECT_EQ(raycast[f].lines.stats.visibility, "raycast");
+        EXPECT_EQ(raycast[f].lines.stats.visibility_reason, "asked for");
+        EXPECT_TRUE(raycast[f].lines.stats.gl_context.empty());
+        EXPECT_FALSE(exact[f].lines.occluded.empty()) << "the sphere hides part of the torus";
+        // Float rays against exact segment queries: the visible length agrees to within
+        // kMinAgreement, as the visibility tests ask of the ray-cast test.
+        const double length = visible_length(exact[f].lines);
+        EXPECT_GT(length, 1000.0);
+        EXPECT_NEAR(visible_length(raycast[f].lines), length, (1.0 - kMinAgreement) * length);
+        EXPECT_EQ(raycast[f].lines.strokes.size(), exact[f].lines.strokes.size());
+        EXPECT_EQ(raycast[f].strokes.strokes.size(), exact[f].strokes.strokes.size());
+    }
+}
+
+TEST(FramePipeline, StaticMeshPreparesTheOcclusionTestOnceAndLaterFramesReuseIt) {
+    std::vector<core::MeshChange> changes;
+    const core::Mesh mesh = torus_behind_sphere(0.0f);
+    core::MeshFrames meshes(mesh);
+    run_all(turntable(mesh, 3), meshes,
+            std::make_unique<RecordingOcclusion>(core::VisibilityMode::kExact, changes));
+    EXPECT_EQ(changes, (std::vector<core::MeshChange>{core::MeshChange::kTopology, core::MeshChange::kNone,
+                                                       core::MeshChange::kNone}));
+}
+
+// A deforming sequence: the sphere slides across the torus from frame to frame, so each frame's
+// occlusion differs; drawn frame by frame through one pipeline, every frame must be what a fresh
+// pipeline draws from that frame's mesh alone.
+class DeformingSequence : public ::testing::Test {
+  protected:
+    fs::path dir = test::fresh_temp_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    void TearDown() override { fs::remove_all(dir); }
+
+    static constexpr int kFrames = 4;
+    static core::Mesh mesh_at(int frame) { return torus_behind_sphere(-0.9f + 0.6f * float(frame - 1)); }
+
+    core::Scene scene() {
+        for (int frame = 1; frame <= kFrames; ++frame) {
+            test::write_obj(dir / ("f" + std::to_string(frame) + ".obj"), mesh_at(frame));
+        }
+        core::Scene s = test::scene_for(kView, mesh_at(1));
+        s.mesh = {.path = dir / "f%d.obj", .is_sequence = true};
+        s.last_frame = kFrames;
+        s.camera.near.reset();
+        s.camera.far.reset();
+        return s;
+    }
+
+    void check(core::VisibilityMode mode) {
+        const core::Scene sequence = scene();
+        std::vector<core::MeshChange> changes;
+        core::MeshFrames meshes(sequence.mesh, sequence.first_frame);
+        const auto drawn = run_all(sequence, meshes, std::make_unique<RecordingOcclusion>(mode, changes));
+        EXPECT_EQ(changes, (std::vector<core::MeshChange>{core::MeshChange::kTopology, core::MeshChange::kPositions,
+                                                           core::MeshChange::kPositions, core::MeshChange::kPositions}));
+        double first_length = 0.0;
+        for (int frame = 1; frame <= kFrames; ++frame) {
+            SCOPED_TRACE("frame " + std::to_string(frame));
+            // The same frame alone: its own mesh, a fresh occlusion test.
+            core::Scene alone = sequence;
+            alone.first_frame = alone.last_frame = frame;
+            core::MeshFrames alone_meshes(mesh_at(frame));
+            core::FramePipeline fresh(alone, alone_meshes, core::make_cpu_occlusion(mode));
+            const core::FrameResult reference = fresh.run(frame);
+            const core::FrameLines& lines = drawn[size_t(frame - 1)].lines;
+            if (mode == core::VisibilityMode::kExact) {
+                // The tree is built again for new positions: the very same answer.
+                EXPECT_EQ(lines.strokes.size(), reference.lines.strokes.size());
+                EXPECT_EQ(lines.stats.visible_length_px, reference.lines.stats.visible_length_px);
+            } else {
+                // A refitted BVH and a new one answer alike up to float rounding.
+                const double length = visible_length(reference.lines);
+                EXPECT_NEAR(visible_length(lines), length, (1.0 - kMinAgreement) * length);
+            }
+            if (frame == 1) first_length = visible_length(lines);
+        }
+        EXPECT_GT(std::abs(visible_length(drawn.back().lines) - first_length), 20.0)
+            << "the sliding sphere must change what is hidden";
+    }
+};
+
+TEST_F(DeformingSequence, ExactTestIsBuiltAgainForEachFramesPositions) { check(core::VisibilityMode::kExact); }
+
+TEST_F(DeformingSequence, RaycastBvhIsRefittedToEachFramesPositions) {
+    if (!core::raycast_available()) GTEST_SKIP() << "this build has no Embree";
+    check(core::VisibilityMode::kRaycast);
+}
+
+TEST(FramePipeline, OccludedPartsAreSetAsideWithoutLinesHiddenAndOutputWithIt) {
+    const core::Mesh mesh = torus_behind_sphere(0.0f);
+    core::Scene scene = test::scene_for(kView, mesh);
+    core::MeshFrames meshes(mesh);
+    const core::FrameResult shown = core::FramePipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact)).run(1);
+    scene.lines.hidden = true;
+    const core::FrameResult all = core::FramePipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact)).run(1);
+    size_t hidden = 0;
+    for (const core::Polyline& p : shown.lines.strokes) EXPECT_TRUE(p.visible);
+    for (const core::Polyline& p : all.lines.strokes) hidden += !p.visible;
+    EXPECT_GT(shown.lines.occluded.size(), 0u) << "kept for gap bridging";
+    EXPECT_EQ(hidden, shown.lines.occluded.size());
+    EXPECT_TRUE(all.lines.occluded.empty());
+    EXPECT_EQ(all.lines.strokes.size(), shown.lines.strokes.size() + shown.lines.occluded.size());
+    for (size_t i = 0; i < shown.lines.strokes.size(); ++i) EXPECT_EQ(shown.lines.strokes[i].id, i) << "numbered again";
+    EXPECT_EQ(shown.lines.stats.visible_length_px, all.lines.stats.visible_length_px);
+}
+
+TEST(FramePipeline, ReportsItsStepsAndStageTimesAndTheFramesMesh) {
+    const core::Mesh mesh = test::torus(1.0, 0.35, 48, 24);
+    core::MeshFrames meshes(mesh);
+    std::vector<std::string> steps;
+    core::FramePipeline pipeline(turntable(mesh, 4), meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact),
+                                 {.step_done = [&](const char* step) { steps.push_back(step); }});
+    const core::FrameResult first = pipeline.run(1);
+    EXPECT_EQ(steps, (std::vector<std::string>{"load", "tracker build", "extract", "chain", "occlusion", "visibility",
+                                               "strokes"}));
+    steps.clear();
+    const core::FrameResult second = pipeline.run(2);
+    EXPECT_EQ(steps, (std::vector<std::string>{"load", "extract", "chain", "occlusion", "visibility", "strokes"}));
+    std::vector<std::string> stages;
+    for (const auto& [stage, ms] : second.lines.stats.ms) {
+        stages.push_back(stage);
+        EXPECT_GE(ms, 0.0);
+    }
+    EXPECT_EQ(stages, (std::vector<std::string>{"load", "extract", "chain", "visibility", "strokes"}));
+    EXPECT_EQ(second.mesh, &meshes.at(2));
+    EXPECT_EQ(second.lines.frame, 2);
+    EXPECT_EQ(second.lines.stats.faces, mesh.triangles.size());
+    EXPECT_EQ(second.lines.stats.edges, meshes.edges().edge_count());
+    EXPECT_FALSE(second.strokes.strokes.empty());
+    // Stroke coherence carries frame 1's strokes into frame 2.
+    EXPECT_FALSE(first.strokes.strokes.empty());
+    EXPECT_EQ(first.strokes.stats.inherited, 0u);
+    EXPECT_GT(second.strokes.stats.inherited, 0u);
+}
+
+TEST(FramePipeline, WarnsOnceWhenTheCameraIsInsideTheMeshBounds) {
+    const core::Mesh mesh = test::cube(2.0);
+    core::Scene scene = test::scene_for({.eye = {0.5, 0.2, 0.3}, .target = {0.0, 0.0, -3.0}}, mesh);
+    scene.last_frame = 3;
+    core::MeshFrames meshes(mesh);
+    std::vector<std::string> warnings;
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact),
+                                 {.warn = [&](const std::string& w) { warnings.push_back(w); }});
+    for (int frame = 1; frame <= 3; ++frame) pipeline.run(frame);
+    EXPECT_EQ(warnings, (std::vector<std::string>{
+                            "frame 1: the camera is inside the mesh's bounds; lines may be hidden"}));
+}
+
+TEST(FramePipeline, AFrameThatCannotBeReadThrowsAndTheNextFrameIsDrawn) {
+    const fs::path dir = test::fresh_temp_dir("AFrameThatCannotBeReadThrowsAndTheNextFrameIsDrawn");
+    test::write_obj(dir / "f1.obj", test::cube(1.0));
+    test::write_obj(dir / "f2.obj", test::uv_sphere(16, 8, 1.0));  // another topology
+    test::write_obj(dir / "f3.obj", test::cube(1.2));
+    core::Scene scene = test::scene_for(kView, test::cube(1.2));
+    scene.mesh = {.path = dir / "f%d.obj", .is_sequence = true};
+    scene.last_frame = 3;
+    core::MeshFrames meshes(scene.mesh, 1);
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+    EXPECT_FALSE(pipeline.run(1).lines.strokes.empty());
+    EXPECT_THROW(pipeline.run(2), InputError);
+    const core::FrameResult third = pipeline.run(3);
+    EXPECT_EQ(third.lines.frame, 3);
+    EXPECT_FALSE(third.lines.strokes.empty());
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace inkline
