@@ -4,6 +4,7 @@
 #include "cli/farm.h"
 #include "cli/render.h"
 #include "core/error.h"
+#include "core/version.h"
 #include "export/atomic_file.h"
 #include "gl/context.h"
 
@@ -86,7 +87,7 @@ void report(const char* prefix, const std::string& message) {
 int main(int argc, char** argv) {
     CLI::App app{"inkline: brush-stroked line art from 3D meshes and their animation"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "inkline 0.1.0");
+    app.set_version_flag("--version", "inkline " + std::string(inkline::kVersion));
 
     inkline::cli::RenderArgs render;
     CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (.json) or a mesh as a turntable");
