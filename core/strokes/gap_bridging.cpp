@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "core/internal/point_grid.h"
+#include "core/internal/union_find.h"
 #include "core/strokes/stroke_path.h"
 
 namespace inkline::core {
@@ -175,12 +176,7 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
     }
 
     // Which stroke each original stroke has been merged into, as strokes merge in gap order.
-    std::vector<size_t> owner(r_strokes.size());
-    for (size_t s = 0; s < owner.size(); ++s) owner[s] = s;
-    auto find = [&](size_t s) {
-        while (owner[s] != s) s = owner[s] = owner[owner[s]];
-        return s;
-    };
+    internal::UnionFind<size_t> owner(r_strokes.size());
     size_t bridged = 0;
     for (size_t i = 0; i < gaps.size(); ++i) {
         const Gap& gap = gaps[i];
@@ -197,7 +193,7 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
         // The strokes now holding each side, oriented a -> gap -> b. A gap between a stroke's
         // own two ends stays open: a loop closed only through a flickering dip would gain and
         // lose its start point (and loop-ness) from frame to frame.
-        const size_t sa = find(gap.a.stroke), sb = find(gap.b.stroke);
+        const size_t sa = owner.find(gap.a.stroke), sb = owner.find(gap.b.stroke);
         if (sa == sb) continue;
         StrokeGeometry& a = r_strokes[sa];
         StrokeGeometry& b = r_strokes[sb];
@@ -211,7 +207,7 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
         append(a, occluded[gap.occluded], true);
         a.ends[1] = b.ends[1];
         append(a, b, false);
-        owner[sb] = sa;
+        owner.merge_into(sa, sb);
         b = StrokeGeometry{};  // merged into a
         r_used[gap.occluded] = 1;
         ++bridged;
@@ -416,25 +412,20 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
 
     // Exact paths first, then folds; shortest first; each end, fragment and occluded segment is
     // used once.
-    std::vector<size_t> owner(r_strokes.size());
-    for (size_t s = 0; s < owner.size(); ++s) owner[s] = s;
-    auto find = [&](size_t s) {
-        while (owner[s] != s) s = owner[s] = owner[owner[s]];
-        return s;
-    };
+    internal::UnionFind<size_t> owner(r_strokes.size());  // which stroke each was merged into
     std::vector<uint8_t> consumed(r_strokes.size(), 0);
     std::set<std::pair<size_t, size_t>>& segment_taken = r_use.segments;
     size_t joined = 0;
     for (const Join& join : joins) {
         const MemoryEnd &ea = ends[join.a], &eb = ends[join.b];
         if (consumed[ea.stroke] || consumed[eb.stroke]) continue;
-        const size_t sa = find(ea.stroke), sb = find(eb.stroke);
+        const size_t sa = owner.find(ea.stroke), sb = owner.find(eb.stroke);
         if (sa == sb) continue;
         bool free = true;
         for (const Arc& arc : join.path) {
             if (arc.fragment) {
                 // Still a stroke of its own, and not one of the two being joined.
-                free = free && !consumed[arc.source] && find(arc.source) == arc.source && arc.source != sa &&
+                free = free && !consumed[arc.source] && owner.is_root(arc.source) && arc.source != sa &&
                        arc.source != sb;
             } else {
                 free = free && !segment_taken.contains({arc.source, arc.segment});
@@ -454,7 +445,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
             follow(path, arc, r_strokes, occluded);
             if (arc.fragment) {
                 consumed[arc.source] = 1;
-                owner[arc.source] = sa;
+                owner.merge_into(sa, arc.source);
                 r_strokes[arc.source] = StrokeGeometry{};
             } else {
                 segment_taken.insert({arc.source, arc.segment});
@@ -470,7 +461,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
         if (path.edges.size() > 0) append(a, path, false);
         a.ends[1] = b.ends[1];
         append(a, b, false);
-        owner[sb] = sa;
+        owner.merge_into(sa, sb);
         b = StrokeGeometry{};
         ++joined;
     }
