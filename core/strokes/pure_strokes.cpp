@@ -11,6 +11,8 @@
 #include <set>
 #include <utility>
 
+#include "core/internal/point_grid.h"
+#include "core/internal/union_find.h"
 #include "core/strokes/stroke_path.h"
 
 namespace inkline::core {
@@ -180,65 +182,35 @@ struct EndRef {
     glm::dvec2 p;
 };
 
-// Segments of all pieces on a uniform grid, to find what passes near a stroke end.
+// Segments of all pieces on a grid (by their bounding boxes), to find what passes near a stroke end.
 class SegmentGrid {
   public:
-    explicit SegmentGrid(const std::vector<Piece>& pieces) : pieces_(pieces) {
+    explicit SegmentGrid(const std::vector<Piece>& pieces) : pieces_(pieces), grid_(kGridCellPx) {
         for (size_t p = 0; p < pieces.size(); ++p) {
             const auto& pts = pieces[p].geometry.points_px;
-            for (size_t s = 0; s + 1 < pts.size(); ++s) {
-                const glm::ivec2 lo = cell(glm::min(pts[s], pts[s + 1])), hi = cell(glm::max(pts[s], pts[s + 1]));
-                for (int y = lo.y; y <= hi.y; ++y) {
-                    for (int x = lo.x; x <= hi.x; ++x) entries_.push_back({key(x, y), p, s});
-                }
-            }
+            for (size_t s = 0; s + 1 < pts.size(); ++s) grid_.add_box(glm::min(pts[s], pts[s + 1]), glm::max(pts[s], pts[s + 1]), {p, s});
         }
-        std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
-            return std::tie(a.key, a.piece, a.segment) < std::tie(b.key, b.piece, b.segment);
-        });
+        grid_.sort();
     }
 
     // True when a segment of a piece other than `self` passes within radius of p.
     bool passes_near(const glm::dvec2& p, double radius, size_t self) const {
-        const glm::ivec2 lo = cell(p - radius), hi = cell(p + radius);
-        for (int y = lo.y; y <= hi.y; ++y) {
-            for (int x = lo.x; x <= hi.x; ++x) {
-                const int64_t k = key(x, y);
-                auto it = std::lower_bound(entries_.begin(), entries_.end(), k,
-                                           [](const Entry& e, int64_t v) { return e.key < v; });
-                for (; it != entries_.end() && it->key == k; ++it) {
-                    if (it->piece == self) continue;
-                    const auto& pts = pieces_[it->piece].geometry.points_px;
-                    if (distance_to_segment(p, pts[it->segment], pts[it->segment + 1]) <= radius) return true;
-                }
-            }
-        }
-        return false;
+        return grid_.any_in_box(p - radius, p + radius, [&](const std::pair<size_t, size_t>& ps) {
+            const auto [piece, segment] = ps;
+            if (piece == self) return false;
+            const auto& pts = pieces_[piece].geometry.points_px;
+            return distance_to_segment(p, pts[segment], pts[segment + 1]) <= radius;
+        });
     }
 
   private:
-    struct Entry {
-        int64_t key;
-        size_t piece, segment;
-    };
-    static glm::ivec2 cell(const glm::dvec2& p) {
-        return {int(std::floor(std::clamp(p.x, -1e8, 1e8) / kGridCellPx)),
-                int(std::floor(std::clamp(p.y, -1e8, 1e8) / kGridCellPx))};
-    }
-    static int64_t key(int x, int y) { return (int64_t(x) << 32) ^ int64_t(uint32_t(y)); }
-
     const std::vector<Piece>& pieces_;
-    std::vector<Entry> entries_;
+    internal::PointGrid<std::pair<size_t, size_t>> grid_;  // (piece, segment)
 };
 
 // Groups polyline ends that touch (within kTouchPx): union-find over a sweep in x.
 std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends) {
-    std::vector<size_t> parent(ends.size());
-    std::iota(parent.begin(), parent.end(), size_t(0));
-    auto find = [&](size_t i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-    };
+    internal::UnionFind<size_t> touching(ends.size());
     std::vector<size_t> order(ends.size());
     std::iota(order.begin(), order.end(), size_t(0));
     std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
@@ -248,8 +220,7 @@ std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends
     size_t kept = 0;
     for (size_t k = 0; k < order.size(); ++k) {
         if (kept > 0 && ends[order[kept - 1]].p == ends[order[k]].p) {
-            const size_t a = find(order[kept - 1]), b = find(order[k]);
-            parent[std::max(a, b)] = std::min(a, b);
+            touching.unite(order[kept - 1], order[k]);
         } else {
             order[kept++] = order[k];
         }
@@ -257,14 +228,12 @@ std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends
     order.resize(kept);
     for (size_t i = 0; i < order.size(); ++i) {
         for (size_t j = i + 1; j < order.size() && ends[order[j]].p.x - ends[order[i]].p.x <= kTouchPx; ++j) {
-            if (glm::length(ends[order[i]].p - ends[order[j]].p) <= kTouchPx) {
-                const size_t a = find(order[i]), b = find(order[j]);
-                parent[std::max(a, b)] = std::min(a, b);
-            }
+            if (glm::length(ends[order[i]].p - ends[order[j]].p) <= kTouchPx) touching.unite(order[i], order[j]);
         }
     }
     std::vector<std::vector<size_t>> groups(ends.size());
-    for (size_t i = 0; i < ends.size(); ++i) groups[find(i)].push_back(i);
+    // Groups by their root, the least end in each: in order of their first end.
+    for (size_t i = 0; i < ends.size(); ++i) groups[touching.find(i)].push_back(i);
     std::erase_if(groups, [](const std::vector<size_t>& g) { return g.empty(); });
     return groups;
 }
