@@ -17,7 +17,7 @@
 #include "core/mesh/mesh.h"
 #include "core/mesh/topology.h"
 #include "core/strokes/brush_style.h"
-#include "core/strokes/pure_strokes.h"
+#include "core/strokes/stroke_geometry.h"
 #include "core/strokes/stroke_path.h"
 
 namespace inkline::core {

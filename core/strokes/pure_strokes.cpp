@@ -13,6 +13,7 @@
 
 #include "core/internal/point_grid.h"
 #include "core/internal/union_find.h"
+#include "core/strokes/internal/splice.h"
 #include "core/strokes/stroke_path.h"
 
 namespace inkline::core {
@@ -188,7 +189,8 @@ class SegmentGrid {
     explicit SegmentGrid(const std::vector<Piece>& pieces) : pieces_(pieces), grid_(kGridCellPx) {
         for (size_t p = 0; p < pieces.size(); ++p) {
             const auto& pts = pieces[p].geometry.points_px;
-            for (size_t s = 0; s + 1 < pts.size(); ++s) grid_.add_box(glm::min(pts[s], pts[s + 1]), glm::max(pts[s], pts[s + 1]), {p, s});
+            for (size_t s = 0; s + 1 < pts.size(); ++s)
+                grid_.add_box(glm::min(pts[s], pts[s + 1]), glm::max(pts[s], pts[s + 1]), {p, s});
         }
         grid_.sort();
     }
@@ -362,8 +364,9 @@ class Linker {
             if (linked[i]) continue;
             size_t best = kNone;
             if (big) {
-                best = big->smoothest(i, turn_, [&](size_t j) { return can_join(members[i], members[j]); },
-                                      [&](size_t j) { return turn(members[i], members[j]); });
+                best = big->smoothest(
+                    i, turn_, [&](size_t j) { return can_join(members[i], members[j]); },
+                    [&](size_t j) { return turn(members[i], members[j]); });
             } else {
                 for (size_t j : order) {
                     if (j == i || linked[j] || !can_join(members[i], members[j])) continue;
@@ -403,12 +406,12 @@ class Linker {
 
   private:
     StrokeGeometry walk(size_t first, int enter, std::vector<uint8_t>& used) const {
-        StrokeGeometry out;
+        StrokeGeometry out = pieces_[first].geometry;
+        if (enter == 1) out.reverse();
+        used[first] = 1;
         size_t p = first;
         int e = enter;
         while (true) {
-            used[p] = 1;
-            append(out, pieces_[p].geometry, e == 1);
             const Link next = links_[p][size_t(1 - e)];
             if (next.piece == kNone) {
                 out.ends[1] = pieces_[p].geometry.ends[size_t(1 - e)];
@@ -421,28 +424,11 @@ class Linker {
             }
             p = next.piece;
             e = next.end;
+            used[p] = 1;
+            internal::splice(out, pieces_[p].geometry, e == 1);
         }
         if (!out.closed) out.ends[0] = pieces_[first].geometry.ends[size_t(enter)];
         return out;
-    }
-
-    static void append(StrokeGeometry& out, const StrokeGeometry& piece, bool reversed) {
-        const bool first = out.points_px.empty();
-        if (first) {
-            out.kind = piece.kind;
-            out.visible = piece.visible;
-            out.closed = piece.closed;
-            out.ends = piece.ends;
-            out.pure_strokes = 0;
-        }
-        ++out.pure_strokes;
-        const size_t n = piece.points_px.size();
-        for (size_t i = first ? 0 : 1; i < n; ++i) {
-            const size_t k = reversed ? n - 1 - i : i;
-            out.points_px.push_back(piece.points_px[k]);
-            out.points_world.push_back(piece.points_world[k]);
-        }
-        for (size_t i = 0; i + 1 < n; ++i) out.edges.push_back(piece.edges[reversed ? n - 2 - i : i]);
     }
 
     std::vector<Piece>& pieces_;
@@ -451,52 +437,6 @@ class Linker {
 };
 
 }  // namespace
-
-const char* stroke_end_name(StrokeEnd end) {
-    switch (end) {
-        case StrokeEnd::kFree:
-            return "S";
-        case StrokeEnd::kCorner:
-            return "A";
-        case StrokeEnd::kJunction:
-            return "C";
-        case StrokeEnd::kLoop:
-            return "L";
-    }
-    return "?";
-}
-
-double StrokeGeometry::length_px() const {
-    double len = 0.0;
-    for (size_t i = 1; i < points_px.size(); ++i) len += glm::length(points_px[i] - points_px[i - 1]);
-    return len;
-}
-
-double StrokeGeometry::visible_length_px() const {
-    double len = 0.0;
-    for (size_t i = 1; i < points_px.size(); ++i) {
-        if (i - 1 >= hidden.size() || !hidden[i - 1]) len += glm::length(points_px[i] - points_px[i - 1]);
-    }
-    return len;
-}
-
-std::vector<size_t> StrokeGeometry::drawn_indices() const {
-    std::vector<size_t> out;
-    for (size_t k = 0; k < points_px.size(); ++k) {
-        const bool hidden_before = k > 0 && k - 1 < hidden.size() && hidden[k - 1];
-        const bool hidden_after = k < hidden.size() && hidden[k];
-        if (!hidden_before || !hidden_after) out.push_back(k);
-    }
-    return out;
-}
-
-void StrokeGeometry::reverse() {
-    std::reverse(points_px.begin(), points_px.end());
-    std::reverse(points_world.begin(), points_world.end());
-    std::reverse(edges.begin(), edges.end());
-    std::reverse(hidden.begin(), hidden.end());
-    std::swap(ends[0], ends[1]);
-}
 
 std::vector<double> turn_angles_deg(const std::vector<glm::dvec2>& points_px, bool closed, double window_px) {
     std::vector<double> out(points_px.size(), 0.0);

@@ -9,9 +9,13 @@
 #include <optional>
 
 #include "core/internal/parallel.h"
+#include "core/strokes/bridge_gaps.h"
 #include "core/strokes/brush.h"
-#include "core/strokes/gap_bridging.h"
+#include "core/strokes/occluded_gaps.h"
+#include "core/strokes/rejoin_strokes.h"
+#include "core/strokes/reversals.h"
 #include "core/strokes/stroke_path.h"
+#include "core/strokes/t_junctions.h"
 
 namespace inkline::core {
 namespace {
@@ -115,9 +119,9 @@ void restart_loop(StrokeGeometry& g, size_t s, double t, const Projection& proje
     std::vector<glm::dvec2> px;
     std::vector<glm::dvec3> world;
     std::vector<uint32_t> edges;
-    std::vector<uint8_t> hidden;
-    auto hide = [&](size_t k) {
-        if (!g.hidden.empty()) hidden.push_back(g.hidden[k % m]);
+    std::vector<uint8_t> bridged;
+    auto mark = [&](size_t k) {
+        if (!g.bridged.empty()) bridged.push_back(g.bridged[k % m]);
     };
     auto push = [&](size_t k) {
         px.push_back(g.points_px[k % m]);
@@ -125,7 +129,7 @@ void restart_loop(StrokeGeometry& g, size_t s, double t, const Projection& proje
     };
     if (t == 0.0) {
         for (size_t k = s; k <= s + m; ++k) push(k);
-        for (size_t k = s; k < s + m; ++k) edges.push_back(g.edges[k % m]), hide(k);
+        for (size_t k = s; k < s + m; ++k) edges.push_back(g.edges[k % m]), mark(k);
     } else {
         // Image fraction t to world fraction: 1/w is linear in the image.
         const glm::dvec3 a = g.points_world[s], b = g.points_world[s + 1];
@@ -139,9 +143,9 @@ void restart_loop(StrokeGeometry& g, size_t s, double t, const Projection& proje
         for (size_t k = s + 1; k <= s + m; ++k) push(k);
         px.push_back(start_px);
         world.push_back(start_world);
-        for (size_t k = s; k <= s + m; ++k) edges.push_back(g.edges[k % m]), hide(k);
+        for (size_t k = s; k <= s + m; ++k) edges.push_back(g.edges[k % m]), mark(k);
     }
-    g.hidden = std::move(hidden);
+    g.bridged = std::move(bridged);
     g.points_px = std::move(px);
     g.points_world = std::move(world);
     g.edges = std::move(edges);
@@ -204,7 +208,7 @@ Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint
     stroke.points_px = std::move(g.points_px);
     stroke.points_world = std::move(g.points_world);
     stroke.edges = std::move(g.edges);
-    if (std::find(g.hidden.begin(), g.hidden.end(), uint8_t(1)) != g.hidden.end()) stroke.hidden = std::move(g.hidden);
+    if (std::find(g.bridged.begin(), g.bridged.end(), uint8_t(1)) != g.bridged.end()) stroke.hidden = std::move(g.bridged);
     return stroke;
 }
 
