@@ -36,8 +36,8 @@ int64_t majority(const std::vector<int64_t>& ids) {
 
 size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vector<StrokeGeometry>& occluded,
                           const StrokeCoherence& coherence, const GapBridgeOptions& options,
-                          std::vector<uint8_t>& r_used) {
-    r_used.assign(occluded.size(), 0);
+                          std::vector<uint8_t>& r_bridged_whole) {
+    r_bridged_whole.assign(occluded.size(), 0);
     // Open ends of visible strokes by their exact point: a gap's ends are the same cut points.
     std::map<internal::PointKey, std::vector<EndRef>> ends;
     for (size_t s = 0; s < r_strokes.size(); ++s) {
@@ -123,7 +123,7 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
         internal::splice(a, b);
         owner.merge_into(sa, sb);
         b = StrokeGeometry{};  // merged into a
-        r_used[gap.occluded] = 1;
+        r_bridged_whole[gap.occluded] = 1;
         ++bridged;
     }
     return bridged;

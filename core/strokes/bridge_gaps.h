@@ -20,11 +20,11 @@ namespace inkline::core {
 // geometry stays honest. Which gaps are bridged depends on last frame's strokes (coherence):
 // where both sides continue one stroke of last frame, up to max_gap_px; where they continued two,
 // up to split_gap_px; elsewhere up to new_gap_px. A gap between one stroke's own ends stays.
-// Occluded strokes used as bridges are marked in r_used (sized to occluded); a stroke merged into
-// another is left empty (no points) in place.
+// Occluded strokes used as bridges are marked in r_bridged_whole (sized to occluded); a stroke
+// merged into another is left empty (no points) in place.
 // Deterministic. Returns the number of gaps bridged.
 size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vector<StrokeGeometry>& occluded,
                           const StrokeCoherence& coherence, const GapBridgeOptions& options,
-                          std::vector<uint8_t>& r_used);
+                          std::vector<uint8_t>& r_bridged_whole);
 
 }  // namespace inkline::core

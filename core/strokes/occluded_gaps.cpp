@@ -13,7 +13,7 @@ GapBridgeOptions gap_bridge_options(double width_max_px) {
     return o;
 }
 
-std::vector<StrokeGeometry> occluded_runs(const std::vector<Polyline>& occluded) {
+std::vector<StrokeGeometry> occluded_parts(const std::vector<Polyline>& occluded) {
     std::vector<StrokeGeometry> out;
     out.reserve(occluded.size());
     for (const Polyline& line : occluded) out.push_back(geometry_of(line));
@@ -24,15 +24,15 @@ std::vector<Polyline> occluded_left(const std::vector<Polyline>& occluded, const
     std::vector<Polyline> out;
     for (size_t h = 0; h < occluded.size(); ++h) {
         const Polyline& line = occluded[h];
-        if (h < use.runs.size() && use.runs[h]) continue;
-        const auto first = use.segments.lower_bound({h, 0});
-        if (first == use.segments.end() || first->first != h) {
+        if (h < use.bridged_whole.size() && use.bridged_whole[h]) continue;
+        const auto first = use.segments_taken.lower_bound({h, 0});
+        if (first == use.segments_taken.end() || first->first != h) {
             out.push_back(line);
             continue;
         }
         // Runs of untaken segments; a loop cut open starts after its first taken segment.
         const size_t n = line.edges.size();
-        auto taken = [&](size_t k) { return use.segments.contains({h, k}); };
+        auto taken = [&](size_t k) { return use.segments_taken.contains({h, k}); };
         Polyline piece;
         auto flush = [&] {
             if (!piece.edges.empty()) out.push_back(std::move(piece));

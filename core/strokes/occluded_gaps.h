@@ -44,13 +44,13 @@ GapBridgeOptions gap_bridge_options(double width_max_px);
 
 // The occluded polylines as they are, one geometry each (not split at corners: a gap that folds
 // back on itself, as a zig-zag silhouette's hidden fold does, is still one gap).
-std::vector<StrokeGeometry> occluded_runs(const std::vector<Polyline>& occluded);
+std::vector<StrokeGeometry> occluded_parts(const std::vector<Polyline>& occluded);
 
 // What the joins took of the occluded parts: whole parts bridged as gaps, and single segments of
 // the paths that joined split strokes again.
 struct OccludedUse {
-    std::vector<uint8_t> runs;                     // per occluded part: 1 when bridged whole
-    std::set<std::pair<size_t, size_t>> segments;  // (occluded part, segment) taken by a path
+    std::vector<uint8_t> bridged_whole;                  // per occluded part: 1 when bridged whole
+    std::set<std::pair<size_t, size_t>> segments_taken;  // (occluded part, segment) taken by a path
 };
 
 // The occluded polylines less what the joins took (use): each untouched polyline as it is, the

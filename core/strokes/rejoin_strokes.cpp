@@ -135,7 +135,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
     JoinGraph graph;
     for (size_t h = 0; h < occluded.size(); ++h) {
         const StrokeGeometry& o = occluded[h];
-        if (o.visible || (h < r_use.runs.size() && r_use.runs[h])) continue;
+        if (o.visible || (h < r_use.bridged_whole.size() && r_use.bridged_whole[h])) continue;
         for (size_t k = 0; k + 1 < o.points_px.size(); ++k) {
             graph.link(o.points_px[k], o.points_px[k + 1], glm::length(o.points_px[k + 1] - o.points_px[k]),
                        {.source = h, .segment = k});
@@ -233,7 +233,7 @@ size_t rejoin_split_strokes(std::vector<StrokeGeometry>& r_strokes, const std::v
     // used once.
     internal::UnionFind<size_t> owner(r_strokes.size());  // which stroke each was merged into
     std::vector<uint8_t> consumed(r_strokes.size(), 0);
-    std::set<std::pair<size_t, size_t>>& segment_taken = r_use.segments;
+    std::set<std::pair<size_t, size_t>>& segment_taken = r_use.segments_taken;
     size_t joined = 0;
     for (const Join& join : joins) {
         const MemoryEnd &ea = ends[join.a], &eb = ends[join.b];

@@ -34,8 +34,8 @@ TEST(OccludedLeft, WhatTheJoinsTookIsLeftOut) {
         polyline({{7, 7}, {8, 8}}, false),                                  // untouched
     };
     core::OccludedUse use;
-    use.runs = {0, 1, 0, 0};
-    use.segments = {{0, 2}, {2, 0}};
+    use.bridged_whole = {0, 1, 0, 0};
+    use.segments_taken = {{0, 2}, {2, 0}};
     const std::vector<core::Polyline> left = core::occluded_left(occluded, use);
     ASSERT_EQ(left.size(), 4u);
     EXPECT_EQ(left[0].points_px, (std::vector<dvec2>{{0, 0}, {1, 0}, {2, 0}}));
