@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Pure strokes: a frame's visible polylines split at sharp image-space turns, each end typed
 // S (free), A (sharp corner), C (junction) or L (loop), then linked through junctions where the
-// longest stroke continues most smoothly.
-// Based on: pure strokes and hierarchical stroke linking (sections IV.1-IV.2) of the procedural
-// silhouette-stroke framework for calligraphic line drawing.
+// longest stroke continues most smoothly. A pure stroke is a piece of line without a sharp turn,
+// one a hand would draw in a single movement.
 #pragma once
 
 #include <array>
