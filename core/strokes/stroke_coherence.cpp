@@ -57,7 +57,7 @@ class SampleGrid {
         Hit best;
         const double cell = grid_.cell_px();
         const auto more = [&](int ring) {
-            return !(best.distance < double(ring) * cell - internal::PointGrid<int>::kRingSlack);
+            return !(best.distance < double(ring) * cell - Grid::kRingSlack);
         };
         grid_.rings(p, kCellsPerRadius + 1, [&](const std::pair<size_t, size_t>& ts) {
             const auto [trace, sample] = ts;
@@ -77,7 +77,8 @@ class SampleGrid {
   private:
     const std::vector<StrokeTrace>& traces_;
     double radius_;
-    internal::PointGrid<std::pair<size_t, size_t>> grid_;  // (trace, sample)
+    using Grid = internal::PointGrid<std::pair<size_t, size_t>>;  // (trace, sample)
+    Grid grid_;
 };
 
 // Strokes of one kind match; a hidden part that comes into view (or a visible one that goes
