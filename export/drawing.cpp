@@ -58,21 +58,22 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
     Drawing d{frame.frame, frame.image, frame.camera, style, {}};
     d.shapes.reserve(strokes.strokes.size());
     for (const core::Stroke& stroke : strokes.strokes) {
-        if (stroke.visible && !stroke.drawn) continue;
-        if (stroke.visible && !centerline) {
+        const core::StrokeGeometry& g = stroke.geometry;
+        if (g.visible && !stroke.drawn) continue;
+        if (g.visible && !centerline) {
             if (stroke.outline.empty()) continue;
             Shape s;
             s.stroke_id = stroke.id;
-            s.kind = stroke.kind;
-            s.closed = stroke.closed;
+            s.kind = g.kind;
+            s.closed = g.closed;
             s.filled = true;
             s.paths.assign(stroke.outline.begin(), stroke.outline.end());
             d.shapes.push_back(std::move(s));
             continue;
         }
         // Hidden lines and plotter output follow the drawn centerline when there is one.
-        d.shapes.push_back(stroked_shape(stroke.id, stroke.kind, stroke.visible, stroke.closed,
-                                         stroke.centerline_px.size() >= 2 ? stroke.centerline_px : stroke.points_px));
+        d.shapes.push_back(stroked_shape(stroke.id, g.kind, g.visible, g.closed,
+                                         stroke.centerline_px.size() >= 2 ? stroke.centerline_px : g.points_px));
     }
     return d;
 }

@@ -65,27 +65,28 @@ json polyline_strokes(const core::FrameLines& frame) {
 json brush_strokes(const core::FrameStrokes& frame_strokes) {
     json strokes = json::array();
     for (const core::Stroke& s : frame_strokes.strokes) {
+        const core::StrokeGeometry& g = s.geometry;
         json outline = json::array();
         for (const core::Ring& ring : s.outline) outline.push_back(points_json(ring));
         strokes.push_back({{"id", s.id},
-                           {"kind", core::line_kind_name(s.kind)},
-                           {"closed", s.closed},
-                           {"visible", s.visible},
+                           {"kind", core::line_kind_name(g.kind)},
+                           {"closed", g.closed},
+                           {"visible", g.visible},
                            {"drawn", s.drawn},
-                           {"ends", {core::stroke_end_name(s.ends[0]), core::stroke_end_name(s.ends[1])}},
-                           {"points", points_json(s.points_px)},
-                           {"world", world_json(s.points_world)},
-                           {"edges", s.edges},
+                           {"ends", {core::stroke_end_name(g.ends[0]), core::stroke_end_name(g.ends[1])}},
+                           {"points", points_json(g.points_px)},
+                           {"world", world_json(g.points_world)},
+                           {"edges", g.edges},
                            {"u", rounded(s.u, 1e3)},
                            {"intensity", rounded(s.intensity, 1e4)},
                            {"width", rounded(s.width, 1e3)},
                            {"outline", std::move(outline)}});
-        if (!s.hidden.empty()) {
-            json hidden = json::array();
-            for (size_t k = 0; k < s.hidden.size(); ++k) {
-                if (s.hidden[k]) hidden.push_back(k);
+        if (!g.bridged.empty()) {
+            json bridged = json::array();
+            for (size_t k = 0; k < g.bridged.size(); ++k) {
+                if (g.bridged[k]) bridged.push_back(k);
             }
-            strokes.back()["hidden_segments"] = std::move(hidden);
+            strokes.back()["hidden_segments"] = std::move(bridged);
         }
     }
     return strokes;

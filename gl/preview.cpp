@@ -359,7 +359,7 @@ struct PreviewRenderer::Impl {
         std::vector<uint32_t> indices;
         std::vector<StrokeDraw> draws;
         for (const core::Stroke& stroke : strokes.strokes) {
-            if (!stroke.visible || !stroke.drawn) continue;
+            if (!stroke.geometry.visible || !stroke.drawn) continue;
             internal::QuadStrip strip = internal::quad_strip(stroke, strip_options);
             if (strip.indices.empty()) continue;
             StrokeDraw draw;
@@ -367,8 +367,8 @@ struct PreviewRenderer::Impl {
             draw.index_count = GLsizei(strip.indices.size());
             draw.length_px = float(strip.length_px);
             draw.closed = strip.closed;
-            draw.free_start = !strip.closed && stroke.ends[0] == core::StrokeEnd::kFree;
-            draw.free_end = !strip.closed && stroke.ends[1] == core::StrokeEnd::kFree;
+            draw.free_start = !strip.closed && stroke.geometry.ends[0] == core::StrokeEnd::kFree;
+            draw.free_end = !strip.closed && stroke.geometry.ends[1] == core::StrokeEnd::kFree;
             // A loop repeats the middle a whole number of times, so it has no seam.
             const double period = std::max(middle_px, 1e-3);
             draw.period_px =

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Items at image points on a uniform grid of square cells, sorted by cell and then by item, so
-// that lookups visit them in an order that depends on the input alone.
+// Items at image points (or over boxes: a segment by its bounding box) on a uniform grid of square
+// cells, sorted by cell and then by item, so that lookups visit them in an order that depends on
+// the input alone.
 #pragma once
 
 #include <algorithm>
@@ -18,6 +19,13 @@ class PointGrid {
     explicit PointGrid(double cell_px) : cell_px_(cell_px) {}
 
     void add(const glm::dvec2& p, const Item& item) { entries_.push_back({key(cell(p)), item}); }
+    // Adds the item to every cell that the box [lo, hi] touches.
+    void add_box(const glm::dvec2& lo, const glm::dvec2& hi, const Item& item) {
+        const glm::ivec2 a = cell(lo), b = cell(hi);
+        for (int y = a.y; y <= b.y; ++y) {
+            for (int x = a.x; x <= b.x; ++x) entries_.push_back({key({x, y}), item});
+        }
+    }
     // After the last add, before the first lookup.
     void sort() {
         std::sort(entries_.begin(), entries_.end(),
@@ -32,6 +40,22 @@ class PointGrid {
         for (int y = c.y - 1; y <= c.y + 1; ++y) {
             for (int x = c.x - 1; x <= c.x + 1; ++x) visit_cell({x, y}, visit);
         }
+    }
+
+    // Whether found(item) holds for an item in a cell that the box [lo, hi] touches (all items
+    // within the box, and some beyond it); stops at the first.
+    template <typename Found>
+    bool any_in_box(const glm::dvec2& lo, const glm::dvec2& hi, Found found) const {
+        const glm::ivec2 a = cell(lo), b = cell(hi);
+        for (int y = a.y; y <= b.y; ++y) {
+            for (int x = a.x; x <= b.x; ++x) {
+                const int64_t k = key({x, y});
+                for (auto it = first_of(k); it != entries_.end() && it->key == k; ++it) {
+                    if (found(it->item)) return true;
+                }
+            }
+        }
+        return false;
     }
 
     // Calls visit(item) for the items in ring r around p's cell (the cells r steps from it along
@@ -56,18 +80,22 @@ class PointGrid {
     double cell_px() const { return cell_px_; }
 
   private:
-    template <typename Visit>
-    void visit_cell(const glm::ivec2& c, Visit& visit) const {
-        const int64_t k = key(c);
-        auto it = std::lower_bound(entries_.begin(), entries_.end(), k,
-                                   [](const Entry& e, int64_t v) { return e.key < v; });
-        for (; it != entries_.end() && it->key == k; ++it) visit(it->item);
-    }
-
     struct Entry {
         int64_t key;
         Item item;
     };
+
+    // The first entry of the cell with key k, or where it would be.
+    typename std::vector<Entry>::const_iterator first_of(int64_t k) const {
+        return std::lower_bound(entries_.begin(), entries_.end(), k,
+                                [](const Entry& e, int64_t v) { return e.key < v; });
+    }
+    template <typename Visit>
+    void visit_cell(const glm::ivec2& c, Visit& visit) const {
+        const int64_t k = key(c);
+        for (auto it = first_of(k); it != entries_.end() && it->key == k; ++it) visit(it->item);
+    }
+
     glm::ivec2 cell(const glm::dvec2& p) const {
         return {int(std::floor(std::clamp(p.x, -1e8, 1e8) / cell_px_)),
                 int(std::floor(std::clamp(p.y, -1e8, 1e8) / cell_px_))};

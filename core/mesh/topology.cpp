@@ -2,6 +2,7 @@
 #include "core/mesh/topology.h"
 
 #include "core/internal/parallel.h"
+#include "core/internal/union_find.h"
 
 #include <glm/geometric.hpp>
 
@@ -29,15 +30,6 @@ bool is_degenerate(const Mesh& mesh, const glm::uvec3& t) {
     const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
     return !(area2 > kDegenerateAreaRatio * longest * longest);
 }
-
-uint32_t find_root(std::vector<uint32_t>& parent, uint32_t x) {
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    return x;
-}
-
 
 // The table over the faces marked valid.
 EdgeTable build_from_valid(const Mesh& mesh, std::vector<uint8_t> face_valid) {
@@ -200,8 +192,9 @@ namespace {
 // hundreds of thousands).
 size_t count_non_manifold_vertices(const EdgeTable& table) {
     size_t count = 0;
-    std::vector<uint32_t> faces, fan;  // the vertex's faces and the fan root of each
+    std::vector<uint32_t> faces;                                    // the vertex's faces
     std::vector<uint32_t> slot(table.face_valid.size(), kNoIndex);  // face -> index in `faces`
+    internal::UnionFind<uint32_t> fans_of(0);  // over indices into `faces`: the faces of one fan form a set
     const size_t vertices = table.vertex_edge_offsets.empty() ? 0 : table.vertex_edge_offsets.size() - 1;
     for (uint32_t v = 0; v < vertices; ++v) {
         faces.clear();
@@ -214,17 +207,12 @@ size_t count_non_manifold_vertices(const EdgeTable& table) {
             }
         }
         if (faces.size() >= 2) {
-            fan.resize(faces.size());
-            std::iota(fan.begin(), fan.end(), 0u);
+            fans_of.reset(faces.size());
             size_t fans = faces.size();
             for (uint32_t e : table.edges_around(v)) {
                 if (!table.is_interior(e)) continue;
                 const auto pair = table.faces_of(e);
-                const uint32_t a = find_root(fan, slot[pair[0]]), b = find_root(fan, slot[pair[1]]);
-                if (a != b) {
-                    fan[a] = b;
-                    --fans;
-                }
+                if (fans_of.unite(slot[pair[0]], slot[pair[1]])) --fans;
             }
             if (fans > 1) ++count;
         }
@@ -267,15 +255,12 @@ MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table) {
     r.duplicate_faces = table.duplicate_faces;
     r.degenerate_faces = size_t(std::count(table.face_valid.begin(), table.face_valid.end(), 0)) - r.duplicate_faces;
 
-    std::vector<uint32_t> parent(r.faces);
-    std::iota(parent.begin(), parent.end(), 0u);
+    internal::UnionFind<uint32_t> components(r.faces);
     for (uint32_t e = 0; e < table.edge_count(); ++e) {
         const auto faces = table.faces_of(e);
         if (faces.size() == 1) ++r.boundary_edges;
         if (faces.size() >= 3) ++r.non_manifold_edges;
-        for (size_t i = 1; i < faces.size(); ++i) {
-            parent[find_root(parent, faces[i])] = find_root(parent, faces[0]);
-        }
+        for (size_t i = 1; i < faces.size(); ++i) components.unite(faces[0], faces[i]);
         if (faces.size() == 2) {
             // Consistent neighbours traverse their shared edge in opposite directions.
             const uint32_t v0 = table.edge_vertices[e].x;
@@ -290,7 +275,7 @@ MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table) {
         }
     }
     for (uint32_t f = 0; f < r.faces; ++f) {
-        if (table.face_valid[f] && find_root(parent, f) == f) ++r.connected_components;
+        if (table.face_valid[f] && components.is_root(f)) ++r.connected_components;
     }
     r.non_manifold_vertices = count_non_manifold_vertices(table);
     return r;

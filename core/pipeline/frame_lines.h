@@ -37,7 +37,7 @@ struct FrameLines {
     Light light;
     std::vector<Polyline> strokes;
     // Occluded parts not output (lines.hidden off): the stroke stage draws short ones across
-    // where they bridge a stroke (core/strokes/gap_bridging.h). With lines.hidden they are in strokes.
+    // where they bridge a stroke (core/strokes/bridge_gaps.h). With lines.hidden they are in strokes.
     std::vector<Polyline> occluded;
     FrameStats stats;
 };

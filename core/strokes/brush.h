@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Light-weighted brush: line weight from the light intensity along a stroke, a response curve,
-// and end profiles by end type (pointed S ends, blunt A/C ends, none on L loops).
-// Based on: N. Sirikulpiboon, light-weighted Chinese-brush line rendering (the light at each
-// silhouette vertex sets the brush weight), and the S/A/C/L end types of the procedural
-// silhouette-stroke framework (an SS stroke is thin at its beginning and end).
+// and end profiles by end type (pointed S ends, blunt A/C ends, none on L loops). The light at
+// each point of a line sets the brush weight; a free end thins to a point, as a brush lifted off
+// the paper does, while an end that meets another stroke keeps its weight.
 #pragma once
 
 #include <array>
@@ -17,7 +16,7 @@
 #include "core/mesh/mesh.h"
 #include "core/mesh/topology.h"
 #include "core/strokes/brush_style.h"
-#include "core/strokes/pure_strokes.h"
+#include "core/strokes/stroke_geometry.h"
 #include "core/strokes/stroke_path.h"
 
 namespace inkline::core {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Brush style: how strokes are cleaned, split, weighted by the light and tapered (scene "brush").
-// Based on: N. Sirikulpiboon's light-weighted brush (line weight from the light intensity), and
-// the pure-stroke rules (split at sharp angles) of the procedural silhouette-stroke framework.
+// The line weight follows the light along each stroke (by default heavier where the surface turns
+// from it, as a brush pressed harder on the shadow side); strokes are split where they turn sharply.
 #pragma once
 
 #include <glm/vec3.hpp>

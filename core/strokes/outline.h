@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Stroke outlines: the closed boundary of a variable-width centerline, offset left and right
 // along its normal, with round joins, local folds cut away and round caps where an end has width.
-// Based on: skeletal-stroke quad strips (perpendiculars of half the line weight at each vertex)
-// of the light-weighted brush, made watertight as a filled outline.
+// A quad strip (perpendiculars of half the line weight either side of each vertex) made
+// watertight as a filled outline.
 #pragma once
 
 #include <glm/vec2.hpp>

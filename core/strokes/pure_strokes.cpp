@@ -11,6 +11,9 @@
 #include <set>
 #include <utility>
 
+#include "core/internal/point_grid.h"
+#include "core/internal/union_find.h"
+#include "core/strokes/internal/splice.h"
 #include "core/strokes/stroke_path.h"
 
 namespace inkline::core {
@@ -180,65 +183,36 @@ struct EndRef {
     glm::dvec2 p;
 };
 
-// Segments of all pieces on a uniform grid, to find what passes near a stroke end.
+// Segments of all pieces on a grid (by their bounding boxes), to find what passes near a stroke end.
 class SegmentGrid {
   public:
-    explicit SegmentGrid(const std::vector<Piece>& pieces) : pieces_(pieces) {
+    explicit SegmentGrid(const std::vector<Piece>& pieces) : pieces_(pieces), grid_(kGridCellPx) {
         for (size_t p = 0; p < pieces.size(); ++p) {
             const auto& pts = pieces[p].geometry.points_px;
-            for (size_t s = 0; s + 1 < pts.size(); ++s) {
-                const glm::ivec2 lo = cell(glm::min(pts[s], pts[s + 1])), hi = cell(glm::max(pts[s], pts[s + 1]));
-                for (int y = lo.y; y <= hi.y; ++y) {
-                    for (int x = lo.x; x <= hi.x; ++x) entries_.push_back({key(x, y), p, s});
-                }
-            }
+            for (size_t s = 0; s + 1 < pts.size(); ++s)
+                grid_.add_box(glm::min(pts[s], pts[s + 1]), glm::max(pts[s], pts[s + 1]), {p, s});
         }
-        std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
-            return std::tie(a.key, a.piece, a.segment) < std::tie(b.key, b.piece, b.segment);
-        });
+        grid_.sort();
     }
 
     // True when a segment of a piece other than `self` passes within radius of p.
     bool passes_near(const glm::dvec2& p, double radius, size_t self) const {
-        const glm::ivec2 lo = cell(p - radius), hi = cell(p + radius);
-        for (int y = lo.y; y <= hi.y; ++y) {
-            for (int x = lo.x; x <= hi.x; ++x) {
-                const int64_t k = key(x, y);
-                auto it = std::lower_bound(entries_.begin(), entries_.end(), k,
-                                           [](const Entry& e, int64_t v) { return e.key < v; });
-                for (; it != entries_.end() && it->key == k; ++it) {
-                    if (it->piece == self) continue;
-                    const auto& pts = pieces_[it->piece].geometry.points_px;
-                    if (distance_to_segment(p, pts[it->segment], pts[it->segment + 1]) <= radius) return true;
-                }
-            }
-        }
-        return false;
+        return grid_.any_in_box(p - radius, p + radius, [&](const std::pair<size_t, size_t>& ps) {
+            const auto [piece, segment] = ps;
+            if (piece == self) return false;
+            const auto& pts = pieces_[piece].geometry.points_px;
+            return distance_to_segment(p, pts[segment], pts[segment + 1]) <= radius;
+        });
     }
 
   private:
-    struct Entry {
-        int64_t key;
-        size_t piece, segment;
-    };
-    static glm::ivec2 cell(const glm::dvec2& p) {
-        return {int(std::floor(std::clamp(p.x, -1e8, 1e8) / kGridCellPx)),
-                int(std::floor(std::clamp(p.y, -1e8, 1e8) / kGridCellPx))};
-    }
-    static int64_t key(int x, int y) { return (int64_t(x) << 32) ^ int64_t(uint32_t(y)); }
-
     const std::vector<Piece>& pieces_;
-    std::vector<Entry> entries_;
+    internal::PointGrid<std::pair<size_t, size_t>> grid_;  // (piece, segment)
 };
 
 // Groups polyline ends that touch (within kTouchPx): union-find over a sweep in x.
 std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends) {
-    std::vector<size_t> parent(ends.size());
-    std::iota(parent.begin(), parent.end(), size_t(0));
-    auto find = [&](size_t i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-    };
+    internal::UnionFind<size_t> touching(ends.size());
     std::vector<size_t> order(ends.size());
     std::iota(order.begin(), order.end(), size_t(0));
     std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
@@ -248,8 +222,7 @@ std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends
     size_t kept = 0;
     for (size_t k = 0; k < order.size(); ++k) {
         if (kept > 0 && ends[order[kept - 1]].p == ends[order[k]].p) {
-            const size_t a = find(order[kept - 1]), b = find(order[k]);
-            parent[std::max(a, b)] = std::min(a, b);
+            touching.unite(order[kept - 1], order[k]);
         } else {
             order[kept++] = order[k];
         }
@@ -257,14 +230,12 @@ std::vector<std::vector<size_t>> touching_groups(const std::vector<EndRef>& ends
     order.resize(kept);
     for (size_t i = 0; i < order.size(); ++i) {
         for (size_t j = i + 1; j < order.size() && ends[order[j]].p.x - ends[order[i]].p.x <= kTouchPx; ++j) {
-            if (glm::length(ends[order[i]].p - ends[order[j]].p) <= kTouchPx) {
-                const size_t a = find(order[i]), b = find(order[j]);
-                parent[std::max(a, b)] = std::min(a, b);
-            }
+            if (glm::length(ends[order[i]].p - ends[order[j]].p) <= kTouchPx) touching.unite(order[i], order[j]);
         }
     }
     std::vector<std::vector<size_t>> groups(ends.size());
-    for (size_t i = 0; i < ends.size(); ++i) groups[find(i)].push_back(i);
+    // Groups by their root, the least end in each: in order of their first end.
+    for (size_t i = 0; i < ends.size(); ++i) groups[touching.find(i)].push_back(i);
     std::erase_if(groups, [](const std::vector<size_t>& g) { return g.empty(); });
     return groups;
 }
@@ -393,8 +364,9 @@ class Linker {
             if (linked[i]) continue;
             size_t best = kNone;
             if (big) {
-                best = big->smoothest(i, turn_, [&](size_t j) { return can_join(members[i], members[j]); },
-                                      [&](size_t j) { return turn(members[i], members[j]); });
+                best = big->smoothest(
+                    i, turn_, [&](size_t j) { return can_join(members[i], members[j]); },
+                    [&](size_t j) { return turn(members[i], members[j]); });
             } else {
                 for (size_t j : order) {
                     if (j == i || linked[j] || !can_join(members[i], members[j])) continue;
@@ -434,12 +406,12 @@ class Linker {
 
   private:
     StrokeGeometry walk(size_t first, int enter, std::vector<uint8_t>& used) const {
-        StrokeGeometry out;
+        StrokeGeometry out = pieces_[first].geometry;
+        if (enter == 1) out.reverse();
+        used[first] = 1;
         size_t p = first;
         int e = enter;
         while (true) {
-            used[p] = 1;
-            append(out, pieces_[p].geometry, e == 1);
             const Link next = links_[p][size_t(1 - e)];
             if (next.piece == kNone) {
                 out.ends[1] = pieces_[p].geometry.ends[size_t(1 - e)];
@@ -452,28 +424,11 @@ class Linker {
             }
             p = next.piece;
             e = next.end;
+            used[p] = 1;
+            internal::splice(out, pieces_[p].geometry, e == 1);
         }
         if (!out.closed) out.ends[0] = pieces_[first].geometry.ends[size_t(enter)];
         return out;
-    }
-
-    static void append(StrokeGeometry& out, const StrokeGeometry& piece, bool reversed) {
-        const bool first = out.points_px.empty();
-        if (first) {
-            out.kind = piece.kind;
-            out.visible = piece.visible;
-            out.closed = piece.closed;
-            out.ends = piece.ends;
-            out.pure_strokes = 0;
-        }
-        ++out.pure_strokes;
-        const size_t n = piece.points_px.size();
-        for (size_t i = first ? 0 : 1; i < n; ++i) {
-            const size_t k = reversed ? n - 1 - i : i;
-            out.points_px.push_back(piece.points_px[k]);
-            out.points_world.push_back(piece.points_world[k]);
-        }
-        for (size_t i = 0; i + 1 < n; ++i) out.edges.push_back(piece.edges[reversed ? n - 2 - i : i]);
     }
 
     std::vector<Piece>& pieces_;
@@ -482,52 +437,6 @@ class Linker {
 };
 
 }  // namespace
-
-const char* stroke_end_name(StrokeEnd end) {
-    switch (end) {
-        case StrokeEnd::kFree:
-            return "S";
-        case StrokeEnd::kCorner:
-            return "A";
-        case StrokeEnd::kJunction:
-            return "C";
-        case StrokeEnd::kLoop:
-            return "L";
-    }
-    return "?";
-}
-
-double StrokeGeometry::length_px() const {
-    double len = 0.0;
-    for (size_t i = 1; i < points_px.size(); ++i) len += glm::length(points_px[i] - points_px[i - 1]);
-    return len;
-}
-
-double StrokeGeometry::visible_length_px() const {
-    double len = 0.0;
-    for (size_t i = 1; i < points_px.size(); ++i) {
-        if (i - 1 >= hidden.size() || !hidden[i - 1]) len += glm::length(points_px[i] - points_px[i - 1]);
-    }
-    return len;
-}
-
-std::vector<size_t> StrokeGeometry::drawn_indices() const {
-    std::vector<size_t> out;
-    for (size_t k = 0; k < points_px.size(); ++k) {
-        const bool hidden_before = k > 0 && k - 1 < hidden.size() && hidden[k - 1];
-        const bool hidden_after = k < hidden.size() && hidden[k];
-        if (!hidden_before || !hidden_after) out.push_back(k);
-    }
-    return out;
-}
-
-void StrokeGeometry::reverse() {
-    std::reverse(points_px.begin(), points_px.end());
-    std::reverse(points_world.begin(), points_world.end());
-    std::reverse(edges.begin(), edges.end());
-    std::reverse(hidden.begin(), hidden.end());
-    std::swap(ends[0], ends[1]);
-}
 
 std::vector<double> turn_angles_deg(const std::vector<glm::dvec2>& points_px, bool closed, double window_px) {
     std::vector<double> out(points_px.size(), 0.0);

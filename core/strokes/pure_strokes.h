@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Pure strokes: a frame's visible polylines split at sharp image-space turns, each end typed
 // S (free), A (sharp corner), C (junction) or L (loop), then linked through junctions where the
-// longest stroke continues most smoothly.
-// Based on: pure strokes and hierarchical stroke linking (sections IV.1-IV.2) of the procedural
-// silhouette-stroke framework for calligraphic line drawing.
+// longest stroke continues most smoothly. A pure stroke is a piece of line without a sharp turn,
+// one a hand would draw in a single movement.
 #pragma once
 
 #include <array>
@@ -12,20 +11,10 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
-#include "core/lines/features.h"
+#include "core/strokes/stroke_geometry.h"
 #include "core/visibility/visibility.h"
 
 namespace inkline::core {
-
-enum class StrokeEnd : uint8_t {
-    kFree = 0,      // S: touches no other stroke
-    kCorner = 1,    // A: meets one other stroke at a sharp angle
-    kJunction = 2,  // C: meets other strokes (or ends on one, where a line passes behind another)
-    kLoop = 3,      // L: the stroke is closed
-};
-
-// "S", "A", "C" or "L".
-const char* stroke_end_name(StrokeEnd end);
 
 // Directions are chords this long (px) on the back-tracking-free path: long enough that the
 // sub-pixel wobble of visibility cuts makes no corner, short enough to keep true corners sharp.
@@ -42,31 +31,6 @@ inline constexpr double kJoinPx = 1e-3;
 
 struct PureStrokeOptions {
     double turn_angle_deg = 45.0;  // sharper turns split strokes (A ends) and block links
-};
-
-// The exact geometry of one stroke: pure strokes of one kind and visibility, joined end to end.
-struct StrokeGeometry {
-    LineKind kind = LineKind::kSilhouette;
-    bool visible = true;
-    bool closed = false;  // then points repeat the first point last
-    std::array<StrokeEnd, 2> ends{StrokeEnd::kFree, StrokeEnd::kFree};
-    std::vector<glm::dvec2> points_px;
-    std::vector<glm::dvec3> points_world;
-    std::vector<uint32_t> edges;  // mesh edge of each segment
-    size_t pure_strokes = 1;      // how many pure strokes were linked into this one
-    // Per segment: 1 where the segment is occluded, drawn across a short gap (gap_bridging.h);
-    // empty when none is.
-    std::vector<uint8_t> hidden;
-
-    double length_px() const;
-    // The length less the occluded segments (hidden) the stroke is drawn across.
-    double visible_length_px() const;
-    // Indices of the exact points the stroke is drawn through: a bridged gap is drawn straight
-    // across, its occluded inner points left out. A zig-zag silhouette's hidden folds would
-    // otherwise be drawn as spikes, and leave holes where the outline folds over itself.
-    std::vector<size_t> drawn_indices() const;
-    // Runs the stroke the other way: points, edges, hidden marks and end types.
-    void reverse();
 };
 
 struct PureStrokes {

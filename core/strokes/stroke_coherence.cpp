@@ -57,7 +57,7 @@ class SampleGrid {
         Hit best;
         const double cell = grid_.cell_px();
         const auto more = [&](int ring) {
-            return !(best.distance < double(ring) * cell - internal::PointGrid<int>::kRingSlack);
+            return !(best.distance < double(ring) * cell - Grid::kRingSlack);
         };
         grid_.rings(p, kCellsPerRadius + 1, [&](const std::pair<size_t, size_t>& ts) {
             const auto [trace, sample] = ts;
@@ -77,14 +77,15 @@ class SampleGrid {
   private:
     const std::vector<StrokeTrace>& traces_;
     double radius_;
-    internal::PointGrid<std::pair<size_t, size_t>> grid_;  // (trace, sample)
+    using Grid = internal::PointGrid<std::pair<size_t, size_t>>;  // (trace, sample)
+    Grid grid_;
 };
 
 // Strokes of one kind match; a hidden part that comes into view (or a visible one that goes
 // behind) is the same line, so visibility may change, but such pairs come after every pair of
 // the same visibility (a hidden line may run right behind a visible one).
-bool compatible(const StrokeCandidate& c, const StrokeTrace& t) { return c.kind == t.kind; }
-bool crosses(const StrokeCandidate& c, const StrokeTrace& t) { return c.visible != t.visible; }
+bool compatible(const StrokeCandidate& c, const StrokeTrace& t) { return c.geometry.kind == t.kind; }
+bool crosses(const StrokeCandidate& c, const StrokeTrace& t) { return c.geometry.visible != t.visible; }
 
 struct Pair {
     size_t candidate, trace;
@@ -121,11 +122,14 @@ std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const
             score[t] += amount;
         };
         // Shared mesh edges count with their image length.
-        for (size_t s = 0; s < cand.edges.size(); ++s) {
-            auto it = std::lower_bound(edge_owner.begin(), edge_owner.end(), std::make_pair(cand.edges[s], size_t(0)));
-            for (; it != edge_owner.end() && it->first == cand.edges[s]; ++it) {
-                if (compatible(cand, traces[it->second]) && cand.edge_length_px[s] > 0.0)
-                    add(it->second, cand.edge_length_px[s]);
+        const std::vector<uint32_t>& edges = cand.geometry.edges;
+        const std::vector<glm::dvec2>& points = cand.geometry.points_px;
+        for (size_t s = 0; s < edges.size(); ++s) {
+            auto it = std::lower_bound(edge_owner.begin(), edge_owner.end(), std::make_pair(edges[s], size_t(0)));
+            if (it == edge_owner.end() || it->first != edges[s]) continue;
+            const double length = glm::length(points[s + 1] - points[s]);
+            for (; it != edge_owner.end() && it->first == edges[s]; ++it) {
+                if (compatible(cand, traces[it->second]) && length > 0.0) add(it->second, length);
             }
         }
         // Samples count with their share of the length where last frame's nearest stroke lies
@@ -239,7 +243,7 @@ void propagate(const StrokeCandidate& cand, const StrokeTrace& trace, size_t tra
     std::vector<double> offsets(u.size());
     for (size_t i = 0; i < u.size(); ++i) offsets[i] = u[i] - s[i];
     r_match.u_offset = median(std::move(offsets));
-    if (cand.closed && trace.closed) r_match.start_px = loop_start(cand, trace);
+    if (cand.geometry.closed && trace.closed) r_match.start_px = loop_start(cand, trace);
 }
 
 }  // namespace
@@ -384,9 +388,9 @@ std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidat
     std::vector<SampleGrid> grids;
     grids.reserve(kMatchRounds);
     for (int round = 0; round < kMatchRounds; ++round) grids.emplace_back(traces_, kMatchRadiusPx * double(1 << round));
-    const auto hidden = [](const auto& x) { return !x.visible; };
-    const bool mixed = std::any_of(candidates.begin(), candidates.end(), hidden) ||
-                       std::any_of(traces_.begin(), traces_.end(), hidden);
+    const bool mixed =
+        std::any_of(candidates.begin(), candidates.end(), [](const StrokeCandidate& c) { return !c.geometry.visible; }) ||
+        std::any_of(traces_.begin(), traces_.end(), [](const StrokeTrace& t) { return !t.visible; });
     for (const bool cross : {false, true}) {
         if (cross && !mixed) break;
         for (const SampleGrid& grid : grids) {

@@ -2,8 +2,11 @@
 // Stroke coherence across frames: stable ids, a direction and arc-length parameter u carried over
 // from the previous frame, and loop start points that stay put. The only frame-to-frame state
 // of the stroke stage; a value that depends on the previous frame's strokes alone.
-// Based on: propagated arc-length parameterization (section 6) of geometry-image stroke rendering,
-// after Bourdev: each sample takes the parameter of the nearest sample of the previous frame.
+// Based on: L. Bourdev. Rendering Nonphotorealistic Strokes with Temporal and Arc-Length
+// Coherence. Master's thesis, Brown University, 1998: each sample takes the parameter of the
+// nearest sample of the previous frame, as in X. Yuan, M. X. Nguyen, N. Zhang, B. Chen. Stippling
+// and Silhouettes Rendering in Geometry-Image Space. Eurographics Symposium on Rendering 2005,
+// section 6.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +15,7 @@
 #include <vector>
 
 #include "core/lines/features.h"
+#include "core/strokes/stroke_geometry.h"
 
 namespace inkline::core {
 
@@ -31,7 +35,8 @@ inline constexpr double kSideReachPx = 12.0;
 // Samples along that reach, px apart.
 inline constexpr double kSideSpacingPx = 2.0;
 
-// What the next frame needs of one stroke.
+// What the next frame needs of one stroke: not its geometry, a summary of it (its edges as a set,
+// samples of its drawn centerline with their u).
 struct StrokeTrace {
     uint32_t id = 0;
     LineKind kind = LineKind::kSilhouette;
@@ -47,12 +52,8 @@ struct StrokeTrace {
 
 // A stroke of the current frame before it has an id.
 struct StrokeCandidate {
-    LineKind kind = LineKind::kSilhouette;
-    bool visible = true;
-    bool closed = false;
+    StrokeGeometry geometry;             // its exact points and mesh edges, kind and visibility
     double length_px = 0.0;              // drawn length
-    std::vector<uint32_t> edges;         // mesh edge of each exact segment
-    std::vector<double> edge_length_px;  // image length of each exact segment
     std::vector<glm::dvec2> samples_px;  // along the drawn centerline, from its start
     std::vector<double> samples_arc;     // arc length of each sample from the start, px
 };

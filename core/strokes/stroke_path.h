@@ -2,8 +2,8 @@
 // Drawn centerline of a stroke: the exact polyline with image-space back-tracking removed,
 // smoothed within a bounded deviation and resampled evenly. Only drawing uses it; the exact
 // points stay as they are.
-// Based on: the silhouette filtering stage (section III) of the procedural silhouette-stroke
-// framework, which cleans extracted silhouettes before strokes are built from them.
+// Silhouettes extracted from a mesh fold back on themselves at the pixel scale (near cusps and at
+// visibility cuts); they are cleaned like this before a brush is laid along them.
 #pragma once
 
 #include <cstddef>

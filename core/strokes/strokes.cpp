@@ -3,15 +3,20 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
+#include <iterator>
 #include <optional>
 
 #include "core/internal/parallel.h"
+#include "core/strokes/bridge_gaps.h"
 #include "core/strokes/brush.h"
-#include "core/strokes/gap_bridging.h"
+#include "core/strokes/occluded_gaps.h"
+#include "core/strokes/pure_strokes.h"
+#include "core/strokes/rejoin_strokes.h"
+#include "core/strokes/reversals.h"
 #include "core/strokes/stroke_path.h"
+#include "core/strokes/t_junctions.h"
 
 namespace inkline::core {
 namespace {
@@ -69,15 +74,10 @@ std::vector<size_t> trace_samples(const StrokePath& path) {
     return out;
 }
 
-StrokeCandidate candidate_of(const StrokeGeometry& g, const StrokePath& path) {
+StrokeCandidate candidate_of(StrokeGeometry g, const StrokePath& path) {
     StrokeCandidate c;
-    c.kind = g.kind;
-    c.visible = g.visible;
-    c.closed = g.closed;
+    c.geometry = std::move(g);
     c.length_px = path.length_px;
-    c.edges = g.edges;
-    for (size_t s = 0; s + 1 < g.points_px.size(); ++s)
-        c.edge_length_px.push_back(glm::length(g.points_px[s + 1] - g.points_px[s]));
     for (size_t i : trace_samples(path)) {
         c.samples_px.push_back(path.points_px[i]);
         c.samples_arc.push_back(path.arc_px[i]);
@@ -115,9 +115,9 @@ void restart_loop(StrokeGeometry& g, size_t s, double t, const Projection& proje
     std::vector<glm::dvec2> px;
     std::vector<glm::dvec3> world;
     std::vector<uint32_t> edges;
-    std::vector<uint8_t> hidden;
-    auto hide = [&](size_t k) {
-        if (!g.hidden.empty()) hidden.push_back(g.hidden[k % m]);
+    std::vector<uint8_t> bridged;
+    auto mark = [&](size_t k) {
+        if (!g.bridged.empty()) bridged.push_back(g.bridged[k % m]);
     };
     auto push = [&](size_t k) {
         px.push_back(g.points_px[k % m]);
@@ -125,7 +125,7 @@ void restart_loop(StrokeGeometry& g, size_t s, double t, const Projection& proje
     };
     if (t == 0.0) {
         for (size_t k = s; k <= s + m; ++k) push(k);
-        for (size_t k = s; k < s + m; ++k) edges.push_back(g.edges[k % m]), hide(k);
+        for (size_t k = s; k < s + m; ++k) edges.push_back(g.edges[k % m]), mark(k);
     } else {
         // Image fraction t to world fraction: 1/w is linear in the image.
         const glm::dvec3 a = g.points_world[s], b = g.points_world[s + 1];
@@ -139,9 +139,9 @@ void restart_loop(StrokeGeometry& g, size_t s, double t, const Projection& proje
         for (size_t k = s + 1; k <= s + m; ++k) push(k);
         px.push_back(start_px);
         world.push_back(start_world);
-        for (size_t k = s; k <= s + m; ++k) edges.push_back(g.edges[k % m]), hide(k);
+        for (size_t k = s; k <= s + m; ++k) edges.push_back(g.edges[k % m]), mark(k);
     }
-    g.hidden = std::move(hidden);
+    g.bridged = std::move(bridged);
     g.points_px = std::move(px);
     g.points_world = std::move(world);
     g.edges = std::move(edges);
@@ -173,10 +173,6 @@ Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint
                     const StrokeLighting& lighting, const BrushStyle& style) {
     Stroke stroke;
     stroke.id = id;
-    stroke.kind = g.kind;
-    stroke.visible = g.visible;
-    stroke.closed = g.closed;
-    stroke.ends = g.ends;
     const std::vector<size_t> drawn = g.drawn_indices();
     const StrokePath path = path_built ? std::move(*path_built) : drawn_path(g, style);
     const std::vector<double> facing = pick(lighting.facing(g.points_world, g.edges), drawn);
@@ -201,10 +197,8 @@ Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint
     if (stroke.drawn) stroke.outline = build_outline(path.points_px, brush.width, path.closed, {});
     stroke.deviation_px = path.deviation_px;
     stroke.removed_px = removed_extent_px(pick(g.points_px, drawn), path);
-    stroke.points_px = std::move(g.points_px);
-    stroke.points_world = std::move(g.points_world);
-    stroke.edges = std::move(g.edges);
-    if (std::find(g.hidden.begin(), g.hidden.end(), uint8_t(1)) != g.hidden.end()) stroke.hidden = std::move(g.hidden);
+    if (std::find(g.bridged.begin(), g.bridged.end(), uint8_t(1)) == g.bridged.end()) g.bridged.clear();
+    stroke.geometry = std::move(g);
     return stroke;
 }
 
@@ -212,10 +206,10 @@ StrokeTrace trace_of(const Stroke& stroke, bool start_anchored) {
     StrokeTrace t;
     t.start_anchored = start_anchored;
     t.id = stroke.id;
-    t.kind = stroke.kind;
-    t.visible = stroke.visible;
-    t.closed = stroke.closed;
-    t.edges = stroke.edges;
+    t.kind = stroke.geometry.kind;
+    t.visible = stroke.geometry.visible;
+    t.closed = stroke.geometry.closed;
+    t.edges = stroke.geometry.edges;
     std::sort(t.edges.begin(), t.edges.end());
     t.edges.erase(std::unique(t.edges.begin(), t.edges.end()), t.edges.end());
     double next = 0.0;
@@ -228,17 +222,12 @@ StrokeTrace trace_of(const Stroke& stroke, bool start_anchored) {
         next = a + kTraceSpacingPx;
     }
     t.length_px = stroke.u.empty() ? 0.0 : stroke.u.back() - stroke.u.front();
-    t.start_px = stroke.points_px.empty() ? glm::dvec2(0.0) : stroke.points_px.front();
+    const std::vector<glm::dvec2>& points = stroke.geometry.points_px;
+    t.start_px = points.empty() ? glm::dvec2(0.0) : points.front();
     return t;
 }
 
 }  // namespace
-
-double Stroke::length_px() const {
-    double len = 0.0;
-    for (size_t i = 1; i < points_px.size(); ++i) len += glm::length(points_px[i] - points_px[i - 1]);
-    return len;
-}
 
 FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
                            const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence) {
@@ -248,8 +237,8 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     // (visible == false in frame.strokes) those are set aside here as set_aside_occluded would,
     // and what the visible strokes do not take of them is stroked on its own.
     std::vector<Polyline> shown_lines, hidden_lines;
-    const bool hidden_out = std::any_of(frame.strokes.begin(), frame.strokes.end(),
-                                        [](const Polyline& line) { return !line.visible; });
+    const bool hidden_out =
+        std::any_of(frame.strokes.begin(), frame.strokes.end(), [](const Polyline& line) { return !line.visible; });
     if (hidden_out) {
         for (const Polyline& line : frame.strokes) (line.visible ? shown_lines : hidden_lines).push_back(line);
     }
@@ -268,8 +257,8 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     const GapBridgeOptions bridge = gap_bridge_options(style.width_max_px);
     OccludedUse use;
     if (!occluded_lines.empty()) {
-        const std::vector<StrokeGeometry> occluded = occluded_runs(occluded_lines);
-        out.stats.bridges = bridge_hidden_gaps(pure.strokes, occluded, r_coherence, bridge, use.runs);
+        const std::vector<StrokeGeometry> occluded = occluded_parts(occluded_lines);
+        out.stats.bridges = bridge_hidden_gaps(pure.strokes, occluded, r_coherence, bridge, use.bridged_whole);
         out.stats.bridges += rejoin_split_strokes(pure.strokes, occluded, use, r_coherence, bridge);
         out.stats.bridges += join_at_t_junctions(pure.strokes, r_coherence, bridge);
         std::erase_if(pure.strokes, [](const StrokeGeometry& g) { return g.points_px.empty(); });
@@ -293,7 +282,7 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     internal::parallel_for(n, kMinParallelStrokes, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             paths[i] = drawn_path(pure.strokes[i], style);
-            candidates[i] = candidate_of(pure.strokes[i], paths[i]);
+            candidates[i] = candidate_of(std::move(pure.strokes[i]), paths[i]);
         }
     });
     const std::vector<StrokeMatch> matches = r_coherence.match(candidates);
@@ -301,15 +290,17 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     // Normals only where the frame's lines run (bridged gaps included): a full pass over a million vertices would cost
     // more than the rest of this stage.
     std::vector<uint32_t> line_edges;
-    for (const Polyline& line : frame.strokes) line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
-    for (const Polyline& line : frame.occluded) line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
+    for (const Polyline& line : frame.strokes)
+        line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
+    for (const Polyline& line : frame.occluded)
+        line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
     const StrokeLighting lighting(mesh, table, projection.world_from_object(), frame.light, line_edges);
     const glm::dmat4 object_from_world = glm::inverse(projection.world_from_object());
     std::vector<Stroke> styled(n);
     std::vector<StrokeTrace> traces(n);
     internal::parallel_for(n, kMinParallelStrokes, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
-            StrokeGeometry& g = pure.strokes[i];
+            StrokeGeometry& g = candidates[i].geometry;
             const StrokeMatch& m = matches[i];
             // The centerline is built again only where the stroke was turned round or restarted.
             std::optional<StrokePath> path = std::move(paths[i]);
@@ -332,10 +323,12 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
         StrokeStats& s = out.stats;
         s.drawn += stroke.drawn;
         s.inherited += m.inherited;
-        if (stroke.visible) {
-            double len = stroke.length_px();
-            for (size_t k = 0; k < stroke.hidden.size(); ++k) {
-                if (stroke.hidden[k]) len -= glm::length(stroke.points_px[k + 1] - stroke.points_px[k]);
+        const StrokeGeometry& g = stroke.geometry;
+        if (g.visible) {
+            // The whole length less the bridged segments.
+            double len = g.length_px();
+            for (size_t k = 0; k < g.bridged.size(); ++k) {
+                if (g.bridged[k]) len -= glm::length(g.points_px[k + 1] - g.points_px[k]);
             }
             s.visible_length_px += len;
             if (m.inherited) s.inherited_length_px += len;

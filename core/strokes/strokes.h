@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Brush strokes of one frame: the visible polylines made into pure strokes, given stable ids, a
-// propagated arc-length parameter u, a light-weighted width with tapered ends and a filled
-// outline. build_strokes() is the single entry point; StrokeCoherence carries frame to frame.
-// Based on: pure strokes and hierarchical linking (procedural silhouette-stroke framework), the
-// light-weighted brush (N. Sirikulpiboon) and propagated arc-length parameterization (Bourdev).
+// Brush strokes of one frame: the visible polylines made into pure strokes (pure_strokes.h),
+// repaired where visibility flickers (occluded_gaps.h), given stable ids and a propagated
+// arc-length parameter u (stroke_coherence.h), a light-weighted width with tapered ends
+// (brush.h) and a filled outline (outline.h). build_strokes() is the single entry point;
+// StrokeCoherence carries frame to frame.
 #pragma once
 
 #include <array>
@@ -18,29 +18,22 @@
 #include "core/scene/camera.h"
 #include "core/strokes/brush_style.h"
 #include "core/strokes/outline.h"
-#include "core/strokes/pure_strokes.h"
 #include "core/strokes/stroke_coherence.h"
+#include "core/strokes/stroke_geometry.h"
 
 namespace inkline::core {
 
 struct Stroke {
     uint32_t id = 0;  // stable across frames; unique within a frame
-    LineKind kind = LineKind::kSilhouette;
-    bool visible = true;
-    bool closed = false;  // a loop: points repeat the first point last and it starts where u = 0
-    bool drawn = true;    // false when shorter than min_length_px: kept in the data, no outline
-    std::array<StrokeEnd, 2> ends{StrokeEnd::kFree, StrokeEnd::kFree};  // at the first and last point
+    // The exact geometry, in drawing direction; a loop starts where u = 0. Bridged segments are
+    // marked only where there are any (geometry.bridged is empty otherwise).
+    StrokeGeometry geometry;
+    bool drawn = true;  // false when shorter than min_length_px: kept in the data, no outline
 
-    // Exact geometry, per point (px, world) and per segment (mesh edge), in drawing direction.
-    std::vector<glm::dvec2> points_px;
-    std::vector<glm::dvec3> points_world;
-    std::vector<uint32_t> edges;
-    // Per segment: 1 where the segment is occluded but drawn, bridging a short gap of a visible
-    // stroke (core/strokes/gap_bridging.h); empty when there is none.
-    std::vector<uint8_t> hidden;
-    std::vector<double> u;          // per point: arc-length parameter, px, carried between frames
-    std::vector<double> intensity;  // per point: light intensity in [0, 1], smoothed along u
-    std::vector<double> width;      // per point: brush width, px
+    // Per exact point of geometry.
+    std::vector<double> u;          // arc-length parameter, px, carried between frames
+    std::vector<double> intensity;  // light intensity in [0, 1], smoothed along u
+    std::vector<double> width;      // brush width, px
 
     // The drawn centerline (cleaned, smoothed within max_deviation_px, resampled).
     std::vector<glm::dvec2> centerline_px;
@@ -50,8 +43,6 @@ struct Stroke {
 
     double deviation_px = 0.0;  // largest distance of the drawn centerline from the exact points
     double removed_px = 0.0;    // largest distance of an exact point from the drawn centerline
-
-    double length_px() const;  // of the exact points
 };
 
 struct StrokeStats {

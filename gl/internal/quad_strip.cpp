@@ -54,7 +54,7 @@ QuadStrip quad_strip(const core::Stroke& stroke, const QuadStripOptions& options
     INKLINE_CHECK_EQ(stroke.centerline_width.size(), stroke.centerline_px.size());
     INKLINE_CHECK(options.widen > 0.0 && options.cap_segments >= 2);
     QuadStrip strip;
-    strip.closed = stroke.closed;
+    strip.closed = stroke.geometry.closed;
 
     // Distinct samples; a loop that repeats its first point last drops the repeat.
     std::vector<Sample> c;

@@ -69,8 +69,8 @@ TEST(Brush, WidthIsMonotoneInShadowOnASideLitSphere) {
     const core::FrameStrokes strokes = test::draw(sphere, scene).strokes;
     ASSERT_EQ(strokes.strokes.size(), 1u);
     const core::Stroke& loop = strokes.strokes[0];
-    EXPECT_TRUE(loop.closed);
-    EXPECT_EQ(loop.ends[0], StrokeEnd::kLoop);
+    EXPECT_TRUE(loop.geometry.closed);
+    EXPECT_EQ(loop.geometry.ends[0], StrokeEnd::kLoop);
 
     std::vector<std::pair<double, double>> shadow_width;  // (1 - I, width)
     for (size_t i = 0; i < loop.width.size(); ++i) shadow_width.emplace_back(1.0 - loop.intensity[i], loop.width[i]);

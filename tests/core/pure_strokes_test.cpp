@@ -130,7 +130,7 @@ TEST(PureStrokes, JunctionLinksTheLongestStrokeToItsSmoothestContinuation) {
     const core::StrokeGeometry& branch = r.strokes[0];
     const core::StrokeGeometry& main = r.strokes[1];
     EXPECT_EQ(branch.ends, (Ends{C, S}));
-    EXPECT_EQ(main.pure_strokes, 2u);
+    EXPECT_EQ(main.pure_stroke_count, 2u);
     EXPECT_EQ(main.ends, (Ends{S, S}));
     EXPECT_NEAR(main.length_px(), 100.0 + glm::length(dvec2(80, 6)), 1e-9);
     EXPECT_EQ(main.edges.size(), lines[1].edges.size() + lines[2].edges.size());
@@ -152,7 +152,7 @@ TEST(PureStrokes, JunctionOfManyEndsLinksEachToTheOneOppositeIt) {
     EXPECT_EQ(r.links, size_t(kRays / 2));
     ASSERT_EQ(r.strokes.size(), size_t(kRays / 2));
     for (const core::StrokeGeometry& s : r.strokes) {
-        EXPECT_EQ(s.pure_strokes, 2u);
+        EXPECT_EQ(s.pure_stroke_count, 2u);
         EXPECT_EQ(s.ends, (Ends{S, S}));
         EXPECT_NEAR(glm::length(s.points_px.back() - s.points_px.front()), s.length_px(), 1e-6);
     }

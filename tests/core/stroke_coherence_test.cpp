@@ -11,12 +11,17 @@ namespace {
 
 using glm::dvec2;
 
-// A straight stroke from a to b, sampled every kTraceSpacingPx, on edges first_edge...
+// A straight stroke from a to b, sampled every kTraceSpacingPx, on edge_count edges of equal
+// length from first_edge on.
 core::StrokeCandidate candidate(dvec2 a, dvec2 b, uint32_t first_edge, uint32_t edge_count = 10) {
     core::StrokeCandidate c;
     c.length_px = glm::length(b - a);
-    for (uint32_t e = 0; e < edge_count; ++e)
-        c.edges.push_back(first_edge + e), c.edge_length_px.push_back(c.length_px / edge_count);
+    for (uint32_t e = 0; e <= edge_count; ++e) {
+        const dvec2 p = a + (b - a) * (double(e) / edge_count);
+        c.geometry.points_px.push_back(p);
+        c.geometry.points_world.push_back(glm::dvec3(p, 0.0));
+        if (e < edge_count) c.geometry.edges.push_back(first_edge + e);
+    }
     for (double s = 0.0; s <= c.length_px + 1e-9; s += core::kTraceSpacingPx) {
         c.samples_px.push_back(a + (b - a) * (s / c.length_px));
         c.samples_arc.push_back(s);
@@ -29,7 +34,7 @@ core::StrokeTrace trace(const core::StrokeCandidate& c, uint32_t id, double u_of
     core::StrokeTrace t;
     t.id = id;
     t.length_px = c.length_px;
-    t.edges = c.edges;
+    t.edges = c.geometry.edges;
     t.samples_px = c.samples_px;
     for (double s : c.samples_arc) t.samples_u.push_back(u_offset + s);
     return t;
@@ -93,9 +98,9 @@ TEST(StrokeCoherence, DistantStrokeIsNew) {
 TEST(StrokeCoherence, KindsDoNotMix) {
     core::StrokeCandidate c = candidate({0, 0}, {100, 0}, 0);
     const core::StrokeCoherence state({trace(c, 5, 0.0)}, 6);
-    c.kind = core::LineKind::kCrease;
+    c.geometry.kind = core::LineKind::kCrease;
     EXPECT_FALSE(state.match({c})[0].inherited);
-    c.visible = false;
+    c.geometry.visible = false;
     EXPECT_FALSE(state.match({c})[0].inherited);
 }
 
@@ -121,7 +126,7 @@ TEST(StrokeCoherence, SameVisibilityComesFirst) {
     const core::StrokeCoherence state({visible, hidden}, 3);
     core::StrokeCandidate now_visible = candidate({0, 0}, {100, 0}, 200);
     core::StrokeCandidate now_hidden = candidate({0, 6}, {80, 6}, 300);
-    now_hidden.visible = false;
+    now_hidden.geometry.visible = false;
     const auto m = state.match({now_visible, now_hidden});
     EXPECT_EQ(m[0].id, 1u);
     EXPECT_EQ(m[1].id, 2u);
@@ -132,7 +137,7 @@ TEST(StrokeCoherence, SameVisibilityComesFirstOverEveryRadius) {
     // a small hidden piece right on last frame's line: the visible line keeps the id.
     const core::StrokeCoherence state({trace(candidate({0, 0}, {200, 0}, 0), 4, 0.0)}, 5);
     core::StrokeCandidate piece = candidate({100, 1}, {110, 1}, 600, 1);
-    piece.visible = false;
+    piece.geometry.visible = false;
     const auto m = state.match({candidate({0, 16}, {200, 16}, 500), piece});
     EXPECT_EQ(m[0].id, 4u);
     EXPECT_EQ(m[1].id, 5u);
@@ -152,7 +157,7 @@ TEST(StrokeCoherence, SideSamplesPassOverATangleAtTheEnd) {
 TEST(StrokeCoherence, LoopStartStaysPut) {
     // A square loop seen twice: the start stays where it was.
     core::StrokeCandidate loop;
-    loop.closed = true;
+    loop.geometry.closed = true;
     const std::vector<dvec2> corners = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
     for (int side = 0; side < 4; ++side) {
         for (int i = 0; i < 50; ++i) {

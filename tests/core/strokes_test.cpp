@@ -74,8 +74,8 @@ void expect_identical(const core::FrameStrokes& a, const core::FrameStrokes& b) 
         const core::Stroke& x = a.strokes[i];
         const core::Stroke& y = b.strokes[i];
         EXPECT_EQ(x.id, y.id);
-        EXPECT_EQ(x.points_px, y.points_px);
-        EXPECT_EQ(x.edges, y.edges);
+        EXPECT_EQ(x.geometry.points_px, y.geometry.points_px);
+        EXPECT_EQ(x.geometry.edges, y.geometry.edges);
         EXPECT_EQ(x.u, y.u);
         EXPECT_EQ(x.width, y.width);
         EXPECT_EQ(x.outline, y.outline);
@@ -90,10 +90,10 @@ TEST(Strokes, PerPointDataIsComplete) {
     std::set<uint32_t> ids;
     for (const core::Stroke& s : frame.strokes) {
         EXPECT_TRUE(ids.insert(s.id).second) << "ids are unique within a frame";
-        const size_t n = s.points_px.size();
+        const size_t n = s.geometry.points_px.size();
         ASSERT_GE(n, 2u);
-        EXPECT_EQ(s.points_world.size(), n);
-        EXPECT_EQ(s.edges.size(), n - 1);
+        EXPECT_EQ(s.geometry.points_world.size(), n);
+        EXPECT_EQ(s.geometry.edges.size(), n - 1);
         EXPECT_EQ(s.u.size(), n);
         EXPECT_EQ(s.intensity.size(), n);
         EXPECT_EQ(s.width.size(), n);
@@ -102,10 +102,10 @@ TEST(Strokes, PerPointDataIsComplete) {
             EXPECT_TRUE(s.intensity[k] >= 0.0 && s.intensity[k] <= 1.0);
             EXPECT_TRUE(s.width[k] >= 0.0 && s.width[k] <= core::BrushStyle{}.width_max_px);
         }
-        if (s.closed) {
-            EXPECT_EQ(s.ends[0], core::StrokeEnd::kLoop);
+        if (s.geometry.closed) {
+            EXPECT_EQ(s.geometry.ends[0], core::StrokeEnd::kLoop);
             EXPECT_EQ(s.u.front(), 0.0);
-            EXPECT_EQ(s.points_px.front(), s.points_px.back());
+            EXPECT_EQ(s.geometry.points_px.front(), s.geometry.points_px.back());
             EXPECT_EQ(s.outline.size(), 2u);
         } else if (s.drawn) {
             EXPECT_EQ(s.outline.size(), 1u);
@@ -154,15 +154,15 @@ TEST(Strokes, OutlinesOfATorusFrameAreFaithful) {
         const std::vector<double>& w = s.centerline_width;
         const size_t n = c.size();
         double swept = 0.0;
-        for (size_t i = 0; i + 1 < n + (s.closed ? 1 : 0); ++i) {
+        for (size_t i = 0; i + 1 < n + (s.geometry.closed ? 1 : 0); ++i) {
             swept += 0.5 * (w[i] + w[(i + 1) % n]) * glm::length(c[(i + 1) % n] - c[i]);
         }
-        if (!s.closed) swept += (w.front() * w.front() + w.back() * w.back()) * 3.141592653589793 / 8.0;
+        if (!s.geometry.closed) swept += (w.front() * w.front() + w.back() * w.back()) * 3.141592653589793 / 8.0;
         SCOPED_TRACE("stroke " + std::to_string(s.id));
-        if (s.length_px() >= 20.0) {
+        if (s.geometry.length_px() >= 20.0) {
             EXPECT_NEAR(core::outline_area(s.outline), swept, 0.03 * swept);
         }
-        const bool overlaps = brush_overlaps_itself(c, w, s.closed);
+        const bool overlaps = brush_overlaps_itself(c, w, s.geometry.closed);
         simple += !overlaps;
         for (const core::Ring& ring : s.outline) {
             if (!overlaps) {
@@ -171,7 +171,7 @@ TEST(Strokes, OutlinesOfATorusFrameAreFaithful) {
             for (const glm::dvec2& p : ring) {
                 ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y));
                 double excess = HUGE_VAL;
-                for (size_t i = 0; i + (s.closed ? 0 : 1) < n; ++i) {
+                for (size_t i = 0; i + (s.geometry.closed ? 0 : 1) < n; ++i) {
                     const glm::dvec2 a = c[i], ab = c[(i + 1) % n] - a;
                     const double len2 = glm::dot(ab, ab);
                     const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
@@ -204,13 +204,14 @@ TEST(Strokes, BridgedGapsAreDrawnStraightAcross) {
     for (int f = torus.first_frame(); f < torus.first_frame() + 40; ++f) {
         const core::FrameStrokes frame = torus.next(coherence, f);
         for (const core::Stroke& s : frame.strokes) {
-            if (s.hidden.empty() || !s.drawn) continue;
-            // The exact points with every point inside a hidden run left out.
+            const core::StrokeGeometry& g = s.geometry;
+            if (g.bridged.empty() || !s.drawn) continue;
+            // The exact points with every point inside a bridged run left out.
             std::vector<glm::dvec2> drawn;
-            for (size_t k = 0; k < s.points_px.size(); ++k) {
-                const bool inside = k > 0 && k < s.hidden.size() && s.hidden[k - 1] && s.hidden[k];
-                if (!inside) drawn.push_back(s.points_px[k]);
-                if (inside && distance_to_polyline(s.points_px[k], drawn) > 2.0) ++folds;
+            for (size_t k = 0; k < g.points_px.size(); ++k) {
+                const bool inside = k > 0 && k < g.bridged.size() && g.bridged[k - 1] && g.bridged[k];
+                if (!inside) drawn.push_back(g.points_px[k]);
+                if (inside && distance_to_polyline(g.points_px[k], drawn) > 2.0) ++folds;
             }
             SCOPED_TRACE("frame " + std::to_string(f) + " stroke " + std::to_string(s.id));
             for (const glm::dvec2& p : s.centerline_px) ASSERT_LE(distance_to_polyline(p, drawn), limit);
@@ -249,10 +250,10 @@ TurnFigures measure_torus_turn(bool keep_hidden) {
         const core::FrameStrokes frame = torus.next(coherence, f);
         std::map<uint32_t, glm::dvec2> starts;
         for (const core::Stroke& s : frame.strokes) {
-            if (!s.closed) continue;
-            starts[s.id] = s.points_px.front();
+            if (!s.geometry.closed) continue;
+            starts[s.id] = s.geometry.points_px.front();
             if (const auto it = last_starts.find(s.id); it != last_starts.end()) {
-                start_moves.push_back(glm::length(it->second - s.points_px.front()));
+                start_moves.push_back(glm::length(it->second - s.geometry.points_px.front()));
             }
         }
         last_starts = starts;
@@ -313,15 +314,15 @@ TEST(Strokes, HiddenLinesLeaveTheVisibleStrokesAsTheyAre) {
         auto visible = [](const core::FrameStrokes& fs) {
             std::vector<std::pair<std::vector<glm::dvec2>, std::vector<uint8_t>>> out;
             for (const core::Stroke& s : fs.strokes) {
-                if (!s.visible) continue;
-                std::vector<glm::dvec2> pts = s.points_px;
-                std::vector<uint8_t> hidden = s.hidden;
+                if (!s.geometry.visible) continue;
+                std::vector<glm::dvec2> pts = s.geometry.points_px;
+                std::vector<uint8_t> bridged = s.geometry.bridged;
                 // Directions follow each run's own history; compare each stroke one way round.
                 if (pts.size() > 1 && std::tie(pts.back().x, pts.back().y) < std::tie(pts.front().x, pts.front().y)) {
                     std::reverse(pts.begin(), pts.end());
-                    std::reverse(hidden.begin(), hidden.end());
+                    std::reverse(bridged.begin(), bridged.end());
                 }
-                out.emplace_back(std::move(pts), std::move(hidden));
+                out.emplace_back(std::move(pts), std::move(bridged));
             }
             std::sort(out.begin(), out.end(), [](const auto& p, const auto& q) {
                 return std::tie(p.first.front().x, p.first.front().y, p.first.back().x) <
@@ -331,7 +332,8 @@ TEST(Strokes, HiddenLinesLeaveTheVisibleStrokesAsTheyAre) {
         };
         EXPECT_EQ(visible(x), visible(y)) << "frame " << f;
         EXPECT_EQ(x.stats.visible_length_px, y.stats.visible_length_px) << "frame " << f;
-        const auto hidden_count = std::count_if(y.strokes.begin(), y.strokes.end(), [](const core::Stroke& s) { return !s.visible; });
+        const auto hidden_count = std::count_if(y.strokes.begin(), y.strokes.end(),
+                                                [](const core::Stroke& s) { return !s.geometry.visible; });
         EXPECT_GT(hidden_count, 0) << "frame " << f;
     }
 }

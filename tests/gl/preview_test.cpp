@@ -78,7 +78,7 @@ core::Stroke straight_stroke(uint32_t id, std::vector<glm::dvec2> corners, doubl
                              core::StrokeEnd end = core::StrokeEnd::kCorner) {
     core::Stroke s;
     s.id = id;
-    s.ends = {end, end};
+    s.geometry.ends = {end, end};
     double u = 0.0;
     for (size_t k = 0; k + 1 < corners.size(); ++k) {
         const double len = glm::length(corners[k + 1] - corners[k]);

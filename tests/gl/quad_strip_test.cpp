@@ -19,9 +19,9 @@ using gl::internal::StripVertex;
 // A circle of radius r around (50, 50), or the arc of it up to `degrees`, every 0.5 px.
 core::Stroke arc_stroke(double r, double degrees, double width, bool closed) {
     core::Stroke s;
-    s.closed = closed;
-    s.ends = closed ? std::array{core::StrokeEnd::kLoop, core::StrokeEnd::kLoop}
-                    : std::array{core::StrokeEnd::kCorner, core::StrokeEnd::kFree};
+    s.geometry.closed = closed;
+    s.geometry.ends = closed ? std::array{core::StrokeEnd::kLoop, core::StrokeEnd::kLoop}
+                             : std::array{core::StrokeEnd::kCorner, core::StrokeEnd::kFree};
     const double length = r * degrees * std::numbers::pi / 180.0;
     const int n = int(length / 0.5);
     for (int i = 0; i < (closed ? n : n + 1); ++i) {
