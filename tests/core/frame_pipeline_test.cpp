@@ -85,8 +85,8 @@ void expect_same_strokes(const core::FrameStrokes& a, const core::FrameStrokes& 
     ASSERT_EQ(a.strokes.size(), b.strokes.size());
     for (size_t i = 0; i < a.strokes.size(); ++i) {
         EXPECT_EQ(a.strokes[i].id, b.strokes[i].id);
-        EXPECT_EQ(a.strokes[i].points_px, b.strokes[i].points_px) << "stroke " << i;
-        EXPECT_EQ(a.strokes[i].hidden, b.strokes[i].hidden) << "stroke " << i;
+        EXPECT_EQ(a.strokes[i].geometry.points_px, b.strokes[i].geometry.points_px) << "stroke " << i;
+        EXPECT_EQ(a.strokes[i].geometry.bridged, b.strokes[i].geometry.bridged) << "stroke " << i;
         EXPECT_EQ(a.strokes[i].width, b.strokes[i].width) << "stroke " << i;
     }
 }
