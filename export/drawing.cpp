@@ -46,8 +46,8 @@ Shape stroked_shape(uint32_t id, core::LineKind kind, bool visible, bool closed,
 
 Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style) {
     Drawing d{frame.frame, frame.image, frame.camera, style, {}};
-    d.shapes.reserve(frame.strokes.size());
-    for (const core::Polyline& line : frame.strokes) {
+    d.shapes.reserve(frame.polylines.size());
+    for (const core::Polyline& line : frame.polylines) {
         d.shapes.push_back(stroked_shape(line.id, line.kind, line.visible, line.closed, line.points_px));
     }
     return d;

@@ -50,7 +50,7 @@ json rounded(const std::vector<double>& values, double scale) {
 
 json polyline_strokes(const core::FrameLines& frame) {
     json strokes = json::array();
-    for (const core::Polyline& line : frame.strokes) {
+    for (const core::Polyline& line : frame.polylines) {
         strokes.push_back({{"id", line.id},
                            {"kind", core::line_kind_name(line.kind)},
                            {"closed", line.closed},

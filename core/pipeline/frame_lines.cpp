@@ -5,14 +5,14 @@ namespace inkline::core {
 
 void set_aside_occluded(FrameLines& frame) {
     std::vector<Polyline> shown;
-    for (Polyline& line : frame.strokes) (line.visible ? shown : frame.occluded).push_back(std::move(line));
+    for (Polyline& line : frame.polylines) (line.visible ? shown : frame.occluded).push_back(std::move(line));
     for (size_t i = 0; i < shown.size(); ++i) shown[i].id = uint32_t(i);
-    frame.strokes = std::move(shown);
+    frame.polylines = std::move(shown);
 }
 
 void tally_visible_length(FrameLines& frame) {
     frame.stats.visible_length_px.fill(0.0);
-    for (const Polyline& line : frame.strokes) {
+    for (const Polyline& line : frame.polylines) {
         if (line.visible) frame.stats.visible_length_px[size_t(line.kind)] += line.length_px();
     }
 }

@@ -35,18 +35,21 @@ struct FrameLines {
     ImageSize image;
     Camera camera;
     Light light;
-    std::vector<Polyline> strokes;
+    // The visible feature polylines in output order (with lines.hidden the occluded ones too, as
+    // visible == false); the stroke stage (core/strokes/) makes brush strokes of them.
+    std::vector<Polyline> polylines;
     // Occluded parts not output (lines.hidden off): the stroke stage draws short ones across
-    // where they bridge a stroke (core/strokes/bridge_gaps.h). With lines.hidden they are in strokes.
+    // where they bridge a stroke (core/strokes/bridge_gaps.h). With lines.hidden they are in
+    // polylines.
     std::vector<Polyline> occluded;
     FrameStats stats;
 };
 
-// Moves the occluded polylines of frame.strokes into frame.occluded (kept for the stroke stage,
+// Moves the occluded polylines of frame.polylines into frame.occluded (kept for the stroke stage,
 // not output) and numbers the visible ones again in order, as if only they had been found.
 void set_aside_occluded(FrameLines& frame);
 
-// Sums the visible length of the strokes per kind into stats.visible_length_px.
+// Sums the visible length of the polylines per kind into stats.visible_length_px.
 void tally_visible_length(FrameLines& frame);
 
 }  // namespace inkline::core

@@ -98,7 +98,7 @@ FrameResult FramePipeline::run(int frame) {
                                                       : MeshChange::kNone;
     const Occlusion& occlusion = occlusion_->prepare(mesh, table, projection, change);
     const double occlusion_ms = step("occlusion");
-    result.strokes = split_by_visibility(chains, mesh, projection, occlusion, {.keep_hidden = true});
+    result.polylines = split_by_visibility(chains, mesh, projection, occlusion, {.keep_hidden = true});
     if (!scene_.lines.hidden) set_aside_occluded(result);
     const double visibility_ms = occlusion_ms + step("visibility");
 

@@ -234,20 +234,20 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     FrameStrokes out;
     out.frame = frame.frame;
     // Visible lines are stroked alike whether or not hidden lines are output: with hidden lines
-    // (visible == false in frame.strokes) those are set aside here as set_aside_occluded would,
+    // (visible == false in frame.polylines) those are set aside here as set_aside_occluded would,
     // and what the visible strokes do not take of them is stroked on its own.
     std::vector<Polyline> shown_lines, hidden_lines;
     const bool hidden_out =
-        std::any_of(frame.strokes.begin(), frame.strokes.end(), [](const Polyline& line) { return !line.visible; });
+        std::any_of(frame.polylines.begin(), frame.polylines.end(), [](const Polyline& line) { return !line.visible; });
     if (hidden_out) {
-        for (const Polyline& line : frame.strokes) (line.visible ? shown_lines : hidden_lines).push_back(line);
+        for (const Polyline& line : frame.polylines) (line.visible ? shown_lines : hidden_lines).push_back(line);
     }
-    const std::vector<Polyline>& shown = hidden_out ? shown_lines : frame.strokes;
+    const std::vector<Polyline>& shown = hidden_out ? shown_lines : frame.polylines;
     const std::vector<Polyline>& occluded_lines = hidden_out ? hidden_lines : frame.occluded;
 
     const PureStrokeOptions pure_options{style.turn_angle_deg};
     PureStrokes pure = build_pure_strokes(shown, pure_options);
-    out.stats.polylines = frame.strokes.size();
+    out.stats.polylines = frame.polylines.size();
     out.stats.pure_strokes = pure.pure_strokes;
     out.stats.corners = pure.corners;
     out.stats.links = pure.links;
@@ -290,7 +290,7 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     // Normals only where the frame's lines run (bridged gaps included): a full pass over a million vertices would cost
     // more than the rest of this stage.
     std::vector<uint32_t> line_edges;
-    for (const Polyline& line : frame.strokes)
+    for (const Polyline& line : frame.polylines)
         line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
     for (const Polyline& line : frame.occluded)
         line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());

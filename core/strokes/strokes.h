@@ -65,7 +65,7 @@ struct FrameStrokes {
     StrokeStats stats;
 };
 
-// Builds one frame's brush strokes from its polylines (frame.strokes) and light (frame.light).
+// Builds one frame's brush strokes from its polylines (frame.polylines) and light (frame.light).
 // mesh and table are the frame's mesh and edge table, projection its camera and object motion.
 // Reads the previous frame's strokes from r_coherence and leaves this frame's there; short
 // occluded gaps (frame.occluded) are bridged as gap_bridge_options says.

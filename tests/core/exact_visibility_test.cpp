@@ -21,7 +21,7 @@ using core::LineKind;
 // Every point of every visible stroke, resampled at most `step` px apart.
 std::vector<glm::dvec2> resample(const core::FrameLines& frame, double step) {
     std::vector<glm::dvec2> out;
-    for (const core::Polyline& line : frame.strokes) {
+    for (const core::Polyline& line : frame.polylines) {
         if (!line.visible) continue;
         for (size_t i = 0; i + 1 < line.points_px.size(); ++i) {
             const glm::dvec2 a = line.points_px[i], b = line.points_px[i + 1];
@@ -48,7 +48,7 @@ TEST(ExactVisibility, SphereSilhouetteIsTheAnalyticCircle) {
     EXPECT_LT(error_sum / double(points.size()), 0.5);
 
     double length = 0.0;
-    for (const core::Polyline& line : frame.strokes) {
+    for (const core::Polyline& line : frame.polylines) {
         EXPECT_EQ(line.kind, LineKind::kSilhouette) << "no crease or boundary on a smooth sphere";
         EXPECT_TRUE(line.visible);
         length += line.length_px();
@@ -71,7 +71,7 @@ TEST(ExactVisibility, CubeShowsExactlyTheEdgesOfItsThreeFrontFaces) {
         return false;
     };
     std::set<uint32_t> visible, hidden;
-    for (const core::Polyline& line : frame.strokes) {
+    for (const core::Polyline& line : frame.polylines) {
         EXPECT_NE(line.kind, LineKind::kBoundary);
         for (uint32_t e : line.edges) (line.visible ? visible : hidden).insert(e);
     }
@@ -129,7 +129,7 @@ TEST(ExactVisibility, TorusVisibleLengthMatchesDenseRayCast) {
     const core::FrameLines frame = test::trace(torus, view, lines);
 
     double visible = 0.0, hidden = 0.0;
-    for (const core::Polyline& line : frame.strokes) (line.visible ? visible : hidden) += line.length_px();
+    for (const core::Polyline& line : frame.polylines) (line.visible ? visible : hidden) += line.length_px();
     EXPECT_GT(hidden, 50.0) << "the inner silhouette is partly occluded from this view";
 
     // Dense oracle over the same feature chains: midpoints of 0.5 px steps.
@@ -161,9 +161,9 @@ TEST(ExactVisibility, OwnFacesNeverOccludeTheirEdge) {
     tri.triangles = {{0, 1, 2}};
     for (double z : {4.0, -4.0}) {
         const core::FrameLines frame = test::trace(tri, {.eye = {0.3, 0.2, z}});
-        ASSERT_EQ(frame.strokes.size(), 1u);
-        EXPECT_TRUE(frame.strokes[0].closed);
-        EXPECT_EQ(frame.strokes[0].edges.size(), 3u);
+        ASSERT_EQ(frame.polylines.size(), 1u);
+        EXPECT_TRUE(frame.polylines[0].closed);
+        EXPECT_EQ(frame.polylines[0].edges.size(), 3u);
     }
 }
 
@@ -171,8 +171,8 @@ TEST(ExactVisibility, PartsOutsideTheImageAreClipped) {
     // Camera close to a big grid: its boundary runs outside the image and is cut at the border.
     const core::Mesh g = test::grid(4, 2.0);
     const core::FrameLines frame = test::trace(g, {.eye = {0.0, 0.0, 3.0}, .fov_y_deg = 70.0, .size = 256});
-    ASSERT_FALSE(frame.strokes.empty());
-    for (const core::Polyline& line : frame.strokes) {
+    ASSERT_FALSE(frame.polylines.empty());
+    for (const core::Polyline& line : frame.polylines) {
         for (const glm::dvec2& p : line.points_px) {
             EXPECT_GE(p.x, -0.2);
             EXPECT_LE(p.x, 256.2);

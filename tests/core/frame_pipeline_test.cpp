@@ -67,9 +67,9 @@ std::vector<core::FrameResult> run_all(const core::Scene& scene, core::MeshFrame
 
 // Same polylines, bit for bit, in the same order.
 void expect_same_lines(const core::FrameLines& a, const core::FrameLines& b) {
-    ASSERT_EQ(a.strokes.size(), b.strokes.size()) << "frame " << a.frame;
-    for (size_t i = 0; i < a.strokes.size(); ++i) {
-        const core::Polyline &p = a.strokes[i], &q = b.strokes[i];
+    ASSERT_EQ(a.polylines.size(), b.polylines.size()) << "frame " << a.frame;
+    for (size_t i = 0; i < a.polylines.size(); ++i) {
+        const core::Polyline &p = a.polylines[i], &q = b.polylines[i];
         EXPECT_EQ(p.id, q.id);
         EXPECT_EQ(p.kind, q.kind);
         EXPECT_EQ(p.visible, q.visible);
@@ -198,7 +198,7 @@ TEST(FramePipeline, RaycastAndExactAgreeOnASphereInFrontOfATorus) {
         const double length = visible_length(exact[f].lines);
         EXPECT_GT(length, 1000.0);
         EXPECT_NEAR(visible_length(raycast[f].lines), length, (1.0 - kMinAgreement) * length);
-        EXPECT_EQ(raycast[f].lines.strokes.size(), exact[f].lines.strokes.size());
+        EXPECT_EQ(raycast[f].lines.polylines.size(), exact[f].lines.polylines.size());
         EXPECT_EQ(raycast[f].strokes.strokes.size(), exact[f].strokes.strokes.size());
     }
 }
@@ -255,7 +255,7 @@ class DeformingSequence : public ::testing::Test {
             const core::FrameLines& lines = drawn[size_t(frame - 1)].lines;
             if (mode == core::VisibilityMode::kExact) {
                 // The tree is built again for new positions: the very same answer.
-                EXPECT_EQ(lines.strokes.size(), reference.lines.strokes.size());
+                EXPECT_EQ(lines.polylines.size(), reference.lines.polylines.size());
                 EXPECT_EQ(lines.stats.visible_length_px, reference.lines.stats.visible_length_px);
             } else {
                 // A refitted BVH and a new one answer alike up to float rounding.
@@ -284,13 +284,13 @@ TEST(FramePipeline, OccludedPartsAreSetAsideWithoutLinesHiddenAndOutputWithIt) {
     scene.lines.hidden = true;
     const core::FrameResult all = core::FramePipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact)).run(1);
     size_t hidden = 0;
-    for (const core::Polyline& p : shown.lines.strokes) EXPECT_TRUE(p.visible);
-    for (const core::Polyline& p : all.lines.strokes) hidden += !p.visible;
+    for (const core::Polyline& p : shown.lines.polylines) EXPECT_TRUE(p.visible);
+    for (const core::Polyline& p : all.lines.polylines) hidden += !p.visible;
     EXPECT_GT(shown.lines.occluded.size(), 0u) << "kept for gap bridging";
     EXPECT_EQ(hidden, shown.lines.occluded.size());
     EXPECT_TRUE(all.lines.occluded.empty());
-    EXPECT_EQ(all.lines.strokes.size(), shown.lines.strokes.size() + shown.lines.occluded.size());
-    for (size_t i = 0; i < shown.lines.strokes.size(); ++i) EXPECT_EQ(shown.lines.strokes[i].id, i) << "numbered again";
+    EXPECT_EQ(all.lines.polylines.size(), shown.lines.polylines.size() + shown.lines.occluded.size());
+    for (size_t i = 0; i < shown.lines.polylines.size(); ++i) EXPECT_EQ(shown.lines.polylines[i].id, i) << "numbered again";
     EXPECT_EQ(shown.lines.stats.visible_length_px, all.lines.stats.visible_length_px);
 }
 
@@ -346,11 +346,11 @@ TEST(FramePipeline, AFrameThatCannotBeReadThrowsAndTheNextFrameIsDrawn) {
     scene.last_frame = 3;
     core::MeshFrames meshes(scene.mesh, 1);
     core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
-    EXPECT_FALSE(pipeline.run(1).lines.strokes.empty());
+    EXPECT_FALSE(pipeline.run(1).lines.polylines.empty());
     EXPECT_THROW(pipeline.run(2), InputError);
     const core::FrameResult third = pipeline.run(3);
     EXPECT_EQ(third.lines.frame, 3);
-    EXPECT_FALSE(third.lines.strokes.empty());
+    EXPECT_FALSE(third.lines.polylines.empty());
     fs::remove_all(dir);
 }
 

@@ -54,7 +54,7 @@ class TorusTurn {
         const core::EdgeTable& table = meshes_->edges();
         const core::FeatureEdges features =
             core::extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
-        lines.strokes = core::split_by_visibility(core::chain_feature_edges(features, table), mesh, projection,
+        lines.polylines = core::split_by_visibility(core::chain_feature_edges(features, table), mesh, projection,
                                                   *occlusion_, {.keep_hidden = true});
         if (!keep_hidden_) core::set_aside_occluded(lines);
         return core::build_strokes(lines, mesh, table, projection, style_, coherence);

@@ -23,10 +23,10 @@ TEST(PolylinesJson, CarriesTheFrameAndEveryStroke) {
     EXPECT_EQ(doc["camera"]["eye"][0], 3.0);
     for (const char* key : {"eye", "target", "up", "fov_y_deg", "near", "far"}) EXPECT_TRUE(doc["camera"].contains(key)) << key;
     EXPECT_TRUE(doc["light"].contains("direction"));
-    ASSERT_EQ(doc["strokes"].size(), frame.strokes.size());
-    for (size_t i = 0; i < frame.strokes.size(); ++i) {
+    ASSERT_EQ(doc["strokes"].size(), frame.polylines.size());
+    for (size_t i = 0; i < frame.polylines.size(); ++i) {
         const auto& s = doc["strokes"][i];
-        const core::Polyline& line = frame.strokes[i];
+        const core::Polyline& line = frame.polylines[i];
         EXPECT_EQ(s["id"], line.id);
         EXPECT_EQ(s["kind"], core::line_kind_name(line.kind));
         EXPECT_EQ(s["visible"], line.visible);
