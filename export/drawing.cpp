@@ -80,17 +80,28 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
 
 std::string hex_color(const glm::dvec3& rgb) { return core::color_hex(rgb); }
 
-std::vector<std::string> layer_names() {
-    std::vector<std::string> names;
-    for (core::LineKind kind : core::kAllLineKinds) names.emplace_back(core::line_kind_name(kind));
-    names.emplace_back("hidden");
-    return names;
+const char* layer_name(Layer layer) {
+    switch (layer) {
+        case Layer::kSilhouette: return core::line_kind_name(core::LineKind::kSilhouette);
+        case Layer::kBoundary: return core::line_kind_name(core::LineKind::kBoundary);
+        case Layer::kCrease: return core::line_kind_name(core::LineKind::kCrease);
+        case Layer::kHidden: return "hidden";
+    }
+    return "";
 }
 
-double layer_opacity(const DrawStyle& style, const std::string& layer) {
-    return layer == "hidden" ? 0.5 * style.opacity : style.opacity;
+double layer_opacity(const DrawStyle& style, Layer layer) {
+    return layer == Layer::kHidden ? 0.5 * style.opacity : style.opacity;
 }
 
-std::string layer_of(const Shape& shape) { return shape.hidden ? "hidden" : core::line_kind_name(shape.kind); }
+Layer layer_of(const Shape& shape) {
+    if (shape.hidden) return Layer::kHidden;
+    switch (shape.kind) {
+        case core::LineKind::kSilhouette: return Layer::kSilhouette;
+        case core::LineKind::kBoundary: return Layer::kBoundary;
+        case core::LineKind::kCrease: return Layer::kCrease;
+    }
+    return Layer::kSilhouette;
+}
 
 }  // namespace inkline::output

@@ -8,6 +8,8 @@
 
 #include <glm/vec2.hpp>
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,11 +59,16 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
 // "#rrggbb" of an sRGB colour with components in [0, 1] (core::color_hex).
 std::string hex_color(const glm::dvec3& rgb);
 
-// Layer names in drawing order: the line kinds, then "hidden".
-std::vector<std::string> layer_names();
+// The layers of a drawing: one per line kind, then the hidden lines.
+enum class Layer : uint8_t { kSilhouette, kBoundary, kCrease, kHidden };
+// In drawing order.
+inline constexpr std::array<Layer, 4> kAllLayers = {Layer::kSilhouette, Layer::kBoundary, Layer::kCrease,
+                                                    Layer::kHidden};
+// "silhouette", "boundary", "crease" (the line kinds' names) or "hidden": the SVG layer's id.
+const char* layer_name(Layer layer);
 // Opacity of a whole layer: the style's, halved for hidden lines.
-double layer_opacity(const DrawStyle& style, const std::string& layer);
+double layer_opacity(const DrawStyle& style, Layer layer);
 // The layer a shape belongs to.
-std::string layer_of(const Shape& shape);
+Layer layer_of(const Shape& shape);
 
 }  // namespace inkline::output

@@ -97,12 +97,13 @@ std::string svg_document(const Drawing& d, const SvgOptions& options) {
           << *d.style.background << "\"/>\n";
     }
     const double line_width = d.style.centerline_width_px;
-    for (const std::string& layer : layer_names()) {
-        const bool hidden = layer == "hidden";
+    for (const Layer layer : kAllLayers) {
+        const bool hidden = layer == Layer::kHidden;
         bool any = false;
         for (const Shape& s : d.shapes) any |= layer_of(s) == layer;
         if (!any && hidden) continue;  // the hidden layer only when there are hidden lines
-        w << "  <g id=\"" << layer << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << layer << "\"";
+        const char* name = layer_name(layer);
+        w << "  <g id=\"" << name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
         if (const double opacity = layer_opacity(d.style, layer); opacity < 1.0) {
             w << " opacity=\"";
             w.number(opacity) << "\"";

@@ -26,6 +26,7 @@ class EglContext final : public Context {
         eglDestroyContext(display_, context_);
         eglTerminate(display_);
     }
+    Backend backend() const override { return Backend::kEgl; }
     const char* backend_name() const override { return "egl"; }
     GlProc proc_address(const char* name) const override { return eglGetProcAddress(name); }
 
@@ -41,6 +42,7 @@ class OsmesaContext final : public Context {
         OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1);
     }
     ~OsmesaContext() override { OSMesaDestroyContext(context_); }
+    Backend backend() const override { return Backend::kOsmesa; }
     const char* backend_name() const override { return "osmesa"; }
     GlProc proc_address(const char* name) const override { return OSMesaGetProcAddress(name); }
 
@@ -132,7 +134,7 @@ std::string Context::version() const {
 }
 
 bool Context::is_software() const {
-    if (std::string(backend_name()) == "osmesa") return true;
+    if (backend() == Backend::kOsmesa) return true;
     const std::string r = renderer();
     for (const char* name : {"llvmpipe", "softpipe", "swrast", "Software Rasterizer"}) {
         if (r.find(name) != std::string::npos) return true;

@@ -27,6 +27,7 @@ Backend parse_backend(const std::string& name);
 class Context {
   public:
     virtual ~Context() = default;
+    virtual Backend backend() const = 0;           // kEgl or kOsmesa
     virtual const char* backend_name() const = 0;  // "egl" or "osmesa"
     // Address of a GL entry point in this context (eglGetProcAddress, OSMesaGetProcAddress);
     // nullptr when the platform does not know it.

@@ -62,8 +62,8 @@ void paint_drawing(cairo_t* cr, const Drawing& d) {
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
-    for (const std::string& layer : layer_names()) {
-        const bool hidden = layer == "hidden";
+    for (const Layer layer : kAllLayers) {
+        const bool hidden = layer == Layer::kHidden;
         // Each layer is composited as a group so its opacity applies to the layer, not per path.
         cairo_push_group(cr);
         cairo_set_source_rgb(cr, ink.r, ink.g, ink.b);
