@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "cli/preview.h"
 
-#include "cli/clock.h"
 #include "core/error.h"
+#include "core/pipeline/stopwatch.h"
 #include "core/scene/frame_pattern.h"
 #include "export/atomic_file.h"
 #include "export/drawing.h"
@@ -42,7 +42,7 @@ Preview::Preview(const gl::Context* shared, const RenderArgs& args, const core::
 Preview::~Preview() = default;
 
 void Preview::write(core::FrameResult& drawn, const std::string& pattern) {
-    Clock clock;
+    core::Stopwatch clock;
     const gl::PreviewImage image =
         renderer_->render(drawn.lines, drawn.strokes, {.mesh = drawn.mesh, .world_from_object = drawn.world_from_object});
     output::write_file_atomically(core::format_frame(pattern, drawn.lines.frame),

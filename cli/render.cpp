@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "cli/render.h"
 
-#include "cli/clock.h"
 #include "cli/outputs.h"
 #include "cli/parse.h"
 #include "cli/preview.h"
@@ -14,6 +13,7 @@
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/topology.h"
 #include "core/pipeline/frame_pipeline.h"
+#include "core/pipeline/stopwatch.h"
 #include "core/scene/frame_pattern.h"
 #include "core/scene/scene.h"
 
@@ -134,7 +134,7 @@ int run_render(const RenderArgs& args) {
     double fast_forward_ms = 0.0;
     for (int frame = frames.first; frame <= rendered.last; ++frame) {
         if (frame < rendered.first) {
-            Clock clock;
+            core::Stopwatch clock;
             try {
                 pipeline.run(frame);
             } catch (const InputError& e) {

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "cli/writers.h"
 
-#include "cli/clock.h"
 #include "core/error.h"
+#include "core/pipeline/stopwatch.h"
 #include "core/scene/frame_pattern.h"
 #include "export/atomic_file.h"
 #include "export/json.h"
@@ -68,7 +68,7 @@ Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Sce
 size_t Writers::write(core::FrameResult& drawn) {
     core::FrameLines& frame = drawn.lines;
     size_t files = 0;
-    Clock clock;
+    core::Stopwatch clock;
     const output::Drawing drawing = output::brush_drawing(frame, drawn.strokes, style_, centerline_);
     if (!outputs_.svg.empty()) {
         output::write_file_atomically(core::format_frame(outputs_.svg, frame.frame), output::svg_document(drawing, {}));

@@ -4,30 +4,16 @@
 #include "core/error.h"
 #include "core/lines/chaining.h"
 #include "core/lines/features.h"
+#include "core/pipeline/stopwatch.h"
 #include "core/visibility/visibility.h"
 
 #include <glm/vector_relational.hpp>
 
-#include <chrono>
 #include <utility>
 #include <vector>
 
 namespace inkline::core {
 namespace {
-
-// Milliseconds since the last lap.
-class Laps {
-  public:
-    double lap_ms() {
-        const auto now = std::chrono::steady_clock::now();
-        const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
-        last_ = now;
-        return ms;
-    }
-
-  private:
-    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
 
 bool inside(const Bounds& b, const glm::dvec3& p) {
     return glm::all(glm::greaterThanEqual(p, b.min)) && glm::all(glm::lessThanEqual(p, b.max));
@@ -47,7 +33,7 @@ FramePipeline::FramePipeline(const Scene& scene, MeshFrames& meshes, std::unique
 FramePipeline::~FramePipeline() = default;
 
 FrameResult FramePipeline::run(int frame) {
-    Laps laps;
+    Stopwatch laps;
     const auto step = [&](const char* name) {
         const double ms = laps.lap_ms();
         if (options_.step_done) options_.step_done(name);

@@ -28,18 +28,10 @@ namespace fs = std::filesystem;
 // raycast_visibility_test).
 constexpr double kMinAgreement = 0.999;
 
-// `b` moved by `offset`, appended to `a`.
-core::Mesh combine(core::Mesh a, const core::Mesh& b, const glm::vec3& offset) {
-    const uint32_t base = uint32_t(a.positions.size());
-    for (const glm::vec3& p : b.positions) a.positions.push_back(p + offset);
-    for (const glm::uvec3& t : b.triangles) a.triangles.push_back(t + glm::uvec3(base));
-    return a;
-}
-
 // A torus with a sphere in front of it, the sphere moved along x by `shift`: the sphere hides
 // parts of the torus's silhouettes and creases.
 core::Mesh torus_behind_sphere(float shift) {
-    return combine(test::torus(1.0, 0.35, 48, 24), test::uv_sphere(32, 16, 0.45), {shift, 0.3f, 1.2f});
+    return test::combine(test::torus(1.0, 0.35, 48, 24), test::uv_sphere(32, 16, 0.45), {shift, 0.3f, 1.2f});
 }
 
 const test::View kView{.eye = {0.4, 1.6, 4.2}, .fov_y_deg = 40.0, .size = 512};

@@ -28,16 +28,10 @@ namespace {
 // Raycast and exact must agree on at least this fraction of the visible length (issue 9).
 constexpr double kMinAgreement = 0.999;
 
-// `b` moved by `offset`, appended to `a`.
-core::Mesh combine(core::Mesh a, const core::Mesh& b, const glm::vec3& offset) {
-    const uint32_t base = uint32_t(a.positions.size());
-    for (const glm::vec3& p : b.positions) a.positions.push_back(p + offset);
-    for (const glm::uvec3& t : b.triangles) a.triangles.push_back(t + glm::uvec3(base));
-    return a;
-}
-
 // A torus floating over an open grid: its rim hides parts of the grid's boundary.
-core::Mesh torus_over_grid() { return combine(test::grid(6, 1.0), test::torus(1.0, 0.35, 48, 24), {0.0f, 0.0f, 1.6f}); }
+core::Mesh torus_over_grid() {
+    return test::combine(test::grid(6, 1.0), test::torus(1.0, 0.35, 48, 24), {0.0f, 0.0f, 1.6f});
+}
 
 struct Agreement {
     double visible_px = 0.0;  // visible length according to the reference
@@ -187,7 +181,7 @@ size_t count_differences(const RandomQueries& r, const core::Occlusion& a, const
 
 TEST(RaycastVisibility, AgreesWithExactOnRandomPoints) {
     SKIP_WITHOUT_EMBREE();
-    const core::Mesh mesh = combine(torus_over_grid(), test::uv_sphere(32, 16, 0.6), {0.3f, -0.2f, -1.2f});
+    const core::Mesh mesh = test::combine(torus_over_grid(), test::uv_sphere(32, 16, 0.6), {0.3f, -0.2f, -1.2f});
     const core::EdgeTable table = core::build_edge_table(mesh);
     const RandomQueries r = random_queries(mesh, table, 8, 2000, 7);
     const core::ExactOcclusion exact(mesh, table);

@@ -29,18 +29,10 @@ using test::context_or_skip;
 constexpr double kMinAgreement = 0.995;
 constexpr double kMaxDisagreementPx = 2.0;
 
-// b moved by offset, appended to a.
-core::Mesh merged(core::Mesh a, const core::Mesh& b, const glm::vec3& offset) {
-    const auto base = unsigned(a.positions.size());
-    for (const glm::vec3& p : b.positions) a.positions.push_back(p + offset);
-    for (const glm::uvec3& t : b.triangles) a.triangles.push_back(t + glm::uvec3(base));
-    return a;
-}
-
 // A torus with a sphere through its front: silhouettes, self-occlusion, mutual occlusion and
 // intersection curves.
 core::Mesh torus_and_sphere() {
-    return merged(test::torus(1.0, 0.35, 64, 32), test::uv_sphere(48, 24, 0.5), {0.55f, 0.25f, 0.6f});
+    return test::combine(test::torus(1.0, 0.35, 64, 32), test::uv_sphere(48, 24, 0.5), {0.55f, 0.25f, 0.6f});
 }
 
 // One frame seen through both occlusions.
@@ -271,7 +263,7 @@ TEST(DepthVisibility, OccludersBeforeTheNearPlaneCount) {
     Scene torus(test::torus(1.0, 0.35, 64, 32));
     const double unoccluded = visible_px(torus.frame(depth, camera, 512, glm::dmat4(1.0), core::MeshChange::kTopology, false).exact);
 
-    Scene scene(merged(test::torus(1.0, 0.35, 64, 32), test::uv_sphere(24, 12, 0.08), {0.07f, 0.0f, 3.7f}));
+    Scene scene(test::combine(test::torus(1.0, 0.35, 64, 32), test::uv_sphere(24, 12, 0.08), {0.07f, 0.0f, 3.7f}));
     const Frame f = scene.frame(depth, camera, 512, glm::dmat4(1.0), core::MeshChange::kTopology, false);
     ASSERT_LT(f.projection.clip(glm::dvec3(0.07, 0.0, 3.62)).w, camera.near) << "the sphere lies before the near plane";
     EXPECT_LT(visible_px(f.exact), 0.9 * unoccluded) << "the sphere hides part of the torus";

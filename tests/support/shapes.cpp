@@ -248,4 +248,11 @@ core::Mesh noise_terrain(uint32_t n, double amplitude) {
     return m;
 }
 
+core::Mesh combine(core::Mesh a, const core::Mesh& b, const glm::vec3& offset) {
+    const uint32_t base = uint32_t(a.positions.size());
+    for (const glm::vec3& p : b.positions) a.positions.push_back(p + offset);
+    for (const glm::uvec3& t : b.triangles) a.triangles.push_back(t + glm::uvec3(base));
+    return a;
+}
+
 }  // namespace inkline::test

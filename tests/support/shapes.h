@@ -4,6 +4,8 @@
 
 #include "core/mesh/mesh.h"
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 
 namespace inkline::test {
@@ -52,5 +54,8 @@ core::Mesh noise_terrain(uint32_t n, double amplitude);
 
 // Flat n x n quad grid in the z = 0 plane spanning [-h, h]^2, normals towards +z.
 core::Mesh grid(int n, double half_size);
+
+// `b` moved by `offset`, appended to `a`: one mesh of two objects.
+core::Mesh combine(core::Mesh a, const core::Mesh& b, const glm::vec3& offset);
 
 }  // namespace inkline::test

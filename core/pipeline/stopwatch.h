@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
-// Wall-clock laps for the stage times the CLI adds to a frame's stats (writers, preview).
+// Wall-clock laps for the stage times of a frame (FrameStats::ms): the pipeline's stages, and
+// what a program adds after them (its writers).
 #pragma once
 
 #include <chrono>
 
-namespace inkline::cli {
+namespace inkline::core {
 
-class Clock {
+class Stopwatch {
   public:
     // Milliseconds since the last lap (or since construction).
     double lap_ms() {
@@ -20,4 +21,4 @@ class Clock {
     std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-}  // namespace inkline::cli
+}  // namespace inkline::core
