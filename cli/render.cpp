@@ -121,8 +121,7 @@ int run_render(const RenderArgs& args) {
     core::FramePipeline pipeline(scene, meshes, make_occlusion(visibility),
                                  {.tracker = tracker,
                                   .frame_count = frames.count(),
-                                  .visibility_reason = visibility.reason,
-                                  .warn = warn});
+                                  .visibility_reason = visibility.reason});
     std::optional<Preview> preview;
     if (!outputs.preview.empty()) preview.emplace(visibility.context.get(), args, scene);
     for (const std::string& w : meshes.warnings()) warn(w);
@@ -136,7 +135,7 @@ int run_render(const RenderArgs& args) {
         if (frame < rendered.first) {
             core::Stopwatch clock;
             try {
-                pipeline.run(frame);
+                for (const std::string& w : pipeline.run(frame).warnings) warn(w);
             } catch (const InputError& e) {
                 if (!args.keep_going) throw;
             }
@@ -155,6 +154,7 @@ int run_render(const RenderArgs& args) {
             std::fprintf(stderr, "inkline: error: frame %d: %s\n", frame, e.what());
             continue;
         }
+        for (const std::string& w : result.warnings) warn(w);
         files += writers.write(result);
         if (preview) {
             preview->write(result, outputs.preview);

@@ -56,9 +56,8 @@ FrameResult FramePipeline::run(int frame) {
     const Projection projection(result.camera, scene_.image, world_from_object);
     if (!warned_inside_ && inside(object_bounds, projection.eye_object())) {
         warned_inside_ = true;
-        if (options_.warn) {
-            options_.warn("frame " + std::to_string(frame) + ": the camera is inside the mesh's bounds; lines may be hidden");
-        }
+        out.warnings.push_back("frame " + std::to_string(frame) +
+                               ": the camera is inside the mesh's bounds; lines may be hidden");
     }
 
     // Feature edges and chains.

@@ -24,6 +24,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace inkline::core {
 
@@ -37,9 +38,6 @@ struct PipelineOptions {
     // Why the occlusion test is the one given, for FrameStats::visibility_reason. The default is
     // what `inkline render --visibility MODE` says.
     std::string visibility_reason = "asked for";
-    // Receives warnings about drawable but odd input (the camera inside the mesh's bounds, once
-    // a run); none: they are dropped.
-    std::function<void(const std::string& message)> warn{};
     // Called as each step of run() ends, with its name: "load", "tracker build" (the cone
     // hierarchy, on the tracker's first frame), "extract", "chain", "occlusion" (prepare: a BVH
     // or tree built or refitted, a depth pass), "visibility", "strokes". For benchmarks that time
@@ -54,6 +52,9 @@ struct FrameResult {
     FrameStrokes strokes;  // brush strokes of lines
     const Mesh* mesh = nullptr;  // the frame's mesh (object space), valid until the next run()
     glm::dmat4 world_from_object{1.0};
+    // Drawable but odd input found drawing this frame (the camera inside the mesh's bounds,
+    // said once a run), for the caller to show; the pipeline prints nothing.
+    std::vector<std::string> warnings;
 };
 
 class FramePipeline {

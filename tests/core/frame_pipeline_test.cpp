@@ -321,9 +321,10 @@ TEST(FramePipeline, WarnsOnceWhenTheCameraIsInsideTheMeshBounds) {
     scene.last_frame = 3;
     core::MeshFrames meshes(mesh);
     std::vector<std::string> warnings;
-    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact),
-                                 {.warn = [&](const std::string& w) { warnings.push_back(w); }});
-    for (int frame = 1; frame <= 3; ++frame) pipeline.run(frame);
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+    for (int frame = 1; frame <= 3; ++frame) {
+        for (const std::string& w : pipeline.run(frame).warnings) warnings.push_back(w);
+    }
     EXPECT_EQ(warnings, (std::vector<std::string>{
                             "frame 1: the camera is inside the mesh's bounds; lines may be hidden"}));
 }
