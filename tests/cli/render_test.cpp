@@ -113,6 +113,27 @@ TEST_F(Cli, ExplicitPatternsOnly) {
     EXPECT_FALSE(fs::exists(dir / "json"));
 }
 
+TEST_F(Cli, CameraInsideTheMeshIsOneWarningAndTheFramesAreDrawn) {
+    const fs::path s = scene(R"({"mesh": "cube.obj", "frames": [1, 3], "camera": {"eye": [0.2, 0.1, 0.3], "target": [0, 0, -3]}})");
+    const std::string warning = "inkline: warning: frame 1: the camera is inside the mesh's bounds; lines may be hidden";
+    const auto count = [](const std::string& text, const std::string& needle) {
+        size_t n = 0;
+        for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+        return n;
+    };
+    const RunResult all = run("render " + s.string() + " --size 64x64 --svg " + (dir / "a%d.svg").string());
+    ASSERT_EQ(all.code, 0) << all.output;
+    EXPECT_EQ(count(all.output, warning), 1u) << all.output;
+    EXPECT_TRUE(fs::exists(dir / "a3.svg"));
+    // A chunk replays frame 1 without output: the warning still comes, once.
+    const RunResult chunk = run("render " + s.string() + " --size 64x64 --chunk 2/3 --svg " + (dir / "c%d.svg").string());
+    ASSERT_EQ(chunk.code, 0) << chunk.output;
+    EXPECT_EQ(count(chunk.output, warning), 1u) << chunk.output;
+    EXPECT_FALSE(fs::exists(dir / "c1.svg"));
+    EXPECT_TRUE(fs::exists(dir / "c2.svg"));
+    EXPECT_EQ(count(run("render " + s.string() + " --size 64x64 -q --svg " + (dir / "q%d.svg").string()).output, warning), 0u);
+}
+
 TEST_F(Cli, BareMeshRendersADefaultTurntable) {
     test::write_obj(dir / "cube.obj", test::cube(1.0));
     const RunResult r = run("render " + (dir / "cube.obj").string() + " --frames 1:2 -q -o " + dir.string());
