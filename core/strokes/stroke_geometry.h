@@ -5,15 +5,16 @@
 // matched to last frame's strokes, the finished Stroke).
 #pragma once
 
+#include "core/lines/features.h"
+#include "core/visibility/visibility.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
 #include <vector>
-
-#include "core/lines/features.h"
-#include "core/visibility/visibility.h"
 
 namespace inkline::core {
 

@@ -12,7 +12,13 @@ namespace inkline::test {
 
 // Whether this build runs under AddressSanitizer, which reserves terabytes of address space for
 // its shadow memory: address-space limits (ulimit -v, RLIMIT_AS) cannot be tested under it.
-#if defined(__SANITIZE_ADDRESS__)
+// GCC says so with __SANITIZE_ADDRESS__, clang with __has_feature(address_sanitizer).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define INKLINE_TEST_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(INKLINE_TEST_ASAN)
 inline constexpr bool kAddressSanitizer = true;
 #else
 inline constexpr bool kAddressSanitizer = false;
