@@ -16,6 +16,7 @@
 #include "core/pipeline/stopwatch.h"
 #include "core/scene/frame_pattern.h"
 #include "core/scene/scene.h"
+#include "gl/context.h"
 
 #include <algorithm>
 #include <chrono>
@@ -50,6 +51,10 @@ ChunkRange chunk_range(int first, int last, int k, int n) {
 }
 
 RenderPlan plan_render(const RenderArgs& args) {
+    // The modes too, so that `inkline farm` refuses a bad one before it writes its job scripts.
+    core::parse_tracker_mode(args.tracker, "--tracker");
+    parse_visibility_option(args.visibility);
+    gl::parse_backend(args.gl_backend);
     FrameRange frames{1, 48};  // a bare mesh's default turntable
     if (is_scene_file(args.input)) {
         const core::Scene scene = core::load_scene(args.input, args.max_image_side);

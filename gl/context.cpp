@@ -120,7 +120,7 @@ Backend parse_backend(const std::string& name) {
     if (name == "auto") return Backend::kAuto;
     if (name == "egl") return Backend::kEgl;
     if (name == "osmesa") return Backend::kOsmesa;
-    throw inkline::InputError("--gl '" + name + "': expected auto, egl or osmesa");
+    throw inkline::InputError("--gl '" + inkline::quote_value(name) + "': expected auto, egl or osmesa");
 }
 
 std::string Context::renderer() const {

@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace inkline {
 namespace {
 
@@ -51,6 +55,21 @@ TEST(Farm, SingleFilePdfIsRefused) {
                                                 dir.string() + " -- --pdf " + (dir / "all.pdf").string());
     EXPECT_EQ(r.code, 2);
     EXPECT_NE(r.output.find("per-frame PDFs"), std::string::npos) << r.output;
+    fs::remove_all(dir);
+}
+
+TEST(Farm, BadModeOptionsAreRefusedBeforeAnyScriptIsWritten) {
+    const fs::path dir = test::fresh_temp_dir("farm_modes");
+    const std::string farm = "farm " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --chunks 2 -o " + dir.string();
+    for (const auto& [option, message] : std::vector<std::pair<std::string, std::string>>{
+             {"--tracker nope", "--tracker 'nope': expected incremental or brute"},
+             {"--visibility nope", "--visibility 'nope': expected auto, gl, raycast or exact"},
+             {"--gl nope", "--gl 'nope': expected auto, egl or osmesa"}}) {
+        const test::RunResult r = test::run_inkline(farm + " -- " + option);
+        EXPECT_EQ(r.code, 2) << option << ": " << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(dir / "slurm")) << option;
+    }
     fs::remove_all(dir);
 }
 
