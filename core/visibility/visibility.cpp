@@ -151,15 +151,26 @@ class Splitter {
         return glm::length(projection_.pixel_from_clip(c0) - projection_.pixel_from_clip(c1));
     }
 
-    // Sample parameters: every vertex, plus interior samples at most sample_spacing_px apart.
+    // Sample parameters, neighbours at most sample_spacing_px apart along the chain: both ends,
+    // interior samples along longer segments, and each vertex unless the segments around it are
+    // so short that the next sample still lies within that spacing. Where segments are longer
+    // than the spacing that is every vertex; a run of sub-spacing segments (a fine mesh, a fan's
+    // rim) is sampled once per spacing, so the queries follow the drawing, not the mesh.
     std::vector<double> sample_params(const ChainGeometry& geom) const {
+        const double spacing = options_.sample_spacing_px;
         std::vector<double> g;
+        double since = HUGE_VAL;  // pixel length from the last sample to the current vertex
         for (size_t s = 0; s < geom.segments(); ++s) {
             const double len = pixel_distance(geom, double(s), double(s) + 1.0);
+            if (!(since + len > spacing)) {
+                since += len;
+                continue;
+            }
             // Behind-camera segments are still sampled so the near-plane crossing is found.
-            const double n = std::isfinite(len) ? std::ceil(len / options_.sample_spacing_px) : 16.0;
+            const double n = std::isfinite(len) ? std::ceil(len / spacing) : 16.0;
             const int count = int(std::clamp(n, 1.0, 4096.0));
             for (int k = 0; k < count; ++k) g.push_back(double(s) + double(k) / count);
+            since = len / count;
         }
         g.push_back(double(geom.segments()));
         return g;

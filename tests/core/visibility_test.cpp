@@ -4,7 +4,10 @@
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace inkline {
 namespace {
@@ -20,6 +23,19 @@ class HideBeyondX final : public core::Occlusion {
 
   private:
     double x_;
+};
+
+// Hides nothing and keeps every point it was asked about.
+class RecordQueries final : public core::Occlusion {
+  public:
+    void occluded(const glm::dvec3&, std::span<const core::OcclusionQuery> queries,
+                  std::span<uint8_t> r_occluded) const override {
+        for (size_t i = 0; i < queries.size(); ++i) {
+            points.push_back(queries[i].p_object);
+            r_occluded[i] = 0;
+        }
+    }
+    mutable std::vector<glm::dvec3> points;
 };
 
 core::Projection front_view() {
@@ -56,6 +72,55 @@ TEST(Visibility, ShortRunsBelowTheBisectionPrecisionMerge) {
                                                  {.keep_hidden = true});
     ASSERT_EQ(lines.size(), 1u);
     EXPECT_TRUE(lines[0].visible);
+}
+
+// A straight chain of 0 to 1 along x in `segments` equal segments.
+std::pair<core::Mesh, core::Chain> straight_chain(uint32_t segments) {
+    core::Mesh mesh;
+    core::Chain chain{core::LineKind::kSilhouette, false, {}, {}};
+    for (uint32_t i = 0; i <= segments; ++i) {
+        mesh.positions.push_back({float(i) / float(segments), 0.0f, 0.0f});
+        chain.vertices.push_back(i);
+        if (i < segments) chain.edges.push_back(i);
+    }
+    return {mesh, chain};
+}
+
+// Queries follow the drawing's length: a chain of sub-pixel segments is sampled about every
+// 2 px, not at each of its vertices, and no two neighbouring samples are further apart.
+TEST(Visibility, FineChainsAreSampledByLengthNotByVertex) {
+    const double px_per_unit = 512.0 / (4.0 * std::tan(glm::radians(17.5)));  // about 403 px
+    const auto [mesh, chain] = straight_chain(20000);
+    RecordQueries record;
+    const auto lines = core::split_by_visibility({chain}, mesh, front_view(), record, {});
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_EQ(lines[0].points_px.size(), 20001u);  // the polyline keeps every vertex
+    const auto& p = record.points;
+    ASSERT_GE(p.size(), 2u);
+    // A sample at least every 2 px, and no closer than 2 px less one segment (0.02 px).
+    const double segment_px = px_per_unit / 20000.0;
+    EXPECT_GE(double(p.size()), px_per_unit / 2.0 + 1.0);
+    EXPECT_LE(double(p.size()), px_per_unit / (2.0 - segment_px) + 2.0);
+    EXPECT_DOUBLE_EQ(p.front().x, 0.0);
+    EXPECT_DOUBLE_EQ(p.back().x, 1.0);
+    for (size_t i = 1; i < p.size(); ++i) EXPECT_LE((p[i].x - p[i - 1].x) * px_per_unit, 2.0 + 1e-9);
+}
+
+// Where segments are longer than the spacing, every vertex is a sample, with samples between.
+TEST(Visibility, CoarseChainsAreSampledAtEveryVertex) {
+    const double px_per_unit = 512.0 / (4.0 * std::tan(glm::radians(17.5)));
+    const auto [mesh, chain] = straight_chain(50);  // 8 px segments
+    RecordQueries record;
+    core::split_by_visibility({chain}, mesh, front_view(), record, {});
+    for (uint32_t v = 0; v <= 50; ++v) {
+        const double x = double(mesh.positions[v].x);
+        EXPECT_TRUE(std::any_of(record.points.begin(), record.points.end(),
+                                [&](const glm::dvec3& q) { return std::abs(q.x - x) < 1e-12; }))
+            << "vertex " << v;
+    }
+    for (size_t i = 1; i < record.points.size(); ++i) {
+        EXPECT_LE((record.points[i].x - record.points[i - 1].x) * px_per_unit, 2.0 + 1e-9);
+    }
 }
 
 }  // namespace
