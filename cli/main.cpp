@@ -42,6 +42,12 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
         ->capture_default_str();
     cmd->add_option("--gl", r.gl_backend, "GL context: auto (EGL, then OSMesa), egl or osmesa")
         ->capture_default_str();
+    cmd->add_option("--gltf-scene", r.gltf_scene, "glTF input: draw this scene of the file (default: its default scene)")
+        ->check(CLI::Range(0, 1 << 30));
+    cmd->add_option("--animation", r.animation, "glTF input: play only this animation, by name or index (default: all together)");
+    cmd->add_option("--camera", r.camera, "glTF input: look through this camera, by its or its node's name (default: the first)");
+    cmd->add_option("--fps", r.fps, "glTF input: frame F is animation time F / fps (default: 24, or the scene's fps)")
+        ->check(CLI::Range(1e-6, 1e6));
     cmd->add_flag("--centerline", r.centerline,
                          "constant-width centerlines instead of brush outlines (pen plotters, cutters)");
     cmd->add_flag("--hidden", r.hidden, "also output occluded lines (visible: false)");

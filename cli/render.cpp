@@ -15,12 +15,14 @@
 #include "core/pipeline/frame_pipeline.h"
 #include "core/pipeline/stopwatch.h"
 #include "core/scene/frame_pattern.h"
+#include "core/scene/gltf_shot.h"
 #include "core/scene/scene.h"
 #include "gl/context.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <optional>
 
 namespace inkline::cli {
@@ -40,6 +42,68 @@ std::vector<InputFile> run_inputs(const core::Scene& scene, int first, int last)
     return inputs;
 }
 
+// The scene as the arguments select it: a scene file, a bare mesh (a default turntable, made
+// once the mesh is read) or a bare glTF file, with the glTF read and the frames chosen.
+struct Shot {
+    core::Scene scene;
+    bool from_scene = false;
+    std::shared_ptr<const core::GltfShot> gltf;
+    FrameRange frames{1, 48};
+};
+
+Shot open_shot(const RenderArgs& args) {
+    Shot shot;
+    shot.from_scene = is_scene_file(args.input);
+    core::Scene& scene = shot.scene;
+    if (shot.from_scene) {
+        scene = core::load_scene(args.input, args.max_image_side);
+    } else {
+        scene.mesh.path = args.input;
+        scene.first_frame = 1;
+        scene.last_frame = 48;
+        if (core::is_gltf_path(args.input)) scene.gltf.emplace();
+    }
+    if (!scene.gltf) {
+        for (const auto& [given, option] : {std::pair(args.gltf_scene >= 0, "--gltf-scene"), std::pair(!args.animation.empty(), "--animation"),
+                                            std::pair(!args.camera.empty(), "--camera"), std::pair(args.fps > 0.0, "--fps")}) {
+            if (given) throw InputError(std::string(option) + ": applies only to glTF input (.gltf, .glb)");
+        }
+    } else {
+        core::GltfSettings& g = *scene.gltf;
+        if (args.gltf_scene >= 0) g.scene = args.gltf_scene;
+        if (!args.animation.empty()) g.animation = args.animation;
+        if (!args.camera.empty()) g.camera = args.camera;
+        if (args.fps > 0.0) scene.fps = args.fps;
+        shot.gltf = std::make_shared<core::GltfShot>(
+            scene.mesh.path, core::GltfOptions{g.scene, g.animation, g.camera, scene.fps, args.max_faces});
+        // The file's frames unless the scene gives them: its animation, else one still frame
+        // through its camera, else the 48-frame turntable of a bare mesh.
+        if (!scene.given.frames) {
+            if (const auto range = shot.gltf->frame_range()) {
+                std::tie(scene.first_frame, scene.last_frame) = *range;
+            } else if (shot.gltf->camera() || scene.given.camera) {
+                scene.first_frame = scene.last_frame = 1;
+            }
+        }
+    }
+    shot.frames = {scene.first_frame, scene.last_frame};
+    if (!args.frames.empty()) shot.frames = parse_frames(args.frames);
+    return shot;
+}
+
+// The camera of a glTF shot: its own, per frame; a default view around it when it has none.
+void frame_gltf(const Shot& shot, core::Scene& r_scene, bool image_given) {
+    const core::GltfShot& gltf = *shot.gltf;
+    if (r_scene.given.camera) return;
+    if (gltf.camera()) {
+        core::apply_gltf_camera(gltf, r_scene, shot.frames.first, shot.frames.last, image_given);
+        return;
+    }
+    const core::Scene turntable = core::default_turntable_scene(r_scene.mesh.path, core::bounds_of(gltf.rest().positions));
+    r_scene.camera = turntable.camera;
+    if (gltf.frame_range()) r_scene.camera.orbit.reset();  // an animated shot: a still camera
+}
+
 }  // namespace
 
 ChunkRange chunk_range(int first, int last, int k, int n) {
@@ -55,12 +119,7 @@ RenderPlan plan_render(const RenderArgs& args) {
     core::parse_tracker_mode(args.tracker, "--tracker");
     parse_visibility_option(args.visibility);
     gl::parse_backend(args.gl_backend);
-    FrameRange frames{1, 48};  // a bare mesh's default turntable
-    if (is_scene_file(args.input)) {
-        const core::Scene scene = core::load_scene(args.input, args.max_image_side);
-        frames = {scene.first_frame, scene.last_frame};
-    }
-    if (!args.frames.empty()) frames = parse_frames(args.frames);
+    const FrameRange frames = open_shot(args).frames;
     const Outputs o = resolve_outputs(args, frames.count());
     return {frames.first, frames.last, o.json, o.svg, o.png, o.preview, o.pdf, o.pdf_per_frame};
 }
@@ -69,18 +128,11 @@ int run_render(const RenderArgs& args) {
     // The modes, parsed once.
     const core::TrackerMode tracker = core::parse_tracker_mode(args.tracker, "--tracker");
     const std::optional<core::VisibilityMode> asked_visibility = parse_visibility_option(args.visibility);
-    // Scene: a file, or a default turntable around a bare mesh (made once the mesh is read).
-    const bool from_scene = is_scene_file(args.input);
-    core::Scene scene;
-    if (from_scene) {
-        scene = core::load_scene(args.input, args.max_image_side);
-    } else {
-        scene.mesh.path = args.input;
-        scene.first_frame = 1;
-        scene.last_frame = 48;
-    }
-    FrameRange frames{scene.first_frame, scene.last_frame};
-    if (!args.frames.empty()) frames = parse_frames(args.frames);
+    // Scene: a file, a glTF shot, or a default turntable around a bare mesh (made once the mesh is read).
+    Shot shot = open_shot(args);
+    core::Scene& scene = shot.scene;
+    const bool from_scene = shot.from_scene || shot.gltf;
+    const FrameRange frames = shot.frames;
     const std::optional<core::ImageSize> size =
         args.size.empty() ? std::nullopt : std::optional(parse_size(args.size, args.max_image_side));
     const Outputs outputs = resolve_outputs(args, frames.count());
@@ -95,10 +147,20 @@ int run_render(const RenderArgs& args) {
         }
         rendered = {c.first, c.last};
     }
+    if (shot.gltf) {
+        if (size) scene.image = *size;
+        frame_gltf(shot, scene, scene.given.image || size.has_value());
+    }
     core::check_cameras(scene, frames.first, frames.last);
     check_outputs(outputs, rendered.first, rendered.last, run_inputs(scene, frames.first, frames.last));
 
-    core::MeshFrames meshes(scene.mesh, frames.first, {args.max_faces});
+    std::optional<core::MeshFrames> mesh_frames;
+    if (shot.gltf) {
+        mesh_frames.emplace(shot.gltf, scene.mesh.path);
+    } else {
+        mesh_frames.emplace(scene.mesh, frames.first, core::MeshLimits{args.max_faces});
+    }
+    core::MeshFrames& meshes = *mesh_frames;
     const size_t faces = meshes.at(frames.first).triangles.size();
     if (faces > args.max_faces) {
         throw InputError(meshes.path_of(frames.first).string() + ": " + std::to_string(faces) +

@@ -27,6 +27,10 @@ struct RenderArgs {
     std::string gl_backend = "auto";      // auto | egl | osmesa
     bool centerline = false;              // constant-width centerlines instead of brush outlines
     bool hidden = false;
+    int gltf_scene = -1;      // glTF input: the file's scene; -1: the scene JSON's or the file's default
+    std::string animation;    // glTF input: one animation by name or index; empty: all
+    std::string camera;       // glTF input: a camera by name; empty: the first
+    double fps = 0.0;         // glTF input: frames per second of animation time; 0: the scene's (24)
     std::string chunk;        // "K/N" or "slurm": render the K-th of N contiguous chunks of the frames
     bool keep_going = false;
     size_t max_faces = 50'000'000;

@@ -5,6 +5,7 @@
 #include "core/mesh/mesh_io.h"
 #include "core/scene/frame_pattern.h"
 
+#include <limits>
 #include <utility>
 
 namespace inkline::core {
@@ -24,12 +25,28 @@ MeshFrames::MeshFrames(Mesh mesh) : mesh_(std::move(mesh)), loaded_frame_(0), ta
     warnings_ = mesh_warnings(describe_mesh(mesh_, table_));
 }
 
+MeshFrames::MeshFrames(std::shared_ptr<const AnimatedMesh> animation, const std::filesystem::path& source)
+    : animation_(std::move(animation)), mesh_(animation_->rest()), loaded_frame_(0),
+      table_(build_edge_table(mesh_)) {
+    source_.path = source;
+    warnings_ = animation_->warnings();
+    for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_))) warnings_.push_back(source.string() + ": " + w);
+    loaded_frame_ = std::numeric_limits<int>::min();
+}
+
 std::filesystem::path MeshFrames::path_of(int frame) const {
     if (!source_.is_sequence) return source_.path;
     return format_frame(source_.path.string(), frame);
 }
 
 const Mesh& MeshFrames::at(int frame) {
+    if (animation_) {
+        if (animation_->deforms() && frame != loaded_frame_) {
+            animation_->positions_at(frame, mesh_.positions);
+            loaded_frame_ = frame;
+        }
+        return mesh_;
+    }
     if (!source_.is_sequence || frame == loaded_frame_) return mesh_;
     const std::filesystem::path file = path_of(frame);
     LoadedMesh loaded = load_mesh(file, limits_);

@@ -8,6 +8,7 @@
 #include "core/mesh/topology.h"
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,22 @@ struct MeshSource {
     bool is_sequence = false;
 };
 
+// A mesh whose vertices move from frame to frame over one topology, evaluated in memory (an
+// animated glTF shot: core/scene/gltf_shot.h).
+class AnimatedMesh {
+  public:
+    virtual ~AnimatedMesh() = default;
+    // Topology, and the positions of a frame that positions_at() has not been asked for.
+    virtual const Mesh& rest() const = 0;
+    // Whether positions_at() ever differs from rest().positions.
+    virtual bool deforms() const = 0;
+    // The positions at a frame, rest().positions.size() of them. Throws InputError for a frame
+    // that cannot be evaluated.
+    virtual void positions_at(int frame, std::vector<glm::vec3>& r_positions) const = 0;
+    // Drawable oddities found while loading, one line each.
+    virtual std::vector<std::string> warnings() const { return {}; }
+};
+
 class MeshFrames {
   public:
     // Loads the mesh of `first_frame` (the only one for a single file). Throws InputError, also
@@ -26,6 +43,8 @@ class MeshFrames {
     MeshFrames(const MeshSource& source, int first_frame, const MeshLimits& limits = {});
     // A mesh already in memory, the same at every frame (a generated shape); path_of() is empty.
     explicit MeshFrames(Mesh mesh);
+    // An animated mesh; at(frame) evaluates it. `source` names it in messages (path_of()).
+    MeshFrames(std::shared_ptr<const AnimatedMesh> animation, const std::filesystem::path& source);
 
     // The mesh at a frame; for a sequence this reads the frame's file and checks that its
     // topology matches, throwing InputError naming the file when it does not.
@@ -33,12 +52,15 @@ class MeshFrames {
 
     const EdgeTable& edges() const { return table_; }
     bool is_sequence() const { return source_.is_sequence; }
+    // Whether positions change from frame to frame (a sequence, or an animation that deforms).
+    bool deforming() const { return source_.is_sequence || (animation_ && animation_->deforms()); }
     // Warnings gathered while loading (skipped faces, degenerate faces, non-manifold edges).
     const std::vector<std::string>& warnings() const { return warnings_; }
     std::filesystem::path path_of(int frame) const;
 
   private:
     MeshSource source_;
+    std::shared_ptr<const AnimatedMesh> animation_;
     MeshLimits limits_;
     Mesh mesh_;
     int loaded_frame_;

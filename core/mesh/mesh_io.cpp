@@ -166,9 +166,8 @@ void finish(const std::string& name, size_t short_faces, LoadedMesh& r_out) {
     }
 }
 
-}  // namespace
-
-LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits) {
+// Opens a file for reading after the checks every input gets; its size in r_size.
+std::unique_ptr<FILE, int (*)(FILE*)> open_input(const std::filesystem::path& path, uintmax_t& r_size) {
     const std::string name = path.string();
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);
@@ -179,11 +178,40 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits
         throw InputError(name + ": not a regular file (a device, FIFO or socket), not a mesh file");
     }
     // Opened before anything else, so that an unreadable file says why.
-    const std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
     if (!file) throw InputError(name + ": cannot read: " + std::strerror(errno));
-    const uintmax_t file_size = std::filesystem::file_size(path, ec);
+    r_size = std::filesystem::file_size(path, ec);
     if (ec) throw InputError(name + ": cannot read: " + ec.message());
-    if (file_size == 0) throw InputError(name + ": file is empty");
+    if (r_size == 0) throw InputError(name + ": file is empty");
+    return file;
+}
+
+std::string read_all(const std::filesystem::path& path, FILE* file, uintmax_t file_size) {
+    const std::string name = path.string();
+    std::string bytes;
+    try {
+        bytes.resize(size_t(file_size));
+    } catch (const std::bad_alloc&) {
+        throw InputError(name + ": too large to load into memory");
+    }
+    if (std::fread(bytes.data(), 1, bytes.size(), file) != bytes.size()) {
+        throw InputError(name + ": cannot read: " + (std::ferror(file) ? std::strerror(errno) : "the file shrank while being read"));
+    }
+    return bytes;
+}
+
+}  // namespace
+
+std::string read_input_file(const std::filesystem::path& path) {
+    uintmax_t size = 0;
+    const auto file = open_input(path, size);
+    return read_all(path, file.get(), size);
+}
+
+LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits) {
+    const std::string name = path.string();
+    uintmax_t file_size = 0;
+    const auto file = open_input(path, file_size);
 
     std::string extension = path.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
@@ -198,15 +226,7 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits
         return out;
     }
 
-    std::string bytes;
-    try {
-        bytes.resize(size_t(file_size));
-    } catch (const std::bad_alloc&) {
-        throw InputError(name + ": too large to load into memory");
-    }
-    if (std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) {
-        throw InputError(name + ": cannot read: " + (std::ferror(file.get()) ? std::strerror(errno) : "the file shrank while being read"));
-    }
+    std::string bytes = read_all(path, file.get(), file_size);
     if (extension == ".ply") {
         internal::check_ply(path, file_size);
         internal::PlyContents ply = internal::read_ply(path, bytes, max_faces);

@@ -32,4 +32,9 @@ struct MeshLimits {
 // library prints reaches the user.
 LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits = {});
 
+// The whole of an input file, with the checks load_mesh makes first: InputError naming the file
+// when it is missing, a folder or not a regular file, unreadable (and why), empty, or too large
+// for memory.
+std::string read_input_file(const std::filesystem::path& path);
+
 }  // namespace inkline::core

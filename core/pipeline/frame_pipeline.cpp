@@ -67,7 +67,7 @@ FrameResult FramePipeline::run(int frame) {
         features = extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
     } else {
         if (!tracker_) {
-            tracker_.emplace(table, mesh, TrackerOptions{.deforming = meshes_.is_sequence()});
+            tracker_.emplace(table, mesh, TrackerOptions{.deforming = meshes_.deforming()});
             tracker_build_ms = step("tracker build");
         }
         features = tracker_->update(mesh, projection.eye_object(), scene_.lines);
@@ -79,7 +79,7 @@ FrameResult FramePipeline::run(int frame) {
     // Visibility. Occluded parts are always found (the samples are classified anyway): the
     // stroke stage bridges short ones. Without lines.hidden they stay out of the output.
     const MeshChange change = first_frame_             ? MeshChange::kTopology
-                              : meshes_.is_sequence() ? MeshChange::kPositions
+                              : meshes_.deforming()    ? MeshChange::kPositions
                                                       : MeshChange::kNone;
     const Occlusion& occlusion = occlusion_->prepare(mesh, table, projection, change);
     const double occlusion_ms = step("occlusion");

@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "core/scene/frame_pattern.h"
+#include "core/scene/gltf_shot.h"
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
@@ -355,12 +356,33 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
                          quote_value(prefix_end == std::string::npos ? what : what.substr(prefix_end + 2), kMaxQuotedPathChars));
     }
     const Reader r(name, root, "");
-    r.allow_only({"version", "mesh", "frames", "image", "camera", "object", "light", "lines", "brush"});
+    r.allow_only({"version", "mesh", "gltf", "fps", "frames", "image", "camera", "object", "light", "lines", "brush"});
 
     Scene scene;
     scene.file = scene_file;
     if (r.has("version") && r.integer("version") != 1) r.fail("version", "only version 1 is supported");
     scene.mesh = read_mesh(r, scene_file.parent_path());
+    if (is_gltf_path(scene.mesh.path)) {
+        if (scene.mesh.is_sequence) r.fail("mesh", "a glTF file holds its own animation; name it as a plain path");
+        GltfSettings& g = scene.gltf.emplace();
+        if (r.has("gltf")) {
+            const Reader gr = r.child("gltf");
+            gr.allow_only({"scene", "animation", "camera"});
+            if (gr.has("scene")) {
+                g.scene = gr.integer("scene");
+                if (g.scene < 0) gr.fail("scene", "must be 0 or more");
+            }
+            if (gr.has("animation")) g.animation = gr.string("animation");
+            if (gr.has("camera")) g.camera = gr.string("camera");
+        }
+    } else if (r.has("gltf")) {
+        r.fail("gltf", "applies only when mesh names a .gltf or .glb file");
+    }
+    if (r.has("fps")) {
+        scene.fps = r.number("fps");
+        if (!(scene.fps > 0.0 && scene.fps <= 1e6)) r.fail("fps", "must be above 0 and at most 1e6");
+    }
+    scene.given = {r.has("frames"), r.has("image"), r.has("camera")};
 
     if (r.has("frames")) {
         const json& f = r.at("frames");

@@ -46,9 +46,22 @@ struct CameraSpec {
     std::optional<double> near, far;      // default: fitted to the mesh bounds each frame
 };
 
+// What a scene whose `mesh` is a glTF file picks from it (docs/gltf.md).
+struct GltfSettings {
+    int scene = -1;         // the file's scene; -1: its default
+    std::string animation;  // empty: every animation together
+    std::string camera;     // empty: the scene's first camera
+};
+
 struct Scene {
     std::filesystem::path file;  // where it was read from; empty for a built-in scene
     MeshSource mesh;
+    std::optional<GltfSettings> gltf;  // set when mesh.path is a .gltf or .glb file
+    double fps = 24.0;                 // frame F of an animated glTF is its time F / fps
+    // Which of frames, image and camera the scene file set; a glTF file sets the others.
+    struct Given {
+        bool frames = false, image = false, camera = false;
+    } given;
     int first_frame = 1;
     int last_frame = 1;
     ImageSize image{1024, 1024};
