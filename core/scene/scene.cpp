@@ -404,7 +404,8 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
             }
         }
     }
-    scene.camera = read_camera(r.child("camera"));
+    // A glTF shot brings its own camera unless the scene gives one.
+    if (!scene.gltf || r.has("camera")) scene.camera = read_camera(r.child("camera"));
     if (r.has("object")) {
         const Reader obj = r.child("object");
         obj.allow_only({"rotate"});

@@ -40,6 +40,8 @@ void off_target(const uint8_t* data, size_t size) { inkline::fuzz::mesh_format_t
 void ply_target(const uint8_t* data, size_t size) { inkline::fuzz::mesh_format_target(".ply", data, size); }
 void stl_target(const uint8_t* data, size_t size) { inkline::fuzz::mesh_format_target(".stl", data, size); }
 
+TEST(FuzzCorpus, GltfInputsLoadOrFailCleanly) { EXPECT_GT(replay("gltf", inkline::fuzz::gltf_target), 5u); }
+
 TEST(FuzzCorpus, ObjInputsLoadOrFailCleanly) { EXPECT_GT(replay("obj", obj_target), 5u); }
 TEST(FuzzCorpus, OffInputsLoadOrFailCleanly) { EXPECT_GT(replay("off", off_target), 5u); }
 TEST(FuzzCorpus, PlyInputsLoadOrFailCleanly) { EXPECT_GT(replay("ply", ply_target), 5u); }

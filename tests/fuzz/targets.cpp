@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/topology.h"
+#include "core/scene/gltf_shot.h"
 #include "core/scene/scene.h"
 
 #include <filesystem>
@@ -43,6 +44,28 @@ void mesh_target(const uint8_t* data, size_t size) {
     if (size == 0) return;
     static const char* const kExtensions[] = {".obj", ".off", ".ply", ".stl"};
     mesh_format_target(kExtensions[data[0] % 4], data + 1, size - 1);
+}
+
+void gltf_target(const uint8_t* data, size_t size) {
+    if (size == 0) return;
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("inkline_fuzz_" + std::to_string(::getpid()) + (data[0] % 2 == 0 ? ".glb" : ".gltf"));
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
+    try {
+        core::GltfOptions options;
+        options.max_faces = 1'000'000;
+        const core::GltfShot shot(path, options);
+        const core::EdgeTable table = core::build_edge_table(shot.rest());
+        core::describe_mesh(shot.rest(), table);
+        std::vector<glm::vec3> positions;
+        const auto range = shot.frame_range().value_or(std::pair(1, 1));
+        shot.positions_at(range.first, positions);
+        shot.positions_at(range.second, positions);
+        core::Scene scene;
+        core::apply_gltf_camera(shot, scene, range.first, std::min(range.second, range.first + 2), false);
+    } catch (const InputError&) {
+    }
+    std::filesystem::remove(path);
 }
 
 }  // namespace inkline::fuzz

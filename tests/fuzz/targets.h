@@ -19,4 +19,8 @@ void mesh_target(const uint8_t* data, size_t size);
 // or ".stl"), then loads it and builds its topology report: one reader fuzzed on its own.
 void mesh_format_target(const char* extension, const uint8_t* data, size_t size);
 
+// Writes bytes [1, size) to a temporary .glb (data[0] even) or .gltf file, reads it as a glTF
+// shot and evaluates its first and last frames and its camera.
+void gltf_target(const uint8_t* data, size_t size);
+
 }  // namespace inkline::fuzz

@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+// `inkline render` on glTF shots: the file's frames, camera and animation; the scene JSON over
+// them; broken files refused before any output.
+#include "tests/support/gltf.h"
+#include "tests/support/obj.h"
+#include "tests/support/run.h"
+#include "tests/support/shapes.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace inkline {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Gltf : public ::testing::Test {
+  protected:
+    fs::path dir = test::fresh_temp_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    void TearDown() override { fs::remove_all(dir); }
+
+    // A unit cube moving from x = -1 at frame 1 to x = +1 at frame 24 (24 fps), seen by a
+    // camera at z = 8 with a 2:1 aspect.
+    static test::GltfBuilder moving_cube() {
+        const core::Mesh cube = test::cube(0.5);
+        std::vector<float> positions;
+        for (const glm::vec3& p : cube.positions) positions.insert(positions.end(), {p.x, p.y, p.z});
+        std::vector<uint32_t> indices;
+        for (const glm::uvec3& t : cube.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+        test::GltfBuilder b;
+        const int node = b.mesh_node("Cube", positions, indices);
+        const int cam = b.node("Camera");
+        b.json()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"aspectRatio", 2.0}, {"znear", 0.1}}}}};
+        b.json()["nodes"][size_t(cam)]["camera"] = 0;
+        b.json()["nodes"][size_t(cam)]["translation"] = {0, 0, 8};
+        const int input = b.floats({1.0f / 24.0f, 1.0f}, "SCALAR");
+        const int output = b.floats({-1, 0, 0, 1, 0, 0}, "VEC3");
+        b.json()["animations"] = {{{"name", "Slide"},
+                                   {"samplers", {{{"input", input}, {"output", output}}}},
+                                   {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", "translation"}}}}}}}};
+        b.finish_scene();
+        return b;
+    }
+
+    // The middle of the drawing's horizontal extent, px.
+    static double middle_x(const fs::path& json_file) {
+        const nlohmann::json j = nlohmann::json::parse(test::read_text(json_file));
+        double lo = 1e300, hi = -1e300;
+        for (const auto& s : j["strokes"]) {
+            for (const auto& p : s["points"]) {
+                lo = std::min(lo, p[0].get<double>());
+                hi = std::max(hi, p[0].get<double>());
+            }
+        }
+        return 0.5 * (lo + hi);
+    }
+};
+
+TEST_F(Gltf, RendersTheShotsFramesThroughItsCamera) {
+    moving_cube().write(dir / "shot.glb");
+    const auto r = test::run_inkline("render " + (dir / "shot.glb").string() + " --json " + (dir / "out/%04d.json").string() + " -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (int f = 1; f <= 24; ++f) {
+        char name[16];
+        std::snprintf(name, sizeof name, "%04d.json", f);
+        EXPECT_TRUE(fs::exists(dir / "out" / name)) << name;
+    }
+    EXPECT_FALSE(fs::exists(dir / "out/0025.json"));
+    const nlohmann::json first = nlohmann::json::parse(test::read_text(dir / "out/0001.json"));
+    EXPECT_EQ(first["image"]["width"], 1024);
+    EXPECT_EQ(first["image"]["height"], 512);
+    // The cube slides right through the image, centred at frame 12.5.
+    const double x1 = middle_x(dir / "out/0001.json"), x24 = middle_x(dir / "out/0024.json");
+    EXPECT_LT(x1, 512.0 - 50.0);
+    EXPECT_GT(x24, 512.0 + 50.0);
+    EXPECT_NEAR(x1 + x24, 1024.0, 1.0);
+}
+
+TEST_F(Gltf, SceneJsonOverridesFramesAndSizeAndCommandLineTheScene) {
+    moving_cube().write(dir / "shot.gltf", "shot.bin");
+    test::write_text(dir / "scene.json", R"({"mesh": "shot.gltf", "frames": [2, 4], "image": {"width": 300, "height": 300}})");
+    const auto r = test::run_inkline("render " + (dir / "scene.json").string() + " --json " + (dir / "a/%04d.json").string() + " -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "a/0001.json"));
+    EXPECT_TRUE(fs::exists(dir / "a/0004.json"));
+    EXPECT_FALSE(fs::exists(dir / "a/0005.json"));
+    const nlohmann::json j = nlohmann::json::parse(test::read_text(dir / "a/0002.json"));
+    EXPECT_EQ(j["image"]["width"], 300);
+    const auto r2 = test::run_inkline("render " + (dir / "scene.json").string() + " --frames 7:7 --fps 48 --animation Slide --json " +
+                                      (dir / "b/%04d.json").string() + " -q");
+    ASSERT_EQ(r2.code, 0) << r2.output;
+    EXPECT_TRUE(fs::exists(dir / "b/0007.json"));
+}
+
+TEST_F(Gltf, BrokenShotExitsTwoWithOneLineAndWritesNothing) {
+    test::GltfBuilder b = moving_cube();
+    b.json()["accessors"][0]["count"] = 100000;  // POSITION reads past its view
+    b.write(dir / "shot.glb");
+    const auto r = test::run_inkline("render " + (dir / "shot.glb").string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("shot.glb: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("accessors[0]"), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_F(Gltf, UnknownAnimationOrCameraAndGltfOptionsOnMeshesAreInputErrors) {
+    moving_cube().write(dir / "shot.glb");
+    const auto a = test::run_inkline("render " + (dir / "shot.glb").string() + " --animation Walk -o " + (dir / "out").string());
+    EXPECT_EQ(a.code, 2) << a.output;
+    EXPECT_NE(a.output.find("no animation named 'Walk' (the file has 'Slide')"), std::string::npos) << a.output;
+    const auto c = test::run_inkline("render " + (dir / "shot.glb").string() + " --camera Nope -o " + (dir / "out").string());
+    EXPECT_EQ(c.code, 2) << c.output;
+    test::write_obj(dir / "cube.obj", test::cube(1.0));
+    const auto m = test::run_inkline("render " + (dir / "cube.obj").string() + " --fps 30 -o " + (dir / "out").string());
+    EXPECT_EQ(m.code, 2) << m.output;
+    EXPECT_NE(m.output.find("--fps: applies only to glTF input"), std::string::npos) << m.output;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+}  // namespace
+}  // namespace inkline
