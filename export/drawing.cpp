@@ -44,11 +44,17 @@ Shape stroked_shape(uint32_t id, core::LineKind kind, bool visible, bool closed,
 
 }  // namespace
 
+// The name of a line's object, or "" without objects.
+std::string object_name(const core::FrameLines& frame, int32_t object) {
+    return object >= 0 && size_t(object) < frame.objects.size() ? frame.objects[size_t(object)].name : std::string();
+}
+
 Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style) {
     Drawing d{frame.frame, frame.image, frame.camera, style, {}};
     d.shapes.reserve(frame.polylines.size());
     for (const core::Polyline& line : frame.polylines) {
         d.shapes.push_back(stroked_shape(line.id, line.kind, line.visible, line.closed, line.points_px));
+        d.shapes.back().object = object_name(frame, line.object);
     }
     return d;
 }
@@ -68,12 +74,14 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
             s.closed = g.closed;
             s.filled = true;
             s.paths.assign(stroke.outline.begin(), stroke.outline.end());
+            s.object = object_name(frame, g.object);
             d.shapes.push_back(std::move(s));
             continue;
         }
         // Hidden lines and plotter output follow the drawn centerline when there is one.
         d.shapes.push_back(stroked_shape(stroke.id, g.kind, g.visible, g.closed,
                                          stroke.centerline_px.size() >= 2 ? stroke.centerline_px : g.points_px));
+        d.shapes.back().object = object_name(frame, g.object);
     }
     return d;
 }

@@ -37,6 +37,7 @@ struct Shape {
     bool filled = false;  // paths are closed rings filled together (nonzero rule); else stroked
     bool closed = false;  // a stroked centerline that closes on itself
     std::vector<std::vector<glm::dvec2>> paths;  // px, origin top-left, y down
+    std::string object = {};  // the line's object (written as data-object); empty without objects
 };
 
 struct Drawing {

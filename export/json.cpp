@@ -48,6 +48,14 @@ json rounded(const std::vector<double>& values, double scale) {
     return out;
 }
 
+// A line's object, when the frame has objects: its name and glTF node.
+void add_object(const core::FrameLines& frame, int32_t object, json& r_stroke) {
+    if (frame.objects.empty() || object < 0) return;
+    const core::MeshObject& o = frame.objects[size_t(object)];
+    r_stroke["object"] = o.name;
+    r_stroke["node"] = o.node;
+}
+
 json polyline_strokes(const core::FrameLines& frame) {
     json strokes = json::array();
     for (const core::Polyline& line : frame.polylines) {
@@ -58,11 +66,12 @@ json polyline_strokes(const core::FrameLines& frame) {
                            {"points", points_json(line.points_px)},
                            {"world", world_json(line.points_world)},
                            {"edges", line.edges}});
+        add_object(frame, line.object, strokes.back());
     }
     return strokes;
 }
 
-json brush_strokes(const core::FrameStrokes& frame_strokes) {
+json brush_strokes(const core::FrameLines& frame, const core::FrameStrokes& frame_strokes) {
     json strokes = json::array();
     for (const core::Stroke& s : frame_strokes.strokes) {
         const core::StrokeGeometry& g = s.geometry;
@@ -88,6 +97,7 @@ json brush_strokes(const core::FrameStrokes& frame_strokes) {
             }
             strokes.back()["hidden_segments"] = std::move(bridged);
         }
+        add_object(frame, g.object, strokes.back());
     }
     return strokes;
 }
@@ -95,7 +105,7 @@ json brush_strokes(const core::FrameStrokes& frame_strokes) {
 }  // namespace
 
 std::string polylines_json(const core::FrameLines& frame, const core::FrameStrokes* frame_strokes) {
-    json strokes = frame_strokes ? brush_strokes(*frame_strokes) : polyline_strokes(frame);
+    json strokes = frame_strokes ? brush_strokes(frame, *frame_strokes) : polyline_strokes(frame);
     json ms = json::object();
     for (const auto& [stage, value] : frame.stats.ms) ms[stage] = std::round(value * 1000.0) / 1000.0;
 

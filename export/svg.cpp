@@ -7,6 +7,23 @@
 namespace inkline::output {
 namespace {
 
+// Text for an XML attribute value: markup characters escaped, control characters (which XML 1.0
+// does not allow) replaced by '?'.
+std::string xml_escaped(const std::string& text) {
+    std::string out;
+    for (const char c : text) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&apos;"; break;
+            default: out += (static_cast<unsigned char>(c) < 0x20) ? '?' : c;
+        }
+    }
+    return out;
+}
+
 class Writer {
   public:
     explicit Writer(int decimals) : decimals_(decimals) {}
@@ -111,7 +128,9 @@ std::string svg_document(const Drawing& d, const SvgOptions& options) {
         w << ">\n";
         for (const Shape& s : d.shapes) {
             if (layer_of(s) != layer) continue;
-            w << "    <path id=\"stroke-" << long(s.stroke_id) << "\" d=\"";
+            w << "    <path id=\"stroke-" << long(s.stroke_id) << "\"";
+            if (!s.object.empty()) w << " data-object=\"" << xml_escaped(s.object) << "\"";
+            w << " d=\"";
             path_data(w, s);
             if (s.filled) {
                 w << "\" fill=\"" << d.style.color << "\" stroke=\"none\"/>\n";

@@ -5,6 +5,7 @@
 #include "core/mesh/mesh_io.h"
 #include "core/scene/frame_pattern.h"
 
+#include <algorithm>
 #include <limits>
 #include <utility>
 
@@ -30,6 +31,13 @@ MeshFrames::MeshFrames(std::shared_ptr<const AnimatedMesh> animation, const std:
       table_(build_edge_table(mesh_)) {
     source_.path = source;
     warnings_ = animation_->warnings();
+    objects_ = animation_->mesh_objects();
+    face_objects_.assign(mesh_.triangles.size(), 0);
+    for (uint32_t o = 0; o < objects_.size(); ++o) {
+        const MeshObject& object = objects_[o];
+        INKLINE_CHECK(size_t(object.first_face) + object.faces <= face_objects_.size());
+        std::fill_n(face_objects_.begin() + object.first_face, object.faces, o);
+    }
     for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_))) warnings_.push_back(source.string() + ": " + w);
     loaded_frame_ = std::numeric_limits<int>::min();
 }

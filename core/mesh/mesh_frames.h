@@ -20,6 +20,14 @@ struct MeshSource {
     bool is_sequence = false;
 };
 
+// A named part of a mesh (an object of a glTF shot): faces [first_face, first_face + faces).
+struct MeshObject {
+    std::string name;
+    int node = -1;  // the glTF node it instances; -1 when it has none
+    uint32_t first_face = 0;
+    uint32_t faces = 0;
+};
+
 // A mesh whose vertices move from frame to frame over one topology, evaluated in memory (an
 // animated glTF shot: core/scene/gltf_shot.h).
 class AnimatedMesh {
@@ -34,6 +42,8 @@ class AnimatedMesh {
     virtual void positions_at(int frame, std::vector<glm::vec3>& r_positions) const = 0;
     // Drawable oddities found while loading, one line each.
     virtual std::vector<std::string> warnings() const { return {}; }
+    // Its objects, in face order; none when it is one unnamed whole.
+    virtual std::vector<MeshObject> mesh_objects() const { return {}; }
 };
 
 class MeshFrames {
@@ -56,6 +66,9 @@ class MeshFrames {
     bool deforming() const { return source_.is_sequence || (animation_ && animation_->deforms()); }
     // Warnings gathered while loading (skipped faces, degenerate faces, non-manifold edges).
     const std::vector<std::string>& warnings() const { return warnings_; }
+    // The mesh's objects (empty for a plain mesh file) and the object of a face.
+    const std::vector<MeshObject>& objects() const { return objects_; }
+    uint32_t object_of_face(uint32_t face) const { return face_objects_[face]; }
     std::filesystem::path path_of(int frame) const;
 
   private:
@@ -67,6 +80,8 @@ class MeshFrames {
     std::filesystem::path reference_file_;
     EdgeTable table_;
     std::vector<std::string> warnings_;
+    std::vector<MeshObject> objects_;
+    std::vector<uint32_t> face_objects_;  // per face, when there are objects
 };
 
 }  // namespace inkline::core

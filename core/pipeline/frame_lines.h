@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/lines/features.h"
+#include "core/mesh/mesh_frames.h"
 #include "core/scene/camera.h"
 #include "core/strokes/brush_style.h"
 #include "core/visibility/visibility.h"
@@ -42,6 +43,9 @@ struct FrameLines {
     // where they bridge a stroke (core/strokes/bridge_gaps.h). With lines.hidden they are in
     // polylines.
     std::vector<Polyline> occluded;
+    // The mesh's objects (a glTF shot's mesh instances); Polyline::object and
+    // StrokeGeometry::object index them. Empty for a plain mesh.
+    std::vector<MeshObject> objects;
     FrameStats stats;
 };
 

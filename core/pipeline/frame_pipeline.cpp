@@ -28,6 +28,12 @@ FramePipeline::FramePipeline(const Scene& scene, MeshFrames& meshes, std::unique
     const long long frames =
         options_.frame_count > 0 ? options_.frame_count : (long long)scene_.last_frame - scene_.first_frame + 1;
     tracker_mode_ = frames > 1 ? options_.tracker : TrackerMode::kBrute;
+    for (const MeshObject& object : meshes_.objects()) object_kinds_.push_back(object_line_kinds(scene_, object.name));
+}
+
+int32_t FramePipeline::object_of(std::span<const uint32_t> edges) const {
+    if (object_kinds_.empty() || edges.empty()) return -1;
+    return int32_t(meshes_.object_of_face(meshes_.edges().faces_of(edges.front()).front()));
 }
 
 FramePipeline::~FramePipeline() = default;
@@ -84,11 +90,22 @@ FrameResult FramePipeline::run(int frame) {
     const Occlusion& occlusion = occlusion_->prepare(mesh, table, projection, change);
     const double occlusion_ms = step("occlusion");
     result.polylines = split_by_visibility(chains, mesh, projection, occlusion, {.keep_hidden = true});
+    if (!object_kinds_.empty()) {
+        // Each line's object; holdouts and the kinds an object turns off draw nothing, though
+        // their faces still hide other lines.
+        result.objects = meshes_.objects();
+        for (Polyline& line : result.polylines) line.object = object_of(line.edges);
+        std::erase_if(result.polylines, [&](const Polyline& line) {
+            return line.object >= 0 && !object_kinds_[size_t(line.object)][size_t(line.kind)];
+        });
+        for (size_t i = 0; i < result.polylines.size(); ++i) result.polylines[i].id = uint32_t(i);
+    }
     if (!scene_.lines.hidden) set_aside_occluded(result);
     const double visibility_ms = occlusion_ms + step("visibility");
 
     // Strokes, coherent with the last frame's.
     out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_);
+    for (Stroke& stroke : out.strokes.strokes) stroke.geometry.object = object_of(stroke.geometry.edges);
     out.mesh = &mesh;
     out.world_from_object = world_from_object;
     const double strokes_ms = step("strokes");

@@ -20,7 +20,9 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <array>
 #include <functional>
+#include <span>
 #include <memory>
 #include <optional>
 #include <string>
@@ -77,6 +79,9 @@ class FramePipeline {
     const OcclusionSource& occlusion() const { return *occlusion_; }
 
   private:
+    // The object of the first of these mesh edges; -1 without objects.
+    int32_t object_of(std::span<const uint32_t> edges) const;
+
     Scene scene_;
     MeshFrames& meshes_;
     std::unique_ptr<OcclusionSource> occlusion_;
@@ -84,6 +89,8 @@ class FramePipeline {
     TrackerMode tracker_mode_;
     std::optional<SilhouetteTracker> tracker_;
     StrokeCoherence coherence_;
+    // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
+    std::vector<std::array<bool, kLineKindCount>> object_kinds_;
     bool first_frame_ = true;
     bool warned_inside_ = false;
 };

@@ -10,6 +10,8 @@
 #include <glm/gtx/rotate_vector.hpp>
 #include <nlohmann/json.hpp>
 
+#include <fnmatch.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -339,7 +341,51 @@ double framing_radius(const Bounds& bounds) {
     return 1e-6 * std::max({1.0, std::abs(c.x), std::abs(c.y), std::abs(c.z)});
 }
 
+// "objects": {"PATTERN": {"lines": false | true | {"silhouette": b, "boundary": b, "crease": b}}}.
+std::vector<ObjectRule> read_object_rules(const Reader& r) {
+    if (!r.value().is_object()) r.fail("", "expected {\"name or glob\": {\"lines\": ...}}");
+    std::vector<ObjectRule> globs, exact;
+    for (const auto& [pattern, value] : r.value().items()) {
+        if (pattern.empty()) r.fail("", "an object pattern is empty");
+        const Reader o = r.child(pattern);
+        o.allow_only({"lines"});
+        ObjectRule rule;
+        rule.pattern = pattern;
+        if (o.has("lines")) {
+            if (o.at("lines").is_boolean()) {
+                rule.lines = o.boolean_or("lines", true);
+            } else {
+                const Reader l = o.child("lines");
+                l.allow_only({"silhouette", "boundary", "crease"});
+                if (l.has("silhouette")) rule.silhouette = l.boolean_or("silhouette", true);
+                if (l.has("boundary")) rule.boundary = l.boolean_or("boundary", true);
+                if (l.has("crease")) rule.crease = l.boolean_or("crease", true);
+            }
+        }
+        (pattern.find_first_of("*?[") == std::string::npos ? exact : globs).push_back(rule);
+    }
+    globs.insert(globs.end(), exact.begin(), exact.end());
+    return globs;
+}
+
 }  // namespace
+
+std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std::string& object_name) {
+    std::array<bool, kLineKindCount> kinds{};
+    kinds[size_t(LineKind::kSilhouette)] = scene.lines.silhouette;
+    kinds[size_t(LineKind::kBoundary)] = scene.lines.boundary;
+    kinds[size_t(LineKind::kCrease)] = scene.lines.crease;
+    bool lines = true;
+    for (const ObjectRule& rule : scene.objects) {
+        if (::fnmatch(rule.pattern.c_str(), object_name.c_str(), 0) != 0) continue;
+        lines = rule.lines;
+        if (rule.silhouette) kinds[size_t(LineKind::kSilhouette)] = *rule.silhouette;
+        if (rule.boundary) kinds[size_t(LineKind::kBoundary)] = *rule.boundary;
+        if (rule.crease) kinds[size_t(LineKind::kCrease)] = *rule.crease;
+    }
+    if (!lines) kinds.fill(false);
+    return kinds;
+}
 
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file, int max_image_side) {
     const std::string name = scene_file.string();
@@ -356,7 +402,8 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
                          quote_value(prefix_end == std::string::npos ? what : what.substr(prefix_end + 2), kMaxQuotedPathChars));
     }
     const Reader r(name, root, "");
-    r.allow_only({"version", "mesh", "gltf", "fps", "frames", "image", "camera", "object", "light", "lines", "brush"});
+    r.allow_only({"version", "mesh", "gltf", "fps", "frames", "image", "camera", "object", "objects", "light", "lines",
+                  "brush"});
 
     Scene scene;
     scene.file = scene_file;
@@ -434,6 +481,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
         scene.lines.hidden = l.boolean_or("hidden", false);
     }
     if (r.has("brush")) scene.brush = read_brush(r.child("brush"), scene_file.parent_path());
+    if (r.has("objects")) scene.objects = read_object_rules(r.child("objects"));
     return scene;
 }
 

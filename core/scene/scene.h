@@ -14,6 +14,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -53,6 +54,13 @@ struct GltfSettings {
     std::string camera;     // empty: the scene's first camera
 };
 
+// Line settings for the objects whose names match a glob (scene "objects"; docs/scene.md).
+struct ObjectRule {
+    std::string pattern;  // fnmatch(3) glob over object names ("Ground", "Tree.*")
+    bool lines = true;    // false: a holdout, which hides lines and draws none
+    std::optional<bool> silhouette, boundary, crease;  // override the scene's lines.*
+};
+
 struct Scene {
     std::filesystem::path file;  // where it was read from; empty for a built-in scene
     MeshSource mesh;
@@ -70,7 +78,13 @@ struct Scene {
     Light light;
     LineOptions lines;
     BrushStyle brush;
+    // Per-object line settings: glob patterns in sorted order, exact names after every glob, so
+    // a later rule that matches overrides an earlier one key by key.
+    std::vector<ObjectRule> objects;
 };
+
+// Which kinds of line an object draws: the scene's lines.* with every matching rule applied.
+std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std::string& object_name);
 
 // Reads and validates a scene file; relative paths resolve against its folder.
 // Throws InputError naming the file and key.

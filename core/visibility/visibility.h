@@ -62,6 +62,7 @@ struct Polyline {
     std::vector<glm::dvec2> points_px;     // exact projected feature geometry, px
     std::vector<glm::dvec3> points_world;  // the same points in world space
     std::vector<uint32_t> edges;           // mesh edge of each segment (points - 1)
+    int32_t object = -1;                   // index into the frame's objects; -1 without objects
 
     double length_px() const;
 };

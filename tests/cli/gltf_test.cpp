@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <set>
+#include <string>
 
 namespace inkline {
 namespace {
@@ -92,6 +94,39 @@ TEST_F(Gltf, SceneJsonOverridesFramesAndSizeAndCommandLineTheScene) {
                                       (dir / "b/%04d.json").string() + " -q");
     ASSERT_EQ(r2.code, 0) << r2.output;
     EXPECT_TRUE(fs::exists(dir / "b/0007.json"));
+}
+
+// A wall in front of the left half of the cube, as a holdout: it hides the cube's lines there and
+// draws none of its own; every stroke names its object in JSON and SVG.
+TEST_F(Gltf, HoldoutObjectsHideLinesAndDrawNone) {
+    test::GltfBuilder b = moving_cube();
+    b.json().erase("animations");
+    const int wall = b.mesh_node("Wall", {-3, -3, 2, 0, -3, 2, 0, 3, 2, -3, 3, 2}, {0, 1, 2, 0, 2, 3});
+    b.json()["scenes"][0]["nodes"].push_back(wall);
+    b.write(dir / "shot.glb");
+    test::write_text(dir / "scene.json", R"({"mesh": "shot.glb", "objects": {"Wa*": {"lines": false}}})");
+    const auto with_wall = test::run_inkline("render " + (dir / "shot.glb").string() + " --json " + (dir / "a/%04d.json").string() +
+                                             " --svg " + (dir / "a/%04d.svg").string() + " -q");
+    ASSERT_EQ(with_wall.code, 0) << with_wall.output;
+    const auto holdout = test::run_inkline("render " + (dir / "scene.json").string() + " --json " + (dir / "b/%04d.json").string() +
+                                           " --svg " + (dir / "b/%04d.svg").string() + " -q");
+    ASSERT_EQ(holdout.code, 0) << holdout.output;
+    const auto objects = [](const fs::path& file) {
+        std::set<std::string> names;
+        const nlohmann::json j = nlohmann::json::parse(test::read_text(file));
+        for (const auto& s : j["strokes"]) names.insert(s["object"].get<std::string>());
+        return names;
+    };
+    EXPECT_EQ(objects(dir / "a/0001.json"), (std::set<std::string>{"Cube", "Wall"}));
+    EXPECT_EQ(objects(dir / "b/0001.json"), (std::set<std::string>{"Cube"}));
+    // The cube's lines start right of the wall's edge (x = 0 projects to the image centre).
+    const nlohmann::json held = nlohmann::json::parse(test::read_text(dir / "b/0001.json"));
+    for (const auto& s : held["strokes"]) {
+        for (const auto& p : s["points"]) EXPECT_GT(p[0].get<double>(), 512.0 - 0.5);
+    }
+    const std::string svg = test::read_text(dir / "b/0001.svg");
+    EXPECT_NE(svg.find("data-object=\"Cube\""), std::string::npos);
+    EXPECT_EQ(svg.find("data-object=\"Wall\""), std::string::npos);
 }
 
 TEST_F(Gltf, BrokenShotExitsTwoWithOneLineAndWritesNothing) {
