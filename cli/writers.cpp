@@ -50,6 +50,10 @@ Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Sce
     style_.opacity = scene.brush.opacity;
     style_.background = args.background.empty() ? std::nullopt : std::optional(args.background);
     if (style_.background) output::parse_color(*style_.background, "--background");
+    if (args.layers != "kind" && args.layers != "object") {
+        throw InputError("--layers '" + args.layers.substr(0, 40) + "': expected kind or object");
+    }
+    svg_options_.layers_by_object = args.layers == "object";
     pdf_options_.page = args.page.empty() ? std::nullopt : std::optional(output::parse_page_size(args.page));
     pdf_options_.margin_mm = args.margin_mm;
     pdf_options_.dpi = args.dpi;
@@ -71,7 +75,7 @@ size_t Writers::write(core::FrameResult& drawn) {
     core::Stopwatch clock;
     const output::Drawing drawing = output::brush_drawing(frame, drawn.strokes, style_, centerline_);
     if (!outputs_.svg.empty()) {
-        output::write_file_atomically(core::format_frame(outputs_.svg, frame.frame), output::svg_document(drawing, {}));
+        output::write_file_atomically(core::format_frame(outputs_.svg, frame.frame), output::svg_document(drawing, svg_options_));
         ++files;
     }
     frame.stats.ms.emplace_back("svg", clock.lap_ms());

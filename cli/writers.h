@@ -9,6 +9,7 @@
 #include "core/scene/scene.h"
 #include "export/drawing.h"
 #include "export/pdf.h"
+#include "export/svg.h"
 
 #include <chrono>
 #include <cstddef>
@@ -37,6 +38,7 @@ class Writers {
   private:
     const Outputs& outputs_;
     bool centerline_;
+    output::SvgOptions svg_options_;
     output::DrawStyle style_;
     output::PdfOptions pdf_options_;
     std::unique_ptr<output::PdfDocument> pdf_;

@@ -55,6 +55,7 @@ Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style
     for (const core::Polyline& line : frame.polylines) {
         d.shapes.push_back(stroked_shape(line.id, line.kind, line.visible, line.closed, line.points_px));
         d.shapes.back().object = object_name(frame, line.object);
+        d.shapes.back().object_index = line.object;
     }
     return d;
 }
@@ -75,6 +76,7 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
             s.filled = true;
             s.paths.assign(stroke.outline.begin(), stroke.outline.end());
             s.object = object_name(frame, g.object);
+            s.object_index = g.object;
             d.shapes.push_back(std::move(s));
             continue;
         }
@@ -82,6 +84,7 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
         d.shapes.push_back(stroked_shape(stroke.id, g.kind, g.visible, g.closed,
                                          stroke.centerline_px.size() >= 2 ? stroke.centerline_px : g.points_px));
         d.shapes.back().object = object_name(frame, g.object);
+        d.shapes.back().object_index = g.object;
     }
     return d;
 }

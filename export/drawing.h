@@ -38,6 +38,7 @@ struct Shape {
     bool closed = false;  // a stroked centerline that closes on itself
     std::vector<std::vector<glm::dvec2>> paths;  // px, origin top-left, y down
     std::string object = {};  // the line's object (written as data-object); empty without objects
+    int32_t object_index = -1;  // its index among the frame's objects; -1 without objects
 };
 
 struct Drawing {

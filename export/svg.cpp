@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "export/svg.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace inkline::output {
 namespace {
@@ -98,37 +101,27 @@ void metadata(Writer& w, const Drawing& d) {
     w.number(d.camera.far) << "\"/>\n  </metadata>\n";
 }
 
-}  // namespace
-
-std::string svg_document(const Drawing& d, const SvgOptions& options) {
-    Writer w(options.decimals);
-    const long width = d.image.width, height = d.image.height;
-    w << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      << "<svg xmlns=\"http://www.w3.org/2000/svg\""
-      << " xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\""
-      << " xmlns:inkline=\"https://inkline.invalid/ns/1\""
-      << " width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " " << height << "\">\n";
-    metadata(w, d);
-    if (d.style.background) {
-        w << "  <rect id=\"background\" width=\"" << width << "\" height=\"" << height << "\" fill=\""
-          << *d.style.background << "\"/>\n";
-    }
+// The kind layers (silhouette, boundary, crease, hidden) of the selected shapes, each line
+// indented by `indent`, their ids prefixed with `prefix`; inside an object's layer, an empty kind
+// layer is left out.
+template <typename Selected>
+void kind_layers(Writer& w, const Drawing& d, const std::string& indent, const std::string& prefix, Selected selected) {
     const double line_width = d.style.centerline_width_px;
     for (const Layer layer : kAllLayers) {
         const bool hidden = layer == Layer::kHidden;
         bool any = false;
-        for (const Shape& s : d.shapes) any |= layer_of(s) == layer;
-        if (!any && hidden) continue;  // the hidden layer only when there are hidden lines
+        for (const Shape& s : d.shapes) any |= layer_of(s) == layer && selected(s);
+        if (!any && (hidden || !prefix.empty())) continue;  // the hidden layer only when there are hidden lines
         const char* name = layer_name(layer);
-        w << "  <g id=\"" << name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
+        w << indent << "<g id=\"" << prefix << name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
         if (const double opacity = layer_opacity(d.style, layer); opacity < 1.0) {
             w << " opacity=\"";
             w.number(opacity) << "\"";
         }
         w << ">\n";
         for (const Shape& s : d.shapes) {
-            if (layer_of(s) != layer) continue;
-            w << "    <path id=\"stroke-" << long(s.stroke_id) << "\"";
+            if (layer_of(s) != layer || !selected(s)) continue;
+            w << indent << "  <path id=\"stroke-" << long(s.stroke_id) << "\"";
             if (!s.object.empty()) w << " data-object=\"" << xml_escaped(s.object) << "\"";
             w << " d=\"";
             path_data(w, s);
@@ -145,7 +138,43 @@ std::string svg_document(const Drawing& d, const SvgOptions& options) {
             }
             w << "/>\n";
         }
-        w << "  </g>\n";
+        w << indent << "</g>\n";
+    }
+}
+
+}  // namespace
+
+std::string svg_document(const Drawing& d, const SvgOptions& options) {
+    Writer w(options.decimals);
+    const long width = d.image.width, height = d.image.height;
+    w << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\""
+      << " xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\""
+      << " xmlns:inkline=\"https://inkline.invalid/ns/1\""
+      << " width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " " << height << "\">\n";
+    metadata(w, d);
+    if (d.style.background) {
+        w << "  <rect id=\"background\" width=\"" << width << "\" height=\"" << height << "\" fill=\""
+          << *d.style.background << "\"/>\n";
+    }
+    if (options.layers_by_object && std::any_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return s.object_index >= 0; })) {
+        // One layer per object, in object order, with its kind layers inside.
+        std::vector<int32_t> objects;
+        for (const Shape& s : d.shapes) objects.push_back(s.object_index);
+        std::sort(objects.begin(), objects.end());
+        objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
+        for (const int32_t o : objects) {
+            const auto first = std::find_if(d.shapes.begin(), d.shapes.end(), [&](const Shape& s) { return s.object_index == o; });
+            const std::string name = o >= 0 ? xml_escaped(first->object) : std::string("none");
+            const std::string id = o >= 0 ? "object-" + std::to_string(o) : std::string("object-none");
+            w << "  <g id=\"" << id << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
+            if (o >= 0) w << " data-object=\"" << name << "\"";
+            w << ">\n";
+            kind_layers(w, d, "    ", id + "-", [&](const Shape& s) { return s.object_index == o; });
+            w << "  </g>\n";
+        }
+    } else {
+        kind_layers(w, d, "  ", "", [](const Shape&) { return true; });
     }
     w << "</svg>\n";
     return w.take();

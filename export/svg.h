@@ -11,7 +11,8 @@
 namespace inkline::output {
 
 struct SvgOptions {
-    int decimals = 2;  // coordinate precision
+    int decimals = 2;                // coordinate precision
+    bool layers_by_object = false;  // one layer per object with its kind layers inside (--layers object)
 };
 
 std::string svg_document(const Drawing& drawing, const SvgOptions& options);

@@ -49,7 +49,9 @@ def parse_args():
 
 
 def add_lineart(scene, source):
-    """A grease-pencil object whose Line Art modifier draws source's lines into one layer."""
+    """A grease-pencil object whose Line Art modifier draws source's lines into one layer; with
+    no source object, every object of the scene's, intersections included (a glTF shot,
+    bench/gltf/build_shot.py)."""
     gp = bpy.data.grease_pencils.new("LineArt")
     ob = bpy.data.objects.new("LineArt", gp)
     scene.collection.objects.link(ob)
@@ -59,8 +61,11 @@ def add_lineart(scene, source):
     bpy.data.materials.create_gpencil_data(mat)
     gp.materials.append(mat)
     mod = ob.grease_pencil_modifiers.new("LineArt", 'GP_LINEART')
-    mod.source_type = 'OBJECT'
-    mod.source_object = source
+    if source is not None:
+        mod.source_type = 'OBJECT'
+        mod.source_object = source
+    else:
+        mod.source_type = 'SCENE'
     mod.target_layer = layer.info
     mod.target_material = mat
     mod.use_contour = True
@@ -71,6 +76,7 @@ def add_lineart(scene, source):
     for flag in ("use_loose", "use_material", "use_edge_mark", "use_intersection",
                  "use_light_contour", "use_shadow"):
         setattr(mod, flag, False)
+    mod.use_intersection = source is None
     for other in bpy.context.view_layer.objects:
         other.select_set(False)
     ob.select_set(True)
@@ -130,7 +136,7 @@ def main():
     first, last = opts["frames"] or (scene.frame_start, scene.frame_end)
     svg_dir = os.path.abspath(opts["svg_dir"] or os.path.join(os.path.dirname(opts["result"]), "svg"))
     os.makedirs(svg_dir, exist_ok=True)
-    suzanne = bpy.data.objects["Suzanne"]
+    suzanne = bpy.data.objects.get("Suzanne")  # absent in a glTF shot: Line Art takes the scene
     mode = opts["mode"]
 
     override = None

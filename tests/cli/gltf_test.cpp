@@ -129,6 +129,33 @@ TEST_F(Gltf, HoldoutObjectsHideLinesAndDrawNone) {
     EXPECT_EQ(svg.find("data-object=\"Wall\""), std::string::npos);
 }
 
+// --layers object: a layer per object, its kind layers inside, every path in its object's layer.
+TEST_F(Gltf, LayersByObjectNestKindLayersInObjectLayers) {
+    test::GltfBuilder b = moving_cube();
+    const int wall = b.mesh_node("Wall <&>", {-3, -3, -2, 3, -3, -2, 3, -1, -2, -3, -1, -2}, {0, 1, 2, 0, 2, 3});
+    b.json()["scenes"][0]["nodes"].push_back(wall);
+    b.write(dir / "shot.glb");
+    const auto r = test::run_inkline("render " + (dir / "shot.glb").string() + " --frames 1:1 --layers object --svg " +
+                                     (dir / "o/%04d.svg").string() + " -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string svg = test::read_text(dir / "o/0001.svg");
+    const size_t cube = svg.find("<g id=\"object-0\" inkscape:groupmode=\"layer\" inkscape:label=\"Cube\" data-object=\"Cube\">");
+    const size_t wall_layer = svg.find("<g id=\"object-1\" inkscape:groupmode=\"layer\" inkscape:label=\"Wall &lt;&amp;&gt;\"");
+    ASSERT_NE(cube, std::string::npos) << svg.substr(0, 2000);
+    ASSERT_NE(wall_layer, std::string::npos) << svg.substr(0, 2000);
+    EXPECT_NE(svg.find("<g id=\"object-0-silhouette\"", cube), std::string::npos);
+    EXPECT_NE(svg.find("<g id=\"object-1-boundary\"", wall_layer), std::string::npos);
+    // Every Cube path lies between the Cube layer and the Wall layer.
+    for (size_t at = svg.find("data-object=\"Cube\" d="); at != std::string::npos; at = svg.find("data-object=\"Cube\" d=", at + 1)) {
+        EXPECT_GT(at, cube);
+        EXPECT_LT(at, wall_layer);
+    }
+    EXPECT_EQ(test::run_shell("xmllint --noout " + (dir / "o/0001.svg").string()).code, 0);
+    const auto bad = test::run_inkline("render " + (dir / "shot.glb").string() + " --layers material -o " + (dir / "x").string());
+    EXPECT_EQ(bad.code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("--layers 'material': expected kind or object"), std::string::npos) << bad.output;
+}
+
 TEST_F(Gltf, BrokenShotExitsTwoWithOneLineAndWritesNothing) {
     test::GltfBuilder b = moving_cube();
     b.json()["accessors"][0]["count"] = 100000;  // POSITION reads past its view
