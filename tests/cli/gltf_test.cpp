@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -154,6 +156,57 @@ TEST_F(Gltf, LayersByObjectNestKindLayersInObjectLayers) {
     const auto bad = test::run_inkline("render " + (dir / "shot.glb").string() + " --layers material -o " + (dir / "x").string());
     EXPECT_EQ(bad.code, 2) << bad.output;
     EXPECT_NE(bad.output.find("--layers 'material': expected kind or object"), std::string::npos) << bad.output;
+}
+
+// A torus whose morph target ripples it while a skin's joint turns it: the incremental tracker
+// (refitting, never rebuilding) draws exactly what brute force draws on every frame.
+TEST_F(Gltf, TrackerEqualsBruteForceUnderSkinningAndMorphing) {
+    const core::Mesh torus = test::torus(1.0, 0.35, 48, 24);
+    std::vector<float> positions, ripple;
+    for (const glm::vec3& p : torus.positions) {
+        positions.insert(positions.end(), {p.x, p.y, p.z});
+        const float s = 0.15f * std::sin(5.0f * std::atan2(p.z, p.x));
+        ripple.insert(ripple.end(), {s * p.x, s, s * p.z});
+    }
+    std::vector<uint32_t> indices;
+    for (const glm::uvec3& t : torus.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    test::GltfBuilder b;
+    const int mesh_node = b.mesh_node("Torus", positions, indices);
+    const int joint = b.node("Joint");
+    auto& prim = b.json()["meshes"][0]["primitives"][0];
+    prim["targets"] = {{{"POSITION", b.floats(ripple, "VEC3")}}};
+    const size_t n = torus.positions.size();
+    const std::vector<uint8_t> joints(4 * n, 0);
+    std::vector<float> weights(4 * n, 0.0f);
+    for (size_t v = 0; v < n; ++v) weights[4 * v] = 1.0f;
+    prim["attributes"]["JOINTS_0"] = b.accessor(b.view(joints.data(), joints.size()), 5121, n, "VEC4");
+    prim["attributes"]["WEIGHTS_0"] = b.floats(weights, "VEC4");
+    b.json()["skins"] = {{{"joints", {joint}}}};
+    b.json()["nodes"][size_t(mesh_node)]["skin"] = 0;
+    const int t = b.floats({0.0f, 1.0f}, "SCALAR");
+    const float h = float(std::sin(0.6)), c = float(std::cos(0.6));
+    b.json()["animations"] = {{{"samplers", {{{"input", t}, {"output", b.floats({0, 0, 0, 1, h, 0, 0, c}, "VEC4")}},
+                                             {{"input", t}, {"output", b.floats({0.0f, 1.0f}, "SCALAR")}}}},
+                               {"channels", {{{"sampler", 0}, {"target", {{"node", joint}, {"path", "rotation"}}}},
+                                             {{"sampler", 1}, {"target", {{"node", mesh_node}, {"path", "weights"}}}}}}}};
+    b.finish_scene();
+    b.write(dir / "shot.glb");
+    for (const char* tracker : {"incremental", "brute"}) {
+        const auto r = test::run_inkline("render " + (dir / "shot.glb").string() + " --frames 0:24 --tracker " + tracker +
+                                         " --json " + (dir / tracker / "%04d.json").string() + " -q");
+        ASSERT_EQ(r.code, 0) << r.output;
+    }
+    for (int f = 0; f <= 24; ++f) {
+        char name[16];
+        std::snprintf(name, sizeof name, "%04d.json", f);
+        nlohmann::json a = nlohmann::json::parse(test::read_text(dir / "incremental" / name));
+        nlohmann::json b2 = nlohmann::json::parse(test::read_text(dir / "brute" / name));
+        EXPECT_LT(a["stats"]["edges_tested"].get<size_t>(), f == 0 ? SIZE_MAX : a["stats"]["edges"].get<size_t>()) << name;
+        for (nlohmann::json* j : {&a, &b2}) {
+            for (const char* key : {"ms", "tracker", "edges_tested", "faces_tested"}) (*j)["stats"].erase(key);
+        }
+        EXPECT_EQ(a, b2) << name;
+    }
 }
 
 TEST_F(Gltf, BrokenShotExitsTwoWithOneLineAndWritesNothing) {
