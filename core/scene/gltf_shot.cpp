@@ -355,6 +355,7 @@ struct GltfShot::Impl {
     void read_objects();
     void read_skins();
     void weld();
+    void compact();
     void choose_camera();
     std::vector<glm::dmat4> world_at(double time, std::vector<std::vector<double>>* r_weights) const;
     void evaluate(double time, std::vector<glm::vec3>& r_positions) const;
@@ -765,6 +766,38 @@ void GltfShot::Impl::weld() {
     }
 }
 
+// Keeps only what evaluation reads: per object, the data of its welded vertices (one source
+// vertex each), in welded order, so source_of becomes the identity; the file's buffers go.
+void GltfShot::Impl::compact() {
+    std::vector<size_t> welded_base(geometry.size(), 0);
+    size_t w = 0;
+    for (size_t o = 0; o < geometry.size(); ++o) {
+        ObjectGeometry& g = geometry[o];
+        welded_base[o] = w;
+        std::vector<uint32_t> kept;
+        for (; w < source_of.size() && source_of[w] < source_base[o] + g.positions.size(); ++w) {
+            kept.push_back(uint32_t(source_of[w] - source_base[o]));
+        }
+        const auto pick = [&](auto& values) {
+            std::remove_reference_t<decltype(values)> out;
+            out.reserve(kept.size());
+            for (const uint32_t v : kept) out.push_back(std::move(values[v]));
+            values = std::move(out);
+        };
+        pick(g.positions);
+        for (auto& t : g.targets) pick(t);
+        if (!g.influences.empty()) pick(g.influences);
+        g.triangles = {};
+    }
+    source_base = std::move(welded_base);
+    for (size_t i = 0; i < source_of.size(); ++i) source_of[i] = uint32_t(i);
+    weld_of = {};
+    model.buffers = {};
+    model.bufferViews = {};
+    model.accessors = {};
+    model.images = {};
+}
+
 // World matrices of every node at a time; the morph weights of every node when asked.
 std::vector<glm::dmat4> GltfShot::Impl::world_at(double time, std::vector<std::vector<double>>* r_weights) const {
     std::vector<Trs> trs = rest_trs;
@@ -916,6 +949,7 @@ GltfShot::GltfShot(const std::filesystem::path& path, const GltfOptions& options
     m.read_objects();
     m.read_animations();
     m.weld();
+    m.compact();
     m.choose_camera();
     // Geometry moves when a channel drives a node above an object, a skin's joint, or weights.
     std::vector<bool> moved(m.model.nodes.size(), false);
