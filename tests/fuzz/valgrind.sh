@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Runs the fuzz corpora through the replay test (tests/fuzz/replay_test.cpp) under valgrind
 # memcheck, in the Release build (`build`), and fails on any memcheck error.
-#   bash tests/fuzz/valgrind.sh [gtest filter, default: the mesh corpora]
+#   bash tests/fuzz/valgrind.sh [gtest filter, default: the mesh and glTF corpora]
 # Needs valgrind (Debian package `valgrind`); it installs nothing itself.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-filter=${1:-'FuzzCorpus.Mesh*:FuzzCorpus.Obj*:FuzzCorpus.Off*:FuzzCorpus.Ply*:FuzzCorpus.Stl*'}
+filter=${1:-'FuzzCorpus.Mesh*:FuzzCorpus.Gltf*:FuzzCorpus.Obj*:FuzzCorpus.Off*:FuzzCorpus.Ply*:FuzzCorpus.Stl*'}
 
 if ! command -v valgrind >/dev/null; then
   echo "valgrind: not found; install valgrind" >&2
