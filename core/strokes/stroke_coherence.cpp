@@ -48,12 +48,21 @@ std::vector<SampleTree> class_trees(const std::vector<StrokeTrace>& traces, Use 
     return trees;
 }
 
-// The samples of the visible traces of a kind.
-SampleTree visible_tree(const std::vector<StrokeTrace>& traces, LineKind kind) {
+// The way a trace runs at a sample: from the sample before to the one after (zero for a trace
+// of one sample).
+glm::dvec2 tangent(const StrokeTrace& trace, size_t s) {
+    const std::vector<glm::dvec2>& q = trace.samples_px;
+    return q[std::min(s + 1, q.size() - 1)] - q[s > 0 ? s - 1 : 0];
+}
+
+// The samples of the visible traces of a kind, with the angle of their tangent when asked.
+SampleTree visible_tree(const std::vector<StrokeTrace>& traces, LineKind kind, bool with_angles) {
     std::vector<TracedSample> samples;
     for (size_t t = 0; t < traces.size(); ++t) {
         if (!traces[t].visible || traces[t].kind != kind) continue;
-        for (size_t s = 0; s < traces[t].samples_px.size(); ++s) samples.push_back({traces[t].samples_px[s], t, s});
+        for (size_t s = 0; s < traces[t].samples_px.size(); ++s) {
+            samples.push_back({traces[t].samples_px[s], t, s, with_angles ? internal::line_angle(tangent(traces[t], s)) : NAN});
+        }
     }
     return SampleTree(std::move(samples));
 }
@@ -237,7 +246,7 @@ std::vector<StrokeCoherence::Nearest> StrokeCoherence::nearest_visible(const std
                                                                        LineKind kind) const {
     std::vector<Nearest> out(points_px.size());
     if (traces_.empty()) return out;
-    const SampleTree tree = visible_tree(traces_, kind);
+    const SampleTree tree = visible_tree(traces_, kind, false);
     for (size_t i = 0; i < points_px.size(); ++i) {
         const SampleTree::Hit hit = tree.nearest(points_px[i], kMatchRadiusPx);
         if (hit.trace == size_t(-1)) continue;
@@ -311,22 +320,24 @@ std::vector<std::vector<SideMemory>> StrokeCoherence::side_memory(const std::vec
     std::vector<std::optional<SampleTree>> trees(kLineKindCount);  // visible_tree of each kind, once asked
     for (size_t i = 0; i < sides.size(); ++i) {
         std::optional<SampleTree>& tree = trees[size_t(kinds[i])];
-        if (!tree) tree = visible_tree(traces_, kinds[i]);
+        if (!tree) tree = visible_tree(traces_, kinds[i], true);
         // The nearest sample for each point, in order from the end inward.
         std::vector<SampleTree::Hit> hits;
         std::map<int64_t, size_t> votes;
         // Only samples of last frame running along the side: at a sharp corner, the other branch
-        // lies as near.
+        // lies as near. The tree passes over boxes of samples that all run across it (where
+        // thousands of strokes cross the side, most of those near it).
         const glm::dvec2 along = sides[i].empty() ? glm::dvec2(0.0) : sides[i].back() - sides[i].front();
         const double reach = glm::length(along);
         auto along_side = [&](size_t t, size_t s) {
-            const std::vector<glm::dvec2>& q = traces_[t].samples_px;
-            if (reach < kSideDirectionPx || q.size() < 2) return true;
-            const glm::dvec2 tangent = q[std::min(s + 1, q.size() - 1)] - q[s > 0 ? s - 1 : 0];
-            return std::abs(glm::dot(along, tangent)) >= kSideAlongCos * reach * glm::length(tangent);
+            if (reach < kSideDirectionPx || traces_[t].samples_px.size() < 2) return true;
+            const glm::dvec2 d = tangent(traces_[t], s);
+            return std::abs(glm::dot(along, d)) >= kSideAlongCos * reach * glm::length(d);
         };
+        std::optional<internal::AngleCone> cone;
+        if (reach >= kSideDirectionPx) cone = {internal::line_angle(along), std::acos(kSideAlongCos)};
         for (const glm::dvec2& p : sides[i]) {
-            hits.push_back(tree->nearest(p, kMatchRadiusPx, along_side));
+            hits.push_back(tree->nearest(p, kMatchRadiusPx, along_side, cone));
             if (hits.back().trace != size_t(-1)) ++votes[traces_[hits.back().trace].id];
         }
         for (const auto& [id, n] : votes) {
