@@ -120,7 +120,7 @@ std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const
         const SampleTree& same = trees[class_of(cand.geometry.kind, cand.geometry.visible)];
         const SampleTree& other = trees[class_of(cand.geometry.kind, !cand.geometry.visible)];
         for (const glm::dvec2& p : cand.samples_px) {
-            if (share <= 0.0) break;
+            if (!(share > 0.0)) break;
             if (const SampleTree::Hit hit = same.nearest(p, radius); hit.trace != size_t(-1)) add(hit.trace, share);
             if (!cross) continue;
             if (const SampleTree::Hit hit = other.nearest(p, radius); hit.trace != size_t(-1)) add(hit.trace, share);

@@ -1,18 +1,20 @@
 // SPDX-License-Identifier: MIT
-// Stroke samples in a 2-d tree: the nearest sample to a point within a radius, ties to the lower
-// (trace, sample), exactly as a search over every sample would find it, however the samples
-// crowd (thousands of strokes through one point of the image cost a few boxes each). A search
-// may also ask only for samples of strokes running within a cone of directions, and then passes
-// over whole boxes of strokes that run across it.
-// Based on: J. L. Bentley. Multidimensional Binary Search Trees Used for Associative Searching.
-// Communications of the ACM 18(9), 1975; J. H. Friedman, J. L. Bentley, R. A. Finkel. An
-// Algorithm for Finding Best Matches in Logarithmic Expected Time. ACM TOMS 3(3), 1977.
+// Stroke samples in a tree of boxes: the nearest sample to a point within a radius, ties to the
+// lower (trace, sample), exactly as a search over every sample would find it, however the
+// samples crowd (thousands of strokes through one point of the image cost a few boxes each). A
+// search may also ask only for samples of strokes running within a cone of directions, and then
+// passes over whole boxes of strokes that run across it.
+// Based on: C. Lauterbach, M. Garland, S. Sengupta, D. Luebke, D. Manocha. Fast BVH Construction
+// on GPUs. Eurographics 2009 (boxes over points sorted in Z order, split as a quadtree splits);
+// J. H. Friedman, J. L. Bentley, R. A. Finkel. An Algorithm for Finding Best Matches in
+// Logarithmic Expected Time. ACM TOMS 3(3), 1977 (the nearest first, boxes farther passed over).
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <numbers>
@@ -75,7 +77,7 @@ class SampleTree {
         size_t begin = 0, end = 0;
     };
     // A box over spots_[begin, end), laid out depth first: an inner node's first child comes
-    // next, its second at `second`. The two halves hold the spots on either side of a middle one.
+    // next, its second at `second`.
     struct Node {
         glm::dvec2 lo{0.0}, hi{0.0};
         size_t begin = 0, end = 0;
@@ -94,13 +96,14 @@ class SampleTree {
     // ones: a box is passed over only when it lies farther than the best by more than that, so
     // that a sample exactly as near as the best (a tie, maybe won by the lower index) is seen.
     static constexpr double kPruneSlack = 1e-12;
-    // Nodes pending in a search: at most the depth of the tree plus one, and halving the spots
-    // at each level keeps the depth within 64.
-    static constexpr size_t kMaxPending = 128;
+    // Nodes pending in a search: at most the depth of the tree plus one. Each level splits the
+    // spots' shared cell of a 2^32 x 2^32 grid in two (64 levels at most), then halves spots of
+    // one cell (64 more at most).
+    static constexpr size_t kMaxPending = 130;
 
-    // Builds the node over spots_[begin, end), which lie in the region [lo, hi], and those below
-    // it; returns its index.
-    size_t build(size_t begin, size_t end, glm::dvec2 lo, glm::dvec2 hi);
+    // Builds the node over spots_[begin, end) and those below it; returns its index. keys: the
+    // Z-order key of each spot, ascending.
+    size_t build(size_t begin, size_t end, const std::vector<uint64_t>& keys);
     // Squared distance from p to the node's box (0 inside).
     static double box_distance2(const Node& node, const glm::dvec2& p) {
         const double dx = std::max({node.lo.x - p.x, p.x - node.hi.x, 0.0});
@@ -112,7 +115,7 @@ class SampleTree {
 
     std::vector<std::pair<size_t, size_t>> samples_;  // (trace, sample), grouped by spot
     std::vector<double> angles_;                       // of each of samples_
-    std::vector<Spot> spots_;                          // in tree order
+    std::vector<Spot> spots_;                          // in Z order
     std::vector<Node> nodes_;                          // nodes_[0] is the root
     std::vector<NodeAngles> node_angles_;              // of each of nodes_
 };
