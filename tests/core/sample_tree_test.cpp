@@ -182,6 +182,10 @@ TEST(SampleTree, SamplesAndPointsOffTheImageFindNothing) {
     EXPECT_EQ(tree.nearest({HUGE_VAL, 1.0}, 12.0).trace, size_t(-1));
     EXPECT_EQ(tree.nearest({2.0, 2.0}, NAN).trace, size_t(-1));
     EXPECT_TRUE(SampleTree({{{NAN, NAN}, 0, 0}}).empty());
+    // Samples spread wider than a double spans.
+    const SampleTree wide({{{-1e308, 0.0}, 0, 0}, {{1e308, 0.0}, 1, 0}, {{0.0, 0.0}, 2, 0}, {{0.0, 1e308}, 3, 0}});
+    EXPECT_EQ(wide.nearest({1.0, 0.0}, 12.0).trace, 2u);
+    EXPECT_EQ(wide.nearest({1e308, 5.0}, 12.0).trace, 1u);
     EXPECT_EQ(SampleTree().nearest({0.0, 0.0}, 12.0).trace, size_t(-1));
 }
 

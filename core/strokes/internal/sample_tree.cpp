@@ -68,7 +68,11 @@ SampleTree::SampleTree(std::vector<TracedSample> samples) {
     const double side = std::max(hi.x - lo.x, hi.y - lo.y);
     constexpr double kLastCell = 4294967295.0;
     const double scale = side > 0.0 ? kLastCell / side : 0.0;
-    auto cell = [&](double v, double from) { return uint32_t(std::clamp((v - from) * scale, 0.0, kLastCell)); };
+    // A span too wide for a double (inf times a zero scale) puts every sample in cell 0.
+    auto cell = [&](double v, double from) {
+        const double c = (v - from) * scale;
+        return c >= 0.0 ? uint32_t(std::min(c, kLastCell)) : 0u;
+    };
     std::vector<Keyed> order(samples.size());
     for (size_t i = 0; i < samples.size(); ++i) {
         const glm::dvec2 p = samples[i].p_px;
