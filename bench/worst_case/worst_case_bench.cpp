@@ -3,16 +3,19 @@
 // near-linear stage doubles (ratio about 2, a little more for n log n); a quadratic one
 // quadruples.
 //
-//   inkline_worst_case_bench [--case fan|polygon|terrain|frames] [--scale K]
+//   inkline_worst_case_bench [--case fan|polygon|terrain|shared-edge|frames] [--scale K]
 //
-// Cases (the default runs all four):
+// Cases (the default runs all five):
 //   fan      a closed cone: apex and base centre each in half of the faces (CAD caps and fans)
 //   polygon  one polygon of N corners, fan-triangulated as the OBJ reader does (every triangle
 //            has the first corner)
 //   terrain  an n x n heightfield of random heights: tens of thousands of short strokes, joined
 //            again from frame 2 on (noisy scans, terrain)
+//   shared-edge  N triangles on one edge, each to a point of a circle around it (a broken CAD
+//            export): thousands of strokes cross the image of the edge's two ends, where frame 2
+//            finds last frame's strokes crowded within a few pixels
 //   frames   a small torus over 20000 frames: per-frame time and memory must stay flat
-// The first three render two frames of the default turntable (1024 x 1024, ray-cast visibility)
+// The first four render two frames of the default turntable (1024 x 1024, ray-cast visibility)
 // through the CLI's own core::FramePipeline and report the one-time builds and frame 2's stages;
 // --scale K divides every size by K (a quick run). CPU time of the whole process (all threads),
 // ms.
@@ -64,6 +67,19 @@ double rss_mb() {
     if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
     std::fclose(f);
     return double(resident) * 4096.0 / (1024.0 * 1024.0);
+}
+
+// N triangles that all share the edge from (0, 0, -1) to (0, 0, 1), each to one of N points
+// of the unit circle in z = 0: an edge of N faces.
+core::Mesh shared_edge(uint32_t faces) {
+    core::Mesh m;
+    m.positions = {{0.0f, 0.0f, -1.0f}, {0.0f, 0.0f, 1.0f}};
+    for (uint32_t i = 0; i < faces; ++i) {
+        const double a = 2.0 * std::numbers::pi * double(i) / faces;
+        m.positions.push_back({float(std::cos(a)), float(std::sin(a)), 0.0f});
+        m.triangles.push_back({0, 1, 2 + i});
+    }
+    return m;
 }
 
 const char* const kStages[] = {"edge table", "describe", "cone tree", "BVH", "extract", "chain", "visibility", "strokes"};
@@ -184,7 +200,8 @@ int run(int argc, char** argv) {
         } else if (arg == "--scale") {
             scale = std::max(1, std::atoi(argv[i + 1]));
         } else {
-            std::fprintf(stderr, "usage: inkline_worst_case_bench [--case fan|polygon|terrain|frames] [--scale K]\n");
+            std::fprintf(stderr,
+                         "usage: inkline_worst_case_bench [--case fan|polygon|terrain|shared-edge|frames] [--scale K]\n");
             return 2;
         }
     }
@@ -212,6 +229,11 @@ int run(int argc, char** argv) {
             rows.push_back(render_two_frames(test::noise_terrain(n, 0.15), std::to_string(n) + "^2 grid"));
         }
         print_table("terrain: random heightfield", rows);
+    }
+    if (only.empty() || only == "shared-edge") {
+        std::vector<Row> rows;
+        for (uint32_t faces : sizes(500)) rows.push_back(render_two_frames(shared_edge(faces), std::to_string(faces) + " faces"));
+        print_table("shared-edge: N faces on one edge", rows);
     }
     if (only.empty() || only == "frames") long_run(scale);
     std::printf("\npeak RSS %.0f MB\n", peak_rss_mb());

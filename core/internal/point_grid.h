@@ -58,27 +58,6 @@ class PointGrid {
         return false;
     }
 
-    // Calls visit(item) for the items in ring r around p's cell (the cells r steps from it along
-    // x or y, whichever is more), for r = 0, 1, ... max_ring, and after each ring stops unless
-    // more(r). After ring r, every item not yet visited lies at least r * cell_px() - kRingSlack
-    // from p: a nearest-item search stops once it has one nearer than that.
-    template <typename Visit, typename More>
-    void rings(const glm::dvec2& p, int max_ring, Visit visit, More more) const {
-        const glm::ivec2 c = cell(p);
-        for (int r = 0; r <= max_ring; ++r) {
-            for (int y = c.y - r; y <= c.y + r; ++y) {
-                const int step = (y == c.y - r || y == c.y + r) ? 1 : 2 * r;  // inner rows: the two ends
-                for (int x = c.x - r; x <= c.x + r; x += std::max(step, 1)) visit_cell({x, y}, visit);
-            }
-            if (!more(r)) return;
-        }
-    }
-    // Covers the rounding of the cell index of points up to the clamp (1e8) from the origin;
-    // clamping itself only brings points closer in cells.
-    static constexpr double kRingSlack = 1e-6;
-
-    double cell_px() const { return cell_px_; }
-
   private:
     struct Entry {
         int64_t key;

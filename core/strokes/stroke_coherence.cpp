@@ -6,9 +6,8 @@
 #include <glm/geometric.hpp>
 #include <map>
 #include <tuple>
-#include <type_traits>
 
-#include "core/internal/point_grid.h"
+#include "core/strokes/internal/sample_tree.h"
 #include "core/strokes/stroke_path.h"
 
 namespace inkline::core {
@@ -28,58 +27,45 @@ constexpr double kStartLookahead = 30.0;
 // single crossing of last frame's outline does not count as standing still.
 constexpr double kStartMotionWindowPx = 24.0;
 
-// Cells of the sample grid per match radius. The nearest sample is searched ring by ring from
-// the query's cell, and the search stops at the first ring beyond the nearest found: where last
-// frame's strokes crowd the image (a noisy scan draws tens of thousands), it so looks at the few
-// samples next to the query rather than all within the radius.
-constexpr int kCellsPerRadius = 3;
+using internal::SampleTree;
+using internal::TracedSample;
 
-// Last frame's samples on a grid of cells a third of the radius.
-class SampleGrid {
-  public:
-    SampleGrid(const std::vector<StrokeTrace>& traces, double radius)
-        : traces_(traces), radius_(radius), grid_(radius / kCellsPerRadius) {
-        for (size_t t = 0; t < traces.size(); ++t) {
-            for (size_t s = 0; s < traces[t].samples_px.size(); ++s) grid_.add(traces[t].samples_px[s], {t, s});
+// Last frame's samples are searched in trees of one kind and visibility each, so that a search
+// never reads samples it would pass over (crowds of another kind, or of strokes already matched).
+size_t class_of(LineKind kind, bool visible) { return 2 * size_t(kind) + (visible ? 1 : 0); }
+
+// The samples of the traces `use` accepts, a tree for each class_of.
+template <typename Use>
+std::vector<SampleTree> class_trees(const std::vector<StrokeTrace>& traces, Use use) {
+    std::vector<std::vector<TracedSample>> samples(2 * kLineKindCount);
+    for (size_t t = 0; t < traces.size(); ++t) {
+        if (!use(t)) continue;
+        std::vector<TracedSample>& to = samples[class_of(traces[t].kind, traces[t].visible)];
+        for (size_t s = 0; s < traces[t].samples_px.size(); ++s) to.push_back({traces[t].samples_px[s], t, s});
+    }
+    std::vector<SampleTree> trees;
+    for (std::vector<TracedSample>& of_class : samples) trees.emplace_back(std::move(of_class));
+    return trees;
+}
+
+// The way a trace runs at a sample: from the sample before to the one after (zero for a trace
+// of one sample).
+glm::dvec2 tangent(const StrokeTrace& trace, size_t s) {
+    const std::vector<glm::dvec2>& q = trace.samples_px;
+    return q[std::min(s + 1, q.size() - 1)] - q[s > 0 ? s - 1 : 0];
+}
+
+// The samples of the visible traces of a kind, with the angle of their tangent when asked.
+SampleTree visible_tree(const std::vector<StrokeTrace>& traces, LineKind kind, bool with_angles) {
+    std::vector<TracedSample> samples;
+    for (size_t t = 0; t < traces.size(); ++t) {
+        if (!traces[t].visible || traces[t].kind != kind) continue;
+        for (size_t s = 0; s < traces[t].samples_px.size(); ++s) {
+            samples.push_back({traces[t].samples_px[s], t, s, with_angles ? internal::line_angle(tangent(traces[t], s)) : NAN});
         }
-        grid_.sort();
     }
-
-    struct Hit {
-        size_t trace = size_t(-1), sample = 0;
-        double distance = HUGE_VAL;
-    };
-
-    // Nearest sample within the radius among traces accepted by `use`; ties go to the lower
-    // (trace, sample).
-    template <typename Filter>
-    Hit nearest(const glm::dvec2& p, Filter use) const {
-        Hit best;
-        const double cell = grid_.cell_px();
-        const auto more = [&](int ring) {
-            return !(best.distance < double(ring) * cell - Grid::kRingSlack);
-        };
-        grid_.rings(p, kCellsPerRadius + 1, [&](const std::pair<size_t, size_t>& ts) {
-            const auto [trace, sample] = ts;
-            if constexpr (std::is_invocable_v<Filter, size_t, size_t>) {
-                if (!use(trace, sample)) return;
-            } else {
-                if (!use(trace)) return;
-            }
-            const double d = glm::length(traces_[trace].samples_px[sample] - p);
-            const bool better =
-                d < best.distance || (d == best.distance && std::tie(trace, sample) < std::tie(best.trace, best.sample));
-            if (d <= radius_ && better) best = {trace, sample, d};
-        }, more);
-        return best;
-    }
-
-  private:
-    const std::vector<StrokeTrace>& traces_;
-    double radius_;
-    using Grid = internal::PointGrid<std::pair<size_t, size_t>>;  // (trace, sample)
-    Grid grid_;
-};
+    return SampleTree(std::move(samples));
+}
 
 // Strokes of one kind match; a hidden part that comes into view (or a visible one that goes
 // behind) is the same line, so visibility may change, but such pairs come after every pair of
@@ -94,9 +80,11 @@ struct Pair {
 };
 
 // Overlap (px) of every candidate with every compatible trace it touches.
+// trees: class_trees of the traces not taken; radius: this round's. Pairs whose visibility
+// changed are found only when `cross` asks for them.
 std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const std::vector<StrokeTrace>& traces,
-                           const SampleGrid& grid, const std::vector<uint8_t>& candidate_done,
-                           const std::vector<uint8_t>& trace_taken) {
+                           const std::vector<SampleTree>& trees, double radius, bool cross,
+                           const std::vector<uint8_t>& candidate_done, const std::vector<uint8_t>& trace_taken) {
     // (edge, trace) pairs, sorted, to look up the traces that used an edge.
     std::vector<std::pair<uint32_t, size_t>> edge_owner;
     for (size_t t = 0; t < traces.size(); ++t) {
@@ -111,12 +99,6 @@ std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const
     for (size_t c = 0; c < candidates.size(); ++c) {
         if (candidate_done[c]) continue;
         const StrokeCandidate& cand = candidates[c];
-        const auto use_same = [&](size_t t) {
-            return !trace_taken[t] && compatible(cand, traces[t]) && !crosses(cand, traces[t]);
-        };
-        const auto use_cross = [&](size_t t) {
-            return !trace_taken[t] && compatible(cand, traces[t]) && crosses(cand, traces[t]);
-        };
         auto add = [&](size_t t, double amount) {
             if (score[t] == 0.0) touched.push_back(t);
             score[t] += amount;
@@ -135,10 +117,13 @@ std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const
         // Samples count with their share of the length where last frame's nearest stroke lies
         // close: the nearest of the same visibility, and the nearest of the other.
         const double share = cand.samples_px.empty() ? 0.0 : cand.length_px / double(cand.samples_px.size());
+        const SampleTree& same = trees[class_of(cand.geometry.kind, cand.geometry.visible)];
+        const SampleTree& other = trees[class_of(cand.geometry.kind, !cand.geometry.visible)];
         for (const glm::dvec2& p : cand.samples_px) {
-            for (const SampleGrid::Hit& hit : {grid.nearest(p, use_same), grid.nearest(p, use_cross)}) {
-                if (hit.trace != size_t(-1) && share > 0.0) add(hit.trace, share);
-            }
+            if (!(share > 0.0)) break;
+            if (const SampleTree::Hit hit = same.nearest(p, radius); hit.trace != size_t(-1)) add(hit.trace, share);
+            if (!cross) continue;
+            if (const SampleTree::Hit hit = other.nearest(p, radius); hit.trace != size_t(-1)) add(hit.trace, share);
         }
         std::sort(touched.begin(), touched.end());
         for (size_t t : touched) {
@@ -214,15 +199,16 @@ std::optional<glm::dvec2> loop_start(const StrokeCandidate& cand, const StrokeTr
     return best ? best : nearest;
 }
 
-// Direction and u offset of a candidate from last frame's u at its nearest samples.
-void propagate(const StrokeCandidate& cand, const StrokeTrace& trace, size_t trace_index, const SampleGrid& grid,
-               StrokeMatch& r_match) {
+// Direction and u offset of a candidate from last frame's u at its nearest samples within
+// radius (px).
+void propagate(const StrokeCandidate& cand, const StrokeTrace& trace, double radius, StrokeMatch& r_match) {
+    std::vector<TracedSample> samples;
+    for (size_t k = 0; k < trace.samples_px.size(); ++k) samples.push_back({trace.samples_px[k], 0, k});
+    const SampleTree tree(std::move(samples));
     std::vector<double> s, u;
-    std::vector<uint8_t> matched(cand.samples_px.size(), 0);
     for (size_t i = 0; i < cand.samples_px.size(); ++i) {
-        const SampleGrid::Hit hit = grid.nearest(cand.samples_px[i], [&](size_t t) { return t == trace_index; });
+        const SampleTree::Hit hit = tree.nearest(cand.samples_px[i], radius);
         if (hit.trace == size_t(-1)) continue;
-        matched[i] = 1;
         s.push_back(cand.samples_arc[i]);
         u.push_back(trace.samples_u[hit.sample]);
     }
@@ -260,10 +246,9 @@ std::vector<StrokeCoherence::Nearest> StrokeCoherence::nearest_visible(const std
                                                                        LineKind kind) const {
     std::vector<Nearest> out(points_px.size());
     if (traces_.empty()) return out;
-    const SampleGrid grid(traces_, kMatchRadiusPx);
+    const SampleTree tree = visible_tree(traces_, kind, false);
     for (size_t i = 0; i < points_px.size(); ++i) {
-        const SampleGrid::Hit hit =
-            grid.nearest(points_px[i], [&](size_t t) { return traces_[t].visible && traces_[t].kind == kind; });
+        const SampleTree::Hit hit = tree.nearest(points_px[i], kMatchRadiusPx);
         if (hit.trace == size_t(-1)) continue;
         const StrokeTrace& t = traces_[hit.trace];
         out[i] = {int64_t(t.id), t.samples_u[hit.sample], t.closed ? t.length_px : 0.0};
@@ -332,32 +317,34 @@ std::vector<std::vector<SideMemory>> StrokeCoherence::side_memory(const std::vec
                                                                   const std::vector<LineKind>& kinds) const {
     std::vector<std::vector<SideMemory>> out(sides.size());
     if (traces_.empty()) return out;
-    const SampleGrid grid(traces_, kMatchRadiusPx);
+    std::vector<std::optional<SampleTree>> trees(kLineKindCount);  // visible_tree of each kind, once asked
     for (size_t i = 0; i < sides.size(); ++i) {
+        std::optional<SampleTree>& tree = trees[size_t(kinds[i])];
+        if (!tree) tree = visible_tree(traces_, kinds[i], true);
         // The nearest sample for each point, in order from the end inward.
-        std::vector<SampleGrid::Hit> hits;
+        std::vector<SampleTree::Hit> hits;
         std::map<int64_t, size_t> votes;
         // Only samples of last frame running along the side: at a sharp corner, the other branch
-        // lies as near.
+        // lies as near. The tree passes over boxes of samples that all run across it (where
+        // thousands of strokes cross the side, most of those near it).
         const glm::dvec2 along = sides[i].empty() ? glm::dvec2(0.0) : sides[i].back() - sides[i].front();
         const double reach = glm::length(along);
         auto along_side = [&](size_t t, size_t s) {
-            const StrokeTrace& trace = traces_[t];
-            if (!trace.visible || trace.kind != kinds[i]) return false;
-            const std::vector<glm::dvec2>& q = trace.samples_px;
-            if (reach < kSideDirectionPx || q.size() < 2) return true;
-            const glm::dvec2 tangent = q[std::min(s + 1, q.size() - 1)] - q[s > 0 ? s - 1 : 0];
-            return std::abs(glm::dot(along, tangent)) >= kSideAlongCos * reach * glm::length(tangent);
+            if (reach < kSideDirectionPx || traces_[t].samples_px.size() < 2) return true;
+            const glm::dvec2 d = tangent(traces_[t], s);
+            return std::abs(glm::dot(along, d)) >= kSideAlongCos * reach * glm::length(d);
         };
+        std::optional<internal::AngleCone> cone;
+        if (reach >= kSideDirectionPx) cone = {internal::line_angle(along), std::acos(kSideAlongCos)};
         for (const glm::dvec2& p : sides[i]) {
-            hits.push_back(grid.nearest(p, along_side));
+            hits.push_back(tree->nearest(p, kMatchRadiusPx, along_side, cone));
             if (hits.back().trace != size_t(-1)) ++votes[traces_[hits.back().trace].id];
         }
         for (const auto& [id, n] : votes) {
             if (2 * n < hits.size()) continue;
             SideMemory m{.id = id};
             size_t seen = 0;
-            for (const SampleGrid::Hit& hit : hits) {
+            for (const SampleTree::Hit& hit : hits) {
                 if (hit.trace == size_t(-1) || traces_[hit.trace].id != id) continue;
                 const StrokeTrace& t = traces_[hit.trace];
                 if (seen++ == 0) m.u = t.samples_u[hit.sample], m.period = t.closed ? t.length_px : 0.0;
@@ -385,18 +372,20 @@ std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidat
     // sweep fast (a silhouette turning edge-on). Every round keeps the visibility before any
     // round lets it change: a line coming into view can sweep fast too, and a small hidden piece
     // near last frame's stroke must not take its id in a close round.
-    std::vector<SampleGrid> grids;
-    grids.reserve(kMatchRounds);
-    for (int round = 0; round < kMatchRounds; ++round) grids.emplace_back(traces_, kMatchRadiusPx * double(1 << round));
     const bool mixed =
         std::any_of(candidates.begin(), candidates.end(), [](const StrokeCandidate& c) { return !c.geometry.visible; }) ||
         std::any_of(traces_.begin(), traces_.end(), [](const StrokeTrace& t) { return !t.visible; });
+    // The traces not yet taken, searched by class; built again once a round takes any.
+    std::vector<SampleTree> trees;
+    bool stale = true;
     for (const bool cross : {false, true}) {
         if (cross && !mixed) break;
-        for (const SampleGrid& grid : grids) {
+        for (int round = 0; round < kMatchRounds; ++round) {
+            const double radius = kMatchRadiusPx * double(1 << round);
+            if (stale) trees = class_trees(traces_, [&](size_t t) { return !trace_taken[t]; }), stale = false;
             // Largest overlaps first; ties by candidate, then trace, so the result is
             // deterministic.
-            std::vector<Pair> pairs = overlaps(candidates, traces_, grid, candidate_done, trace_taken);
+            std::vector<Pair> pairs = overlaps(candidates, traces_, trees, radius, cross, candidate_done, trace_taken);
             if (!cross) std::erase_if(pairs, [](const Pair& p) { return p.cross; });
             std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
                 return std::tie(a.cross, b.score, a.candidate, a.trace) < std::tie(b.cross, a.score, b.candidate, b.trace);
@@ -404,10 +393,11 @@ std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidat
             for (const Pair& p : pairs) {
                 if (candidate_done[p.candidate] || trace_taken[p.trace]) continue;
                 candidate_done[p.candidate] = trace_taken[p.trace] = 1;
+                stale = true;
                 StrokeMatch& m = matches[p.candidate];
                 m.id = traces_[p.trace].id;
                 m.inherited = true;
-                propagate(candidates[p.candidate], traces_[p.trace], p.trace, grid, m);
+                propagate(candidates[p.candidate], traces_[p.trace], radius, m);
             }
         }
     }

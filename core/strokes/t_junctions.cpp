@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <map>
 #include <optional>
 #include <tuple>
 #include <utility>
@@ -43,15 +44,15 @@ class InteriorGrid {
             const auto [stroke, point] = sk;
             if (stroke == self || strokes_[stroke].kind != kind) return;
             const double d = glm::length(strokes_[stroke].points_px[point] - p);
-            if (d > kTeeReachPx) return;
-            const auto same = std::find_if(hits.begin(), hits.end(),
-                                           [&, wanted = stroke](const Hit& h) { return h.stroke == wanted; });
-            if (same == hits.end()) {
-                hits.push_back({stroke, point, d});
-            } else if (std::tie(d, point) < std::tie(same->distance, same->point)) {
-                *same = {stroke, point, d};
-            }
+            if (d <= kTeeReachPx) hits.push_back({stroke, point, d});
         });
+        // Each stroke's nearest point, the lower one of a tie; sorted, not searched for, as
+        // thousands of strokes may pass by one point.
+        std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
+            return std::tie(a.stroke, a.distance, a.point) < std::tie(b.stroke, b.distance, b.point);
+        });
+        hits.erase(std::unique(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.stroke == b.stroke; }),
+                   hits.end());
         std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
             return std::tie(a.distance, a.stroke) < std::tie(b.distance, b.stroke);
         });
@@ -94,20 +95,26 @@ size_t join_at_t_junctions(std::vector<StrokeGeometry>& r_strokes, const StrokeC
     if (tees.empty()) return 0;
 
     // Last frame's strokes along the three sides of each: the ending stroke (once for all its
-    // end's candidates), and the crossing stroke toward its first and toward its last point.
+    // end's candidates), and the crossing stroke toward its first and toward its last point
+    // (once for each point: where thousands of strokes cross, every end near there finds the
+    // same points of them).
     std::vector<std::vector<glm::dvec2>> sides;
     std::vector<LineKind> kinds;
     std::vector<std::array<size_t, 3>> side_of(tees.size());
+    std::map<std::pair<size_t, size_t>, size_t> crossing_sides;  // (other, at) -> its first side
     for (size_t i = 0; i < tees.size(); ++i) {
         const Tee& t = tees[i];
         const std::vector<glm::dvec2>& x = r_strokes[t.other].points_px;
         const bool same_end = i > 0 && tees[i - 1].stroke == t.stroke && tees[i - 1].end == t.end;
         if (!same_end) sides.push_back(side_samples(r_strokes[t.stroke].points_px, t.end));
         side_of[i][0] = same_end ? side_of[i - 1][0] : sides.size() - 1;
-        sides.push_back(side_samples({x.begin(), x.begin() + std::ptrdiff_t(t.at) + 1}, 1));
-        side_of[i][1] = sides.size() - 1;
-        sides.push_back(side_samples({x.begin() + std::ptrdiff_t(t.at), x.end()}, 0));
-        side_of[i][2] = sides.size() - 1;
+        const auto [it, added] = crossing_sides.try_emplace({t.other, t.at}, sides.size());
+        if (added) {
+            sides.push_back(side_samples({x.begin(), x.begin() + std::ptrdiff_t(t.at) + 1}, 1));
+            sides.push_back(side_samples({x.begin() + std::ptrdiff_t(t.at), x.end()}, 0));
+        }
+        side_of[i][1] = it->second;
+        side_of[i][2] = it->second + 1;
         kinds.resize(sides.size(), r_strokes[t.stroke].kind);
     }
     const std::vector<std::vector<SideMemory>> memory = coherence.side_memory(sides, kinds);

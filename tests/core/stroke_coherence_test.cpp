@@ -3,7 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <glm/geometric.hpp>
+#include <map>
+#include <numbers>
+#include <tuple>
 #include <vector>
 
 namespace inkline {
@@ -228,6 +233,229 @@ TEST(StrokeCoherence, NearestSampleIsTheNearestOfAllInCrowdedAndSparsePlaces) {
     }
     EXPECT_GT(found, points.size() / 3);
     EXPECT_LT(found, points.size());
+}
+
+// Straight strokes 100 px long through one point, at angles turning by `step` (rad), each on
+// edges of its own (10 a stroke from first_edge); odd ones drawn from the other end.
+std::vector<core::StrokeCandidate> star(size_t count, dvec2 center, double first_angle, double step,
+                                        uint32_t first_edge) {
+    std::vector<core::StrokeCandidate> out;
+    for (size_t i = 0; i < count; ++i) {
+        const double a = first_angle + step * double(i);
+        const dvec2 d = 50.0 * dvec2(std::cos(a), std::sin(a));
+        const uint32_t edges = first_edge + 10 * uint32_t(i);
+        out.push_back(i % 2 ? candidate(center + d, center - d, edges) : candidate(center - d, center + d, edges));
+    }
+    return out;
+}
+
+// The nearest sample of the traces `use` accepts within radius, by a search over every sample:
+// (trace, sample, distance), ties to the lower trace and sample; trace -1 where there is none.
+template <typename Use>
+std::tuple<int64_t, size_t, double> nearest_of_all(const std::vector<core::StrokeTrace>& traces, dvec2 p, double radius,
+                                                   Use use) {
+    std::tuple<int64_t, size_t, double> best{-1, 0, HUGE_VAL};
+    for (size_t t = 0; t < traces.size(); ++t) {
+        for (size_t k = 0; k < traces[t].samples_px.size(); ++k) {
+            if (!use(t, k)) continue;
+            const double d = glm::length(traces[t].samples_px[k] - p);
+            if (d <= radius && d < std::get<2>(best)) best = {int64_t(t), k, d};
+        }
+    }
+    return best;
+}
+
+// match as documented, for visible open strokes of one kind, by searches over every sample:
+// the largest overlaps first over 12, 24 and 48 px, then fresh ids; direction and u offset from
+// the nearest samples of the stroke taken.
+std::vector<core::StrokeMatch> match_by_every_sample(const std::vector<core::StrokeCandidate>& candidates,
+                                                     const std::vector<core::StrokeTrace>& traces, uint32_t next_id) {
+    std::vector<core::StrokeMatch> out(candidates.size());
+    std::vector<uint8_t> done(candidates.size(), 0), taken(traces.size(), 0);
+    for (int round = 0; round < 3; ++round) {
+        const double radius = core::kMatchRadiusPx * double(1 << round);
+        struct Pair {
+            size_t c, t;
+            double score;
+        };
+        std::vector<Pair> pairs;
+        for (size_t c = 0; c < candidates.size(); ++c) {
+            if (done[c]) continue;
+            const core::StrokeCandidate& cand = candidates[c];
+            std::map<size_t, double> score;
+            for (size_t s = 0; s < cand.geometry.edges.size(); ++s) {
+                for (size_t t = 0; t < traces.size(); ++t) {
+                    const std::vector<uint32_t>& e = traces[t].edges;
+                    const double length = glm::length(cand.geometry.points_px[s + 1] - cand.geometry.points_px[s]);
+                    if (!taken[t] && std::binary_search(e.begin(), e.end(), cand.geometry.edges[s])) score[t] += length;
+                }
+            }
+            const double share = cand.length_px / double(cand.samples_px.size());
+            for (const dvec2& p : cand.samples_px) {
+                const auto [t, k, d] = nearest_of_all(traces, p, radius, [&](size_t other, size_t) { return !taken[other]; });
+                if (t >= 0) score[size_t(t)] += share;
+            }
+            for (const auto& [t, sc] : score) {
+                if (sc >= core::kMinOverlapFraction * std::min(cand.length_px, traces[t].length_px)) pairs.push_back({c, t, sc});
+            }
+        }
+        std::sort(pairs.begin(), pairs.end(),
+                  [](const Pair& a, const Pair& b) { return std::tie(b.score, a.c, a.t) < std::tie(a.score, b.c, b.t); });
+        for (const Pair& p : pairs) {
+            if (done[p.c] || taken[p.t]) continue;
+            done[p.c] = taken[p.t] = 1;
+            const core::StrokeCandidate& cand = candidates[p.c];
+            std::vector<double> s, u;
+            for (size_t i = 0; i < cand.samples_px.size(); ++i) {
+                const auto [t, k, d] =
+                    nearest_of_all(traces, cand.samples_px[i], radius, [&](size_t other, size_t) { return other == p.t; });
+                if (t < 0) continue;
+                s.push_back(cand.samples_arc[i]);
+                u.push_back(traces[p.t].samples_u[k]);
+            }
+            core::StrokeMatch& m = out[p.c];
+            m.id = traces[p.t].id;
+            m.inherited = true;
+            // Which way u runs, summed step by step as match sums it.
+            double flow = 0.0;
+            for (size_t i = 1; i < u.size(); ++i) {
+                const double du = u[i] - u[i - 1];
+                u[i] = u[i - 1] + du;
+                flow += du;
+            }
+            m.reverse = flow < 0.0;
+            std::vector<double> offsets;
+            for (size_t i = 0; i < u.size(); ++i) offsets.push_back(u[i] - (m.reverse ? cand.length_px - s[i] : s[i]));
+            std::nth_element(offsets.begin(), offsets.begin() + std::ptrdiff_t(offsets.size() / 2), offsets.end());
+            if (!offsets.empty()) m.u_offset = offsets[offsets.size() / 2];
+        }
+    }
+    for (size_t c = 0; c < candidates.size(); ++c) {
+        if (!done[c]) out[c].id = next_id++;
+    }
+    return out;
+}
+
+TEST(StrokeCoherence, StrokesCrowdedThroughOnePointMatchAsASearchOverEverySampleWould) {
+    // 400 strokes through one point (as where thousands of faces share an edge). Now every other
+    // one is seen again, turned by more than their spacing, on other edges but for every fifth;
+    // and short strokes cross near the point, where each sample lies nearest to another of them:
+    // which strokes they take depends on every nearest sample there.
+    const dvec2 center(300.0, 300.0);
+    const double step = std::numbers::pi / 400.0;
+    std::vector<core::StrokeTrace> traces;
+    for (const core::StrokeCandidate& c : star(400, center, 0.0, step, 0)) {
+        traces.push_back(trace(c, 1000 + uint32_t(traces.size()), 3.0 * double(traces.size())));
+        std::sort(traces.back().edges.begin(), traces.back().edges.end());
+    }
+    std::vector<core::StrokeCandidate> now;
+    const std::vector<core::StrokeCandidate> turned = star(400, center, 1.7 * step, step, 100000);
+    for (size_t i = 0; i < 400; i += 2) {
+        now.push_back(turned[i]);
+        if (i % 5 == 0) now.back().geometry.edges = traces[i].edges;
+    }
+    uint32_t seed = 4;
+    auto random = [&] {
+        seed = seed * 1664525u + 1013904223u;
+        return double(seed >> 8) / double(1u << 24);
+    };
+    for (uint32_t i = 0; i < 150; ++i) {
+        // Near the way one stroke not seen again ran, within 15 px of the point.
+        const double a = step * (2.0 * std::floor(200.0 * random()) + 1.0 + random() - 0.5);
+        const dvec2 d(std::cos(a), std::sin(a));
+        const dvec2 mid = center + d * (30.0 * random() - 15.0) + dvec2(-d.y, d.x) * (random() - 0.5);
+        now.push_back(candidate(mid - 5.0 * d, mid + 5.0 * d, 200000 + 10 * i));
+    }
+    const core::StrokeCoherence state(traces, 2000);
+    const std::vector<core::StrokeMatch> got = state.match(now);
+    const std::vector<core::StrokeMatch> want = match_by_every_sample(now, traces, 2000);
+    ASSERT_EQ(got.size(), want.size());
+    size_t long_kept = 0, short_kept = 0;
+    for (size_t i = 0; i < got.size(); ++i) {
+        ASSERT_EQ(got[i].id, want[i].id) << "stroke " << i;
+        ASSERT_EQ(got[i].inherited, want[i].inherited) << "stroke " << i;
+        ASSERT_EQ(got[i].reverse, want[i].reverse) << "stroke " << i;
+        ASSERT_EQ(got[i].u_offset, want[i].u_offset) << "stroke " << i;
+        (i < 200 ? long_kept : short_kept) += got[i].inherited;
+    }
+    EXPECT_EQ(long_kept, 200u);
+    EXPECT_GT(short_kept, 20u) << "short strokes take ids of strokes not seen again";
+    EXPECT_LT(short_kept, 150u);
+}
+
+TEST(StrokeCoherence, SideMemoryIsTheSearchOverEverySampleWhereStrokesCross) {
+    // 1500 visible strokes through one point and a few hidden ones or of another kind; sides
+    // near it in every direction, long enough to have one (only strokes running along them
+    // count) or not.
+    const dvec2 center(200.0, 200.0);
+    std::vector<core::StrokeTrace> traces;
+    for (const core::StrokeCandidate& c : star(1500, center, 0.1, std::numbers::pi / 1500.0, 0)) {
+        core::StrokeTrace t = trace(c, uint32_t(traces.size()), 5.0);
+        t.visible = traces.size() % 11 != 0;
+        t.kind = traces.size() % 13 == 0 ? core::LineKind::kCrease : core::LineKind::kSilhouette;
+        traces.push_back(std::move(t));
+    }
+    const core::StrokeCoherence state(traces, 1500);
+    uint32_t seed = 9;
+    auto random = [&] {
+        seed = seed * 1664525u + 1013904223u;
+        return double(seed >> 8) / double(1u << 24);
+    };
+    std::vector<std::vector<dvec2>> sides;
+    std::vector<core::LineKind> kinds;
+    for (int i = 0; i < 400; ++i) {
+        const dvec2 end = center + dvec2(40.0 * random() - 20.0, 40.0 * random() - 20.0);
+        const double a = 2.0 * std::numbers::pi * random();
+        const double length = i % 4 == 0 ? 4.0 : 14.0;
+        sides.push_back(core::side_samples({end, end + length * dvec2(std::cos(a), std::sin(a))}, 0));
+        kinds.push_back(i % 9 == 0 ? core::LineKind::kCrease : core::LineKind::kSilhouette);
+    }
+    const std::vector<std::vector<core::SideMemory>> got = state.side_memory(sides, kinds);
+    ASSERT_EQ(got.size(), sides.size());
+    size_t found = 0;
+    for (size_t i = 0; i < sides.size(); ++i) {
+        // As stroke_coherence.cpp judges a side: samples of last frame count when they run
+        // within 60 degrees of a side of at least 6 px, either way.
+        const dvec2 along = sides[i].back() - sides[i].front();
+        auto runs_along = [&](size_t t, size_t k) {
+            const core::StrokeTrace& trace = traces[t];
+            if (!trace.visible || trace.kind != kinds[i]) return false;
+            const std::vector<dvec2>& q = trace.samples_px;
+            if (glm::length(along) < 6.0) return true;
+            const dvec2 tangent = q[std::min(k + 1, q.size() - 1)] - q[k > 0 ? k - 1 : 0];
+            return std::abs(glm::dot(along, tangent)) >= 0.5 * glm::length(along) * glm::length(tangent);
+        };
+        std::vector<std::tuple<int64_t, size_t, double>> hits;
+        std::map<int64_t, size_t> votes;
+        for (const dvec2& p : sides[i]) {
+            hits.push_back(nearest_of_all(traces, p, core::kMatchRadiusPx, runs_along));
+            if (std::get<0>(hits.back()) >= 0) ++votes[traces[size_t(std::get<0>(hits.back()))].id];
+        }
+        std::vector<core::SideMemory> want;
+        for (const auto& [id, n] : votes) {
+            if (2 * n < hits.size()) continue;
+            core::SideMemory m{.id = id};
+            size_t seen = 0;
+            for (const auto& [t, k, d] : hits) {
+                if (t < 0 || traces[size_t(t)].id != id) continue;
+                if (seen++ == 0) m.u = traces[size_t(t)].samples_u[k];
+                m.u_far = traces[size_t(t)].samples_u[k];
+                m.distance += d;
+            }
+            m.distance /= double(seen);
+            want.push_back(m);
+        }
+        ASSERT_EQ(got[i].size(), want.size()) << "side " << i;
+        for (size_t k = 0; k < want.size(); ++k) {
+            EXPECT_EQ(got[i][k].id, want[k].id) << "side " << i;
+            EXPECT_EQ(got[i][k].u, want[k].u) << "side " << i;
+            EXPECT_EQ(got[i][k].u_far, want[k].u_far) << "side " << i;
+            EXPECT_EQ(got[i][k].distance, want[k].distance) << "side " << i;
+        }
+        found += !want.empty();
+    }
+    EXPECT_GT(found, sides.size() / 3);
+    EXPECT_LT(found, sides.size());
 }
 
 }  // namespace

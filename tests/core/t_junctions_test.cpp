@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "tests/core/repair_shapes.h"
@@ -142,6 +144,31 @@ TEST(StrokeTee, AStubBesideTheBranchLastFrameTookIsLeftOff) {
     EXPECT_EQ(joins, 0u);
     ASSERT_EQ(out.size(), 2u);
     EXPECT_EQ(out[0].points_px.size(), 46u) << "the crossing stroke stays whole";
+}
+
+TEST(StrokeTee, AnEndWhereHundredsOfStrokesCrossJoinsThePartLastFrameContinued) {
+    // The T-junction above, with 200 more strokes crossing the line where the stroke ends on it
+    // (as where thousands of faces share an edge): each is a candidate, and last frame drew each
+    // as a stroke of its own; they run within 25 degrees of the line, across the ending stroke.
+    std::vector<core::StrokeGeometry> strokes = Tee{}.strokes;
+    std::vector<core::StrokeTrace> memory{trace_along({{0, 0}, {30, 0}, {30, 40}}, 7), trace({31, 0}, {50, 0}, 9)};
+    for (uint32_t i = 0; i < 200; ++i) {
+        const double a = (5.0 + 20.0 * double(i % 100) / 100.0 + (i < 100 ? 0.0 : 150.0)) * std::numbers::pi / 180.0;
+        const dvec2 d = 20.0 * dvec2(std::cos(a), std::sin(a));
+        strokes.push_back(line(dvec2(30, 0) - d, dvec2(30, 0) + d, true, 1000 + 100 * i));
+        memory.push_back(trace(dvec2(30, 0) - d, dvec2(30, 0) + d, 100 + i));
+    }
+    size_t joins = 0;
+    const std::vector<core::StrokeGeometry> out = join_tees(strokes, core::StrokeCoherence(memory, 300), &joins);
+    EXPECT_EQ(joins, 1u);
+    ASSERT_EQ(out.size(), 202u);
+    const core::StrokeGeometry g = from_origin(out);
+    ASSERT_FALSE(g.points_px.empty());
+    EXPECT_EQ(g.points_px.back(), dvec2(30, 40)) << "joined to the part last frame's stroke 7 continued";
+    // In place: the joined stroke where the crossing line was, the ending one gone, the rest last.
+    for (size_t i = 0; i < 200; ++i) ASSERT_EQ(out[1 + i].points_px, strokes[2 + i].points_px) << "crossing stroke " << i;
+    EXPECT_EQ(out.back().points_px.front(), dvec2(30, 0));
+    EXPECT_EQ(out.back().points_px.back(), dvec2(50, 0));
 }
 
 }  // namespace
