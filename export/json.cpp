@@ -53,7 +53,7 @@ void add_object(const core::FrameLines& frame, int32_t object, json& r_stroke) {
     if (frame.objects.empty() || object < 0) return;
     const core::MeshObject& o = frame.objects[size_t(object)];
     r_stroke["object"] = o.name;
-    r_stroke["node"] = o.node;
+    if (o.node >= 0) r_stroke["node"] = o.node;
 }
 
 json polyline_strokes(const core::FrameLines& frame) {

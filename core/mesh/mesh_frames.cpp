@@ -16,6 +16,8 @@ MeshFrames::MeshFrames(const MeshSource& source, int first_frame, const MeshLimi
     LoadedMesh loaded = load_mesh(reference_file_, limits_);
     mesh_ = std::move(loaded.mesh);
     warnings_ = std::move(loaded.warnings);
+    for (std::string& name : loaded.object_names) objects_.push_back({std::move(name), -1});
+    face_objects_ = std::move(loaded.face_objects);
     table_ = build_edge_table(mesh_);
     for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_))) {
         warnings_.push_back(reference_file_.string() + ": " + w);
@@ -32,11 +34,9 @@ MeshFrames::MeshFrames(std::shared_ptr<const AnimatedMesh> animation, const std:
     source_.path = source;
     warnings_ = animation_->warnings();
     objects_ = animation_->mesh_objects();
-    face_objects_.assign(mesh_.triangles.size(), 0);
-    for (uint32_t o = 0; o < objects_.size(); ++o) {
-        const MeshObject& object = objects_[o];
-        INKLINE_CHECK(size_t(object.first_face) + object.faces <= face_objects_.size());
-        std::fill_n(face_objects_.begin() + object.first_face, object.faces, o);
+    if (!objects_.empty()) {
+        face_objects_ = animation_->face_objects();
+        INKLINE_CHECK_EQ(face_objects_.size(), mesh_.triangles.size());
     }
     for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_))) warnings_.push_back(source.string() + ": " + w);
     loaded_frame_ = std::numeric_limits<int>::min();

@@ -20,12 +20,10 @@ struct MeshSource {
     bool is_sequence = false;
 };
 
-// A named part of a mesh (an object of a glTF shot): faces [first_face, first_face + faces).
+// A named part of a mesh: an object of a glTF shot, or an "o" (or "g") group of an OBJ file.
 struct MeshObject {
     std::string name;
     int node = -1;  // the glTF node it instances; -1 when it has none
-    uint32_t first_face = 0;
-    uint32_t faces = 0;
 };
 
 // A mesh whose vertices move from frame to frame over one topology, evaluated in memory (an
@@ -42,8 +40,9 @@ class AnimatedMesh {
     virtual void positions_at(int frame, std::vector<glm::vec3>& r_positions) const = 0;
     // Drawable oddities found while loading, one line each.
     virtual std::vector<std::string> warnings() const { return {}; }
-    // Its objects, in face order; none when it is one unnamed whole.
+    // Its objects, and the object of every face of rest(); none when it is one unnamed whole.
     virtual std::vector<MeshObject> mesh_objects() const { return {}; }
+    virtual std::vector<uint32_t> face_objects() const { return {}; }
 };
 
 class MeshFrames {

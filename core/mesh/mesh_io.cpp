@@ -249,7 +249,9 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits
     // through check_obj and OpenMesh below, which also report what is wrong with it.
     if (std::optional<internal::ObjContents> obj = internal::read_plain_obj(bytes, max_faces)) {
         if (obj->over_limit) internal::throw_face_limit(name, max_faces);
-        LoadedMesh out{std::move(obj->mesh), {}};
+        LoadedMesh out;
+        internal::obj_objects(*obj, out.object_names, out.face_objects);
+        out.mesh = std::move(obj->mesh);
         finish(name, obj->short_faces, out);
         return out;
     }

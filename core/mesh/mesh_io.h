@@ -16,6 +16,10 @@ namespace inkline::core {
 struct LoadedMesh {
     Mesh mesh;
     std::vector<std::string> warnings;  // drawable oddities, e.g. skipped faces of < 3 vertices
+    // An OBJ file's objects ("o" groups, or "g" groups without any "o") when it has two or more,
+    // and the object of every face; empty otherwise.
+    std::vector<std::string> object_names = {};
+    std::vector<uint32_t> face_objects = {};
 };
 
 struct MeshLimits {

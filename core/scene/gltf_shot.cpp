@@ -975,7 +975,13 @@ bool GltfShot::deforms() const { return impl_->deforms; }
 std::vector<std::string> GltfShot::warnings() const { return impl_->warnings; }
 double GltfShot::fps() const { return impl_->options.fps; }
 const std::vector<GltfObject>& GltfShot::objects() const { return impl_->objects; }
-const std::vector<uint32_t>& GltfShot::face_objects() const { return impl_->face_objects; }
+std::vector<uint32_t> GltfShot::face_objects() const { return impl_->face_objects; }
+
+std::vector<MeshObject> GltfShot::mesh_objects() const {
+    std::vector<MeshObject> out;
+    for (const GltfObject& o : impl_->objects) out.push_back({o.name, o.node});
+    return out;
+}
 const std::optional<GltfCamera>& GltfShot::camera() const { return impl_->camera; }
 
 void GltfShot::positions_at(int frame, std::vector<glm::vec3>& r_positions) const {

@@ -32,9 +32,13 @@ struct GltfOptions {
     size_t max_faces = std::numeric_limits<size_t>::max();
 };
 
-// One mesh instance of the scene, a node with a mesh: named by the node ("node N" when it has no
-// name), its faces in the shot's mesh.
-using GltfObject = MeshObject;
+// One mesh instance of the scene: a node with a mesh.
+struct GltfObject {
+    std::string name;  // the node's name, or "node N" when it has none
+    int node = 0;
+    uint32_t first_face = 0;  // its faces in the shot's mesh: [first_face, first_face + faces)
+    uint32_t faces = 0;
+};
 
 // A camera as glTF gives it, placed by its node at one time.
 struct GltfCameraView {
@@ -65,7 +69,8 @@ class GltfShot final : public AnimatedMesh {
     bool deforms() const override;
     void positions_at(int frame, std::vector<glm::vec3>& r_positions) const override;
     std::vector<std::string> warnings() const override;
-    std::vector<MeshObject> mesh_objects() const override { return objects(); }
+    std::vector<MeshObject> mesh_objects() const override;
+    std::vector<uint32_t> face_objects() const override;
 
     // World-space positions at an animation time, seconds.
     void positions_at_time(double seconds, std::vector<glm::vec3>& r_positions) const;
@@ -75,8 +80,6 @@ class GltfShot final : public AnimatedMesh {
     double fps() const;
 
     const std::vector<GltfObject>& objects() const;
-    // The object of every face of rest().
-    const std::vector<uint32_t>& face_objects() const;
     // The chosen camera; none when the scene has none.
     const std::optional<GltfCamera>& camera() const;
     GltfCameraView camera_view_at(int frame) const;

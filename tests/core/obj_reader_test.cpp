@@ -184,5 +184,36 @@ TEST_F(ObjReader, FuzzCorpusObjInputsAgreeWithTheGeneralReader) {
     EXPECT_GT(obj_inputs, 0u);
 }
 
+// "o" groups name objects; without any "o", "g" groups (by their first name) do; triangles before
+// the first are "default"; a name that comes back is the same object; one name is no objects.
+TEST_F(ObjReader, GroupsBecomeObjects) {
+    const auto objects_of = [](const std::string& text, std::vector<std::string>& r_names) {
+        const std::optional<core::internal::ObjContents> obj = core::internal::read_plain_obj(text);
+        EXPECT_TRUE(obj.has_value());
+        std::vector<uint32_t> faces;
+        core::internal::obj_objects(*obj, r_names, faces);
+        EXPECT_TRUE(faces.empty() || faces.size() == obj->mesh.triangles.size());
+        return faces;
+    };
+    const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n";
+    std::vector<std::string> names;
+    EXPECT_EQ(objects_of(v + "o A\nf 1 2 3\ng skin\nf 2 4 3\no B\nf 1 2 4 3\no A\nf 1 3 4\n", names),
+              (std::vector<uint32_t>{0, 0, 1, 1, 0}));
+    EXPECT_EQ(names, (std::vector<std::string>{"A", "B"}));
+    EXPECT_EQ(objects_of(v + "f 1 2 3\ng left side\nf 2 4 3\n", names), (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(names, (std::vector<std::string>{"default", "left"}));
+    EXPECT_TRUE(objects_of(v + "o Only\nf 1 2 3\nf 2 4 3\n", names).empty());
+    EXPECT_TRUE(names.empty());
+    // Read in parallel pieces, the groups keep their triangles.
+    std::string big = v;
+    // (over the 1 MiB above which the reader splits the text).
+    for (int k = 0; k < 160000; ++k) big += (k % 40000 == 0 ? "o part" + std::to_string(k / 40000) + "\n" : "") + "f 1 2 3 # padding\n";
+    const std::vector<uint32_t> faces = objects_of(big, names);
+    ASSERT_GT(big.size(), size_t(1) << 21);
+    ASSERT_EQ(faces.size(), 160000u);
+    EXPECT_EQ(names.size(), 4u);
+    for (size_t f = 0; f < faces.size(); ++f) ASSERT_EQ(faces[f], f / 40000) << f;
+}
+
 }  // namespace
 }  // namespace inkline

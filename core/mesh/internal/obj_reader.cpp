@@ -198,6 +198,8 @@ void read_piece(Piece& r_piece, bool has_carriage_returns, size_t max_triangles)
                 }
                 mesh.triangles.emplace_back(corners[0], corners[i], corners[i + 1]);
             }
+        } else if (keyword == "o" || keyword == "g") {
+            r_piece.contents.groups.push_back({mesh.triangles.size(), keyword == "o", std::string(next_token(cursor, line_end))});
         } else if (keyword[0] != '#' && !is_obj_statement(keyword)) {
             return decline();  // check_obj names it
         }
@@ -261,17 +263,59 @@ std::optional<ObjContents> read_plain_obj(std::string_view text, size_t max_tria
     }
     if (pieces.size() == 1) {
         out.mesh = std::move(pieces[0].contents.mesh);
+        out.groups = std::move(pieces[0].contents.groups);
         return out;
     }
     out.mesh.positions.reserve(vertices);
     out.mesh.triangles.reserve(triangles);
     for (Piece& piece : pieces) {
+        for (ObjGroupStart& g : piece.contents.groups) {
+            g.first_triangle += out.mesh.triangles.size();
+            out.groups.push_back(std::move(g));
+        }
         const Mesh& part = piece.contents.mesh;
         out.mesh.positions.insert(out.mesh.positions.end(), part.positions.begin(), part.positions.end());
         out.mesh.triangles.insert(out.mesh.triangles.end(), part.triangles.begin(), part.triangles.end());
         piece.contents.mesh = {};
     }
     return out;
+}
+
+void obj_objects(const ObjContents& contents, std::vector<std::string>& r_names, std::vector<uint32_t>& r_face_objects) {
+    r_names.clear();
+    r_face_objects.clear();
+    const bool by_object = std::any_of(contents.groups.begin(), contents.groups.end(), [](const ObjGroupStart& g) { return g.is_object; });
+    std::vector<const ObjGroupStart*> starts;
+    for (const ObjGroupStart& g : contents.groups) {
+        if (g.is_object == by_object) starts.push_back(&g);
+    }
+    const size_t faces = contents.mesh.triangles.size();
+    std::vector<std::string> names;
+    std::vector<uint32_t> face_objects(faces, 0);
+    const auto id_of = [&](const std::string& name) {
+        const auto it = std::find(names.begin(), names.end(), name);
+        if (it != names.end()) return uint32_t(it - names.begin());
+        names.push_back(name);
+        return uint32_t(names.size() - 1);
+    };
+    size_t next = 0;
+    uint32_t current = 0;
+    bool named = false;
+    for (size_t f = 0; f < faces; ++f) {
+        while (next < starts.size() && starts[next]->first_triangle <= f) {
+            current = id_of(starts[next]->name.empty() ? std::string("default") : starts[next]->name);
+            named = true;
+            ++next;
+        }
+        if (!named) {
+            current = id_of("default");
+            named = true;
+        }
+        face_objects[f] = current;
+    }
+    if (names.size() < 2) return;
+    r_names = std::move(names);
+    r_face_objects = std::move(face_objects);
 }
 
 }  // namespace inkline::core::internal

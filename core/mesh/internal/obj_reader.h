@@ -8,17 +8,32 @@
 #include <cstddef>
 #include <limits>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/mesh/mesh.h"
 
 namespace inkline::core::internal {
 
+// An "o" or "g" statement: the name it gives to the triangles from `first_triangle` on.
+struct ObjGroupStart {
+    size_t first_triangle = 0;
+    bool is_object = false;  // "o"; else "g" (its first name)
+    std::string name;
+};
+
 struct ObjContents {
     Mesh mesh;               // polygons fan-triangulated from their first corner
     size_t short_faces = 0;  // "f" lines with fewer than 3 corners, skipped (as check_obj counts)
     bool over_limit = false; // reading stopped: more than max_triangles triangles (mesh incomplete)
+    std::vector<ObjGroupStart> groups;  // every "o" and "g" statement, in file order
 };
+
+// The objects of an OBJ file's triangles: named by its "o" statements, or by its "g" statements
+// when it has no "o" (each by its first name; triangles before the first are "default").
+// Fewer than two distinct names: no objects (r_names and r_face_objects left empty).
+void obj_objects(const ObjContents& contents, std::vector<std::string>& r_names, std::vector<uint32_t>& r_face_objects);
 
 // The mesh of an OBJ file's text, exactly as check_obj + OpenMesh's reader + load_mesh's
 // importer produce it (same float positions, same triangles in the same order), when every
