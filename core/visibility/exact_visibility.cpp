@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "core/internal/parallel.h"
+#include "core/visibility/internal/face_tests.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -22,13 +23,6 @@ using Triangle = Kernel::Triangle_3;
 using TriangleIterator = std::vector<Triangle>::const_iterator;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
-// The query segment stops this fraction of its length short of the point, so faces that merely
-// touch the point (those around an end vertex of its edge) do not count as occluders. At a
-// 4-unit viewing distance this is 4e-6 units, far below a pixel at any supported image size.
-// The segment is first clipped to kOcclusionReachDiagonals (core/visibility/visibility.h), so a far eye
-// does not widen the gap past the mesh.
-constexpr double kEndGap = 1e-6;
 
 Point to_point(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
 
@@ -70,15 +64,14 @@ void ExactOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Occl
     internal::parallel_for(queries.size(), 256, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             const OcclusionQuery& q = queries[i];
-            const glm::dvec3 far_end = occlusion_segment_end(q.p_object, eye_object, impl.reach);
-            const glm::dvec3 stop = q.p_object + (far_end - q.p_object) * kEndGap;
-            const Segment segment(to_point(far_end), to_point(stop));
+            const internal::QuerySegment query = internal::query_segment(q.p_object, eye_object, impl.reach);
+            const Segment segment(to_point(query.far_end), to_point(query.stop));
             const auto own = impl.table.faces_of(q.edge);
             bool hit = false;
             impl.tree.all_intersected_primitives(
                 segment, boost::make_function_output_iterator([&](const TriangleIterator& it) {
                     const uint32_t face = impl.face_of[size_t(it - first)];
-                    if (std::find(own.begin(), own.end(), face) == own.end()) hit = true;
+                    if (!internal::is_own_face(own, face)) hit = true;
                 }));
             r_occluded[i] = hit ? 1 : 0;
         }

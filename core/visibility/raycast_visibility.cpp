@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/internal/parallel.h"
+#include "core/visibility/internal/face_tests.h"
 
 #include <embree3/rtcore.h>
 
@@ -20,13 +21,6 @@
 
 namespace inkline::core {
 namespace {
-
-// The ray stops this fraction of the eye distance short of the point, exactly as ExactOcclusion's
-// segment does, so faces that merely touch the point (around an end vertex of its edge) do not
-// count. The ray starts at the point and runs to the eye: Embree intersects relative to the ray
-// origin, so float precision is best where the gap is decided. The ray is first clipped to
-// kOcclusionReachDiagonals (core/visibility/visibility.h), as ExactOcclusion's segment is.
-constexpr float kEndGap = 1e-6f;
 
 // Below this many queries a call runs on the calling thread; starting threads costs more.
 constexpr size_t kMinParallelQueries = 4096;
@@ -85,8 +79,7 @@ void reject_own_faces(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] == 0) continue;
         const uint32_t primitive = RTCHitN_primID(args->hit, args->N, i);
         const uint32_t face = context->face_of ? context->face_of[primitive] : primitive;
-        const auto& own = context->own_faces;
-        if (std::find(own.begin(), own.end(), face) != own.end()) args->valid[i] = 0;
+        if (internal::is_own_face(context->own_faces, face)) args->valid[i] = 0;
     }
 }
 
@@ -99,10 +92,7 @@ struct RaycastOcclusion::Impl {
     std::vector<uint32_t> face_of;  // Embree primitive -> mesh face (valid faces only); empty when all are
     size_t primitives = 0;
     size_t vertex_count = 0;
-    // Embree sees the mesh and the rays scaled by a power of two (exact in float) that brings the
-    // largest coordinate to [1, 2): a mesh of extent 1e-30 or 1e18 is traced at unit scale, where
-    // float products in the triangle tests neither underflow nor leave Embree's ray range.
-    double scale = 1.0;
+    double scale = 1.0;             // internal::raycast_scale of the mesh
     double reach = 1.0;             // occlusion_reach of the mesh, object units
     bool refittable = false;        // built in the two-level mode that update_positions refits
     DevicePtr device;
@@ -159,11 +149,7 @@ struct RaycastOcclusion::Impl {
 
     // Sets scale and reach for the mesh's positions and writes them, scaled, to r_vertices.
     void copy_scaled(const Mesh& mesh, glm::vec3* r_vertices) {
-        float largest = 0.0f;
-        for (const glm::vec3& p : mesh.positions) {
-            largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-        }
-        scale = largest > 0.0f && std::isfinite(largest) ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0;
+        scale = internal::raycast_scale(mesh.positions);
         reach = occlusion_reach(mesh.positions);
         for (size_t v = 0; v < mesh.positions.size(); ++v) r_vertices[v] = glm::vec3(glm::dvec3(mesh.positions[v]) * scale);
     }
@@ -223,21 +209,17 @@ void RaycastOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Oc
         for (size_t i = begin; i < end; ++i) {
             const OcclusionQuery& q = queries[i];
             context.own_faces = impl.table.faces_of(q.edge);
-            // From the point (t = 0) to the eye, or as far towards it as an occluder can be
-            // (t = 1); the direction is not normalised.
-            const glm::dvec3 far_end = occlusion_segment_end(q.p_object, eye_object, impl.reach);
-            const glm::vec3 origin(q.p_object * impl.scale);
-            const glm::vec3 to_eye((far_end - q.p_object) * impl.scale);
+            const internal::ScaledRay cast = internal::occlusion_ray(q.p_object, eye_object, impl.reach, impl.scale);
             RTCRay ray;
-            ray.org_x = origin.x;
-            ray.org_y = origin.y;
-            ray.org_z = origin.z;
-            ray.tnear = kEndGap;
-            ray.dir_x = to_eye.x;
-            ray.dir_y = to_eye.y;
-            ray.dir_z = to_eye.z;
+            ray.org_x = cast.origin.x;
+            ray.org_y = cast.origin.y;
+            ray.org_z = cast.origin.z;
+            ray.tnear = cast.tnear;
+            ray.dir_x = cast.direction.x;
+            ray.dir_y = cast.direction.y;
+            ray.dir_z = cast.direction.z;
             ray.time = 0.0f;
-            ray.tfar = 1.0f;
+            ray.tfar = cast.tfar;
             ray.mask = ~0u;
             ray.id = 0;
             ray.flags = 0;
