@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // One occlusion query against one face, as the CPU tests make it: the query's own faces, the ray
 // that ray-cast visibility traces and a double-precision triangle test that answers as Embree's
-// does, the segment that exact visibility tests. For faces tested outside Embree or the CGAL
-// tree, and for the tests that check them.
+// does, the segment that exact visibility tests. Used wherever a face is tested outside Embree or
+// the CGAL tree (fans: core/visibility/internal/fan_index.h), and by the tests that check them.
 // Based on: S. Woop, C. Benthin, I. Wald. Watertight Ray/Triangle Intersection. JCGT 2(1), 2013.
 #pragma once
 
@@ -86,7 +86,6 @@ QuerySegment query_segment(const glm::dvec3& p_object, const glm::dvec3& eye_obj
 
 // Whether the segment meets the triangle (a, b, c): CGAL's exact predicates, the test exact
 // visibility makes for every face.
-bool segment_meets_triangle(const QuerySegment& segment, const glm::dvec3& a, const glm::dvec3& b,
-                            const glm::dvec3& c);
+bool segment_meets_triangle(const QuerySegment& segment, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
 
 }  // namespace inkline::core::internal
