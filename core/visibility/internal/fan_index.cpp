@@ -250,11 +250,14 @@ void FanIndex::fit(uint32_t fan_id) {
     fan.bounds = Bounds();
     fan.bounds.add(apex);
     fan.radius = 0.0;
+    fan.low = fan.high = glm::dvec3(0.0);
     for (uint32_t i = fan.first; i < fan.end; ++i) {
         const glm::dvec3 b = positions_[rims_[i].x], c = positions_[rims_[i].y];
         fan.bounds.add(b);
         fan.bounds.add(c);
         const glm::dvec3 to_b = b - apex, to_c = c - apex;
+        fan.low = glm::min(fan.low, glm::min(to_b, to_c));
+        fan.high = glm::max(fan.high, glm::max(to_b, to_c));
         fan.radius = std::max({fan.radius, l1(to_b), l1(to_c)});
         // The cross product's components are off by a few units of rounding of |to_b| |to_c|,
         // so its direction by that over its length; a face too thin for any bound gets 2.

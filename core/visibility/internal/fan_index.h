@@ -4,7 +4,8 @@
 // faces it can meet in O(log N). An axis-aligned BVH cannot: the boxes of long slivers that
 // share one vertex all overlap near it, so a ray there visits a share of all N.
 //
-// Two tests, each necessary for a segment to meet face T = (A, B, C) of the fan around apex A:
+// Past the fan's box, two tests, each necessary for a segment to meet face T = (A, B, C) of the
+// fan around apex A:
 //  - Rim: if the segment does not pass through A, the plane through A and the segment's line
 //    separates or touches B and C (the hit point is a mix of A, B and C with weight on B or C,
 //    and lies in that plane). In ring order the corners B - A, C - A run along the fan's rim,
@@ -112,6 +113,7 @@ class FanIndex {
         uint32_t root = 0;            // its box hierarchy in nodes_
         uint32_t first = 0, end = 0;  // its faces in faces_, rims_, normals_
         double radius = 0.0;          // largest |B - A|_1 of its rim points
+        glm::dvec3 low{0.0}, high{0.0};  // bounds of its faces relative to the apex
         Bounds bounds;
     };
 
@@ -137,23 +139,42 @@ bool FanIndex::find_face(uint32_t fan_id, const glm::dvec3& point, const glm::dv
     const Fan& fan = fans_[fan_id];
     const glm::dvec3 apex = positions_[fan.apex];
     const glm::dvec3 from_apex = point - apex;
+    // Rounding in the tests below, and in the triangle test, stays far within this distance.
+    const double reach = l1(from_apex);
+    const double position_slack =
+        kFanSlack * (reach + fan.radius + l1(direction) * std::max(std::abs(t0), std::abs(t1)));
+
+    // The fan's box first (Embree calls a lone user primitive without testing its bounds): a
+    // segment leaving a flat fan's plane, as from any point of a fan-triangulated polygon, ends
+    // here. Relative to the apex, as every test here, so rounding scales with the fan.
+    double t_enter = t0, t_leave = t1;
+    for (int k = 0; k < 3; ++k) {
+        const double low = fan.low[k] - position_slack - from_apex[k];
+        const double high = fan.high[k] + position_slack - from_apex[k];
+        if (direction[k] == 0.0) {
+            if (low > 0.0 || high < 0.0) return false;
+            continue;
+        }
+        const double t_low = low / direction[k], t_high = high / direction[k];
+        t_enter = std::max(t_enter, std::min(t_low, t_high));
+        t_leave = std::min(t_leave, std::max(t_low, t_high));
+    }
+    if (t_enter > t_leave) return false;
+
     // Rim test: the plane through the apex and the line.
     const glm::dvec3 normal = glm::cross(from_apex, direction);
-    const double reach = l1(from_apex);
     const double slack = kFanSlack * l1(direction);
     const auto rim_tolerance = [&](double size) { return slack * (reach + size) * size; };
-    // Tilt test: the largest sine between the line and a face plane it can meet there; above 1
-    // (a segment through or close by the apex) it keeps everything.
+    // Tilt test: the largest sine between the line and a face plane it can meet within the
+    // fan's box; above 1 (a segment through or close by the apex) it keeps everything.
     const double length = glm::length(direction);
     double tilt = std::numeric_limits<double>::infinity();
     glm::dvec3 along(0.0);
     if (length > 0.0) {
         along = direction / length;
-        const double t_closest = std::clamp(-glm::dot(from_apex, direction) / (length * length), t0, t1);
+        const double t_closest = std::clamp(-glm::dot(from_apex, direction) / (length * length), t_enter, t_leave);
         const double apex_distance = glm::length(from_apex + direction * t_closest);
         const double line_distance = glm::length(normal) / length;
-        const double position_slack =
-            kFanSlack * (reach + fan.radius + l1(direction) * std::max(std::abs(t0), std::abs(t1)));
         if (apex_distance > 2.0 * position_slack) {
             tilt = (line_distance + position_slack) / (apex_distance - position_slack) + kFanSlack;
         }
