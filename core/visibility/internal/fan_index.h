@@ -109,10 +109,10 @@ class FanIndex {
         uint32_t right = 0;  // 0 for a leaf
     };
     struct Fan {
-        uint32_t apex = 0;            // index into positions_
-        uint32_t root = 0;            // its box hierarchy in nodes_
-        uint32_t first = 0, end = 0;  // its faces in faces_, rims_, normals_
-        double radius = 0.0;          // largest |B - A|_1 of its rim points
+        uint32_t apex = 0;               // index into positions_
+        uint32_t root = 0;               // its box hierarchy in nodes_
+        uint32_t first = 0, end = 0;     // its faces in faces_, rims_, normals_
+        double radius = 0.0;             // largest |B - A|_1 of its rim points
         glm::dvec3 low{0.0}, high{0.0};  // bounds of its faces relative to the apex
         Bounds bounds;
     };
