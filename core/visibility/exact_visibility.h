@@ -13,7 +13,8 @@ namespace inkline::core {
 
 class ExactOcclusion final : public Occlusion {
   public:
-    // Builds the tree over the valid faces of the mesh in its current (object-space) positions.
+    // Builds the tree over the valid faces of the mesh in its current (object-space) positions;
+    // the faces around a vertex of very high valence are indexed apart, as for ray casting.
     ExactOcclusion(const Mesh& mesh, const EdgeTable& table);
     ~ExactOcclusion() override;
 

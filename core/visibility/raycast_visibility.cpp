@@ -1,16 +1,23 @@
 // SPDX-License-Identifier: MIT
 // Ray-cast occlusion with Embree 3: one occlusion ray per query, the edge's own faces rejected
-// by an occlusion filter that reads them from the ray's intersect context.
+// by an occlusion filter that reads them from the ray's intersect context. The faces of fans
+// (core/visibility/internal/fan_index.h) are not Embree triangles: each fan is one user
+// primitive, whose occlusion callback finds the few faces the ray can meet and tests them in
+// double precision.
 #include "core/visibility/raycast_visibility.h"
 
 #include "core/error.h"
 #include "core/internal/parallel.h"
+#include "core/visibility/internal/face_tests.h"
+#include "core/visibility/internal/fan_index.h"
 
 #include <embree3/rtcore.h>
+#include <glm/common.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -20,13 +27,6 @@
 
 namespace inkline::core {
 namespace {
-
-// The ray stops this fraction of the eye distance short of the point, exactly as ExactOcclusion's
-// segment does, so faces that merely touch the point (around an end vertex of its edge) do not
-// count. The ray starts at the point and runs to the eye: Embree intersects relative to the ray
-// origin, so float precision is best where the gap is decided. The ray is first clipped to
-// kOcclusionReachDiagonals (core/visibility/visibility.h), as ExactOcclusion's segment is.
-constexpr float kEndGap = 1e-6f;
 
 // Below this many queries a call runs on the calling thread; starting threads costs more.
 constexpr size_t kMinParallelQueries = 4096;
@@ -71,7 +71,8 @@ void check_device(RTCDevice device, const char* what) {
 }
 
 // Extends Embree's intersect context with the faces the current ray must ignore. Embree hands
-// the filter the address of `base`, which is also the address of the whole struct.
+// the filter and the fans' callback the address of `base`, which is also the address of the
+// whole struct.
 struct OwnFacesContext {
     RTCIntersectContext base;
     std::span<const uint32_t> own_faces;  // mesh faces of the query's edge
@@ -85,8 +86,62 @@ void reject_own_faces(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] == 0) continue;
         const uint32_t primitive = RTCHitN_primID(args->hit, args->N, i);
         const uint32_t face = context->face_of ? context->face_of[primitive] : primitive;
-        const auto& own = context->own_faces;
-        if (std::find(own.begin(), own.end(), face) != own.end()) args->valid[i] = 0;
+        if (internal::is_own_face(context->own_faces, face)) args->valid[i] = 0;
+    }
+}
+
+// Fan boxes grow by this fraction of their largest coordinate on every side before they are
+// rounded outwards to float. A flat fan (a disc cap) has a box of no thickness, and a ray in its
+// plane meets that box's faces at 0 * infinity in Embree's slab test, which misses; a ray through
+// a corner of the box can miss it by rounding. Neither can miss a box that is a little larger.
+constexpr double kFanBoxPad = 1e-6;
+
+float float_below(double x) {
+    const auto f = float(x);
+    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float float_above(double x) {
+    const auto f = float(x);
+    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+// Bounds of one fan (a user primitive), in the scaled frame: padded, then rounded outwards.
+void fan_bounds(const RTCBoundsFunctionArguments* args) {
+    const auto* fans = static_cast<const internal::FanIndex*>(args->geometryUserPtr);
+    const Bounds b = fans->bounds(args->primID);
+    const glm::dvec3 largest = glm::max(glm::abs(b.min), glm::abs(b.max));
+    const double pad = kFanBoxPad * std::max({largest.x, largest.y, largest.z});
+    RTCBounds& out = *args->bounds_o;
+    out.lower_x = float_below(b.min.x - pad);
+    out.lower_y = float_below(b.min.y - pad);
+    out.lower_z = float_below(b.min.z - pad);
+    out.upper_x = float_above(b.max.x + pad);
+    out.upper_y = float_above(b.max.y + pad);
+    out.upper_z = float_above(b.max.z + pad);
+}
+
+// Occlusion by one fan: its candidate faces other than the ray's own, each tested as Embree
+// tests a triangle, in double. An occluded ray gets tfar = -infinity, as Embree marks it.
+void fan_occluded(const RTCOccludedFunctionNArguments* args) {
+    const auto* fans = static_cast<const internal::FanIndex*>(args->geometryUserPtr);
+    const auto* context = reinterpret_cast<const OwnFacesContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        RTCRayN* ray = args->ray;
+        internal::ScaledRay scaled;
+        const unsigned n = args->N;
+        scaled.origin = {RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i)};
+        scaled.direction = {RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i)};
+        scaled.tnear = RTCRayN_tnear(ray, n, i);
+        scaled.tfar = RTCRayN_tfar(ray, n, i);
+        const internal::RayTriangleTest test(scaled);
+        const bool hit = fans->find_face(
+            args->primID, glm::dvec3(scaled.origin), glm::dvec3(scaled.direction), double(scaled.tnear),
+            double(scaled.tfar),
+            [&](uint32_t face, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+                return !internal::is_own_face(context->own_faces, face) && test.meets(a, b, c);
+            });
+        if (hit) RTCRayN_tfar(ray, n, i) = -std::numeric_limits<float>::infinity();
     }
 }
 
@@ -99,15 +154,14 @@ struct RaycastOcclusion::Impl {
     std::vector<uint32_t> face_of;  // Embree primitive -> mesh face (valid faces only); empty when all are
     size_t primitives = 0;
     size_t vertex_count = 0;
-    // Embree sees the mesh and the rays scaled by a power of two (exact in float) that brings the
-    // largest coordinate to [1, 2): a mesh of extent 1e-30 or 1e18 is traced at unit scale, where
-    // float products in the triangle tests neither underflow nor leave Embree's ray range.
-    double scale = 1.0;
+    double scale = 1.0;             // internal::raycast_scale of the mesh
     double reach = 1.0;             // occlusion_reach of the mesh, object units
     bool refittable = false;        // built in the two-level mode that update_positions refits
+    internal::FanIndex fans;        // faces Embree does not hold as triangles
     DevicePtr device;
     ScenePtr scene;
-    GeometryPtr geometry;  // null when the mesh has no valid face
+    GeometryPtr geometry;      // the triangles; null when no valid face is left for it
+    GeometryPtr fan_geometry;  // one user primitive per fan; null when the mesh has none
 
     explicit Impl(const EdgeTable& t) : table(t) {}
 
@@ -120,8 +174,11 @@ struct RaycastOcclusion::Impl {
     // frame) and the same answers. Embree 3 refits only in its two-level mode, which the dynamic
     // flag with scene quality LOW selects; the mesh's REFIT quality then builds its BVH once with
     // SAH and refits it on every vertex update (1M triangles: about 25 ms instead of 320 ms).
+    //
+    // Fans take their faces out of the triangles. A mesh without fans gets no user geometry.
     void build(const Mesh& mesh, bool two_level) {
         geometry.reset();
+        fan_geometry.reset();
         scene.reset(rtcNewScene(device.get()));
         refittable = two_level;
         if (two_level) {
@@ -130,12 +187,17 @@ struct RaycastOcclusion::Impl {
         } else {
             rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT);
         }
+        set_scale(mesh);
+        fans = internal::FanIndex(mesh, table, scale);
+        const std::vector<uint8_t>& in_fan = fans.in_fan();
+        const auto is_triangle = [&](uint32_t f) { return table.face_valid[f] && (in_fan.empty() || !in_fan[f]); };
         face_of.clear();
-        primitives = size_t(std::count(table.face_valid.begin(), table.face_valid.end(), uint8_t(1)));
+        primitives = 0;
+        for (uint32_t f = 0; f < mesh.triangles.size(); ++f) primitives += is_triangle(f);
         if (primitives < mesh.triangles.size()) {
             face_of.reserve(primitives);
             for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
-                if (table.face_valid[f]) face_of.push_back(f);
+                if (is_triangle(f)) face_of.push_back(f);
             }
         }
         vertex_count = mesh.positions.size();
@@ -154,22 +216,34 @@ struct RaycastOcclusion::Impl {
             rtcSetGeometryOccludedFilterFunction(g, reject_own_faces);
             rtcAttachGeometry(scene.get(), g);
         }
+        if (!fans.empty()) {
+            fan_geometry.reset(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_USER));
+            check_device(device.get(), "creating the fan geometry");
+            RTCGeometry g = fan_geometry.get();
+            if (two_level) rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_REFIT);
+            rtcSetGeometryUserPrimitiveCount(g, unsigned(fans.fan_count()));
+            rtcSetGeometryUserData(g, &fans);
+            rtcSetGeometryBoundsFunction(g, fan_bounds, nullptr);
+            rtcSetGeometryOccludedFunction(g, fan_occluded);
+            rtcAttachGeometry(scene.get(), g);
+        }
         commit();
     }
 
-    // Sets scale and reach for the mesh's positions and writes them, scaled, to r_vertices.
-    void copy_scaled(const Mesh& mesh, glm::vec3* r_vertices) {
-        float largest = 0.0f;
-        for (const glm::vec3& p : mesh.positions) {
-            largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-        }
-        scale = largest > 0.0f && std::isfinite(largest) ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0;
+    // Sets scale and reach for the mesh's positions.
+    void set_scale(const Mesh& mesh) {
+        scale = internal::raycast_scale(mesh.positions);
         reach = occlusion_reach(mesh.positions);
+    }
+
+    // Writes the mesh's positions, scaled, to r_vertices.
+    void copy_scaled(const Mesh& mesh, glm::vec3* r_vertices) const {
         for (size_t v = 0; v < mesh.positions.size(); ++v) r_vertices[v] = glm::vec3(glm::dvec3(mesh.positions[v]) * scale);
     }
 
     void commit() {
         if (geometry) rtcCommitGeometry(geometry.get());
+        if (fan_geometry) rtcCommitGeometry(fan_geometry.get());
         rtcCommitScene(scene.get());
         check_device(device.get(), "building the BVH");
     }
@@ -196,15 +270,21 @@ RaycastOcclusion::~RaycastOcclusion() = default;
 void RaycastOcclusion::update_positions(const Mesh& mesh) {
     Impl& impl = *impl_;
     INKLINE_CHECK_EQ(mesh.positions.size(), impl.vertex_count);
-    if (!impl.geometry) return;
+    if (!impl.geometry && !impl.fan_geometry) return;
     if (!impl.refittable) {
         // The first deformation: rebuild once in the two-level mode, refit from then on.
         impl.build(mesh, true);
         return;
     }
-    RTCGeometry geometry = impl.geometry.get();
-    impl.copy_scaled(mesh, static_cast<glm::vec3*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0)));
-    rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+    impl.set_scale(mesh);
+    if (impl.geometry) {
+        RTCGeometry geometry = impl.geometry.get();
+        impl.copy_scaled(mesh, static_cast<glm::vec3*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0)));
+        rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+    }
+    // The fans keep their ring order (topology) and fit their boxes again; committing the user
+    // geometry asks Embree for the new bounds.
+    if (impl.fan_geometry) impl.fans.update_positions(mesh, impl.scale);
     impl.commit();
 }
 
@@ -212,7 +292,7 @@ void RaycastOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Oc
                                 std::span<uint8_t> r_occluded) const {
     INKLINE_CHECK_EQ(queries.size(), r_occluded.size());
     const Impl& impl = *impl_;
-    if (!impl.geometry) {
+    if (!impl.geometry && !impl.fan_geometry) {
         std::fill(r_occluded.begin(), r_occluded.end(), uint8_t(0));
         return;
     }
@@ -223,21 +303,17 @@ void RaycastOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Oc
         for (size_t i = begin; i < end; ++i) {
             const OcclusionQuery& q = queries[i];
             context.own_faces = impl.table.faces_of(q.edge);
-            // From the point (t = 0) to the eye, or as far towards it as an occluder can be
-            // (t = 1); the direction is not normalised.
-            const glm::dvec3 far_end = occlusion_segment_end(q.p_object, eye_object, impl.reach);
-            const glm::vec3 origin(q.p_object * impl.scale);
-            const glm::vec3 to_eye((far_end - q.p_object) * impl.scale);
+            const internal::ScaledRay cast = internal::occlusion_ray(q.p_object, eye_object, impl.reach, impl.scale);
             RTCRay ray;
-            ray.org_x = origin.x;
-            ray.org_y = origin.y;
-            ray.org_z = origin.z;
-            ray.tnear = kEndGap;
-            ray.dir_x = to_eye.x;
-            ray.dir_y = to_eye.y;
-            ray.dir_z = to_eye.z;
+            ray.org_x = cast.origin.x;
+            ray.org_y = cast.origin.y;
+            ray.org_z = cast.origin.z;
+            ray.tnear = cast.tnear;
+            ray.dir_x = cast.direction.x;
+            ray.dir_y = cast.direction.y;
+            ray.dir_z = cast.direction.z;
             ray.time = 0.0f;
-            ray.tfar = 1.0f;
+            ray.tfar = cast.tfar;
             ray.mask = ~0u;
             ray.id = 0;
             ray.flags = 0;
