@@ -2,6 +2,7 @@
 #include "core/scene/gltf_shot.h"
 
 #include "core/error.h"
+#include "core/mesh/internal/mesh_checks.h"
 #include "core/mesh/mesh_io.h"
 #include "core/scene/scene.h"
 
@@ -26,6 +27,12 @@ using Bytes = std::vector<unsigned char>;
 // Vertices of one object closer than this fraction of its bounding box's diagonal, with the
 // same skin weights and morph offsets, are one vertex (docs/gltf.md, "Welding").
 constexpr double kWeldFraction = 1e-6;
+
+// A camera's eye stays within this in every coordinate, as a scene file's must (docs/scene.md).
+constexpr double kMaxEyeCoordinate = 1e19;
+
+// The narrowest vertical field of view drawn, degrees (as in a scene file).
+constexpr double kMinFovDeg = 1e-3;
 
 // The most influences a vertex may have (JOINTS_n/WEIGHTS_n sets times four).
 constexpr size_t kMaxInfluenceSets = 16;
@@ -878,8 +885,11 @@ void GltfShot::Impl::evaluate(double time, std::vector<glm::vec3>& r_positions) 
         r_positions[w] = glm::vec3(p);
     }
     for (const glm::vec3& q : r_positions) {
-        if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z)) {
-            throw InputError(file + ": at time " + std::to_string(time) + " s a vertex leaves the float range");
+        for (int i = 0; i < 3; ++i) {
+            if (!(std::abs(q[i]) <= internal::kMaxCoordinate)) {
+                throw InputError(file + ": at time " + std::to_string(time) + " s a vertex coordinate (" + std::to_string(q[i]) +
+                                 ") is beyond the limit of 1e18");
+            }
         }
     }
 }
@@ -1014,10 +1024,22 @@ GltfCameraView GltfShot::camera_view_at(int frame) const {
         throw InputError(m.file + ": " + at("nodes", size_t(m.camera->node)) + ": the camera's transform at frame " +
                          std::to_string(frame) + " is degenerate");
     }
+    for (int i = 0; i < 3; ++i) {
+        if (!(std::abs(view.eye[i]) <= kMaxEyeCoordinate)) {
+            throw InputError(m.file + ": " + at("nodes", size_t(m.camera->node)) + ": the camera at frame " +
+                             std::to_string(frame) + " is beyond the coordinate limit of 1e19");
+        }
+    }
     view.forward = glm::normalize(forward);
     view.up = glm::normalize(up);
     return view;
 }
+
+std::string GltfShot::file() const { return impl_->file; }
+
+namespace {
+std::string shot_file(const GltfShot& shot) { return shot.file(); }
+}  // namespace
 
 bool is_gltf_path(const std::filesystem::path& path) {
     const std::string e = lower_extension(path);
@@ -1050,7 +1072,7 @@ void apply_gltf_camera(const GltfShot& shot, Scene& r_scene, int first, int last
         if (cam->orthographic) {
             // An eye far back along the axis: the perspective over the shot's depth stays below
             // 1e-4 of the image (docs/gltf.md, "Cameras").
-            const double distance = std::min(1e4 * std::max(size, half_y), 1e5 * half_y);
+            const double distance = std::min({1e4 * std::max(size, half_y), 1e5 * half_y, 0.5 * kMaxEyeCoordinate});
             pose.eye = view.eye - view.forward * distance;
             pose.target = view.eye;
             pose.fov_y_deg = glm::degrees(2.0 * std::atan(half_y / distance));
@@ -1058,6 +1080,10 @@ void apply_gltf_camera(const GltfShot& shot, Scene& r_scene, int first, int last
             pose.eye = view.eye;
             pose.target = view.eye + view.forward * size;
             pose.fov_y_deg = glm::degrees(2.0 * std::atan(half_y));
+        }
+        if (!(pose.fov_y_deg >= kMinFovDeg)) {
+            throw InputError(shot_file(shot) + ": the camera's field of view (" + std::to_string(pose.fov_y_deg) +
+                             " degrees at this image size) is below the limit of 0.001 degrees");
         }
         r_scene.camera.per_frame[frame] = pose;
     }

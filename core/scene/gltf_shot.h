@@ -78,6 +78,7 @@ class GltfShot final : public AnimatedMesh {
     // to frames); none for a file without animation.
     std::optional<std::pair<int, int>> frame_range() const;
     double fps() const;
+    std::string file() const;  // the path it was read from, for messages
 
     const std::vector<GltfObject>& objects() const;
     // The chosen camera; none when the scene has none.

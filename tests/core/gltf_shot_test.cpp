@@ -425,6 +425,65 @@ TEST_F(GltfShotTest, BrokenFilesAreRefusedWithOneLineNamingTheElement) {
     }
 }
 
+// Values that pass the file's own checks but not inkline's limits: coordinates beyond 1e18 (as
+// for mesh files), a camera beyond 1e19, a field of view below 0.001 degrees.
+TEST_F(GltfShotTest, ValuesBeyondTheDrawingLimitsAreRefused) {
+    {
+        GltfBuilder b;
+        b.mesh_node("far", {0, 0, 0, 1e30f, 0, 0, 0, 1, 0}, {0, 1, 2});
+        b.finish_scene();
+        const std::string m = error_of(b);
+        EXPECT_NE(m.find("is beyond the limit of 1e18"), std::string::npos) << m;
+    }
+    {
+        GltfBuilder b;
+        const int n = b.mesh_node("tri", kTriangle, {0, 1, 2});
+        b.json()["nodes"][size_t(n)]["scale"] = {1e20, 1, 1};  // a node transform takes it there
+        b.finish_scene();
+        const std::string m = error_of(b);
+        EXPECT_NE(m.find("is beyond the limit of 1e18"), std::string::npos) << m;
+    }
+    const auto with_camera = [](nlohmann::json camera, std::vector<double> translation) {
+        GltfBuilder b;
+        b.mesh_node("tri", kTriangle, {0, 1, 2});
+        const int cam = b.node("cam");
+        b.json()["cameras"] = {camera};
+        b.json()["nodes"][size_t(cam)]["camera"] = 0;
+        b.json()["nodes"][size_t(cam)]["translation"] = translation;
+        b.finish_scene();
+        return b;
+    };
+    {
+        const GltfBuilder b = with_camera({{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}, {0, 0, 1e25});
+        const core::GltfShot shot(write(b, "far_camera.gltf"));
+        core::Scene scene;
+        try {
+            core::apply_gltf_camera(shot, scene, 1, 1, false);
+            FAIL() << "no error";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("beyond the coordinate limit of 1e19"), std::string::npos) << e.what();
+        }
+    }
+    {
+        const GltfBuilder b = with_camera({{"type", "perspective"}, {"perspective", {{"yfov", 1e-9}, {"znear", 0.1}}}}, {0, 0, 5});
+        const core::GltfShot shot(write(b, "narrow.gltf"));
+        core::Scene scene;
+        EXPECT_THROW(core::apply_gltf_camera(shot, scene, 1, 1, false), InputError);
+    }
+    {
+        // An orthographic camera on a shot near the coordinate limit keeps its eye within 1e19.
+        GltfBuilder b = with_camera({{"type", "orthographic"}, {"orthographic", {{"xmag", 1e17}, {"ymag", 1e17}, {"znear", 0}, {"zfar", 1e18}}}},
+                                    {0, 0, 1e17});
+        b.json()["nodes"][0]["scale"] = {1e17, 1e17, 1e17};
+        const core::GltfShot shot(write(b, "huge.gltf"));
+        core::Scene scene;
+        core::apply_gltf_camera(shot, scene, 1, 1, false);
+        const core::CameraPose& pose = scene.camera.per_frame.at(1);
+        EXPECT_LE(std::abs(pose.eye.z), 1e19);
+        EXPECT_GE(pose.fov_y_deg, 1e-3);
+    }
+}
+
 TEST_F(GltfShotTest, SceneJsonNamesAGltfFile) {
     const core::Scene scene = core::parse_scene(
         R"({"mesh": "shot.glb", "gltf": {"animation": "Walk", "camera": "Cam", "scene": 1}, "fps": 30, "frames": [1, 5]})",
