@@ -389,29 +389,27 @@ TEST(FanIndex, ARayVisitsFewFaces) {
               64.0);
 }
 
-TEST(FanVisibility, RaycastEqualsBruteForceOnFans) {
-    SKIP_WITHOUT_EMBREE();
+// On every fan shape, `Occlusion` answers random queries as `brute_force` does, and some are hidden.
+template <typename Occlusion, typename BruteForce>
+void expect_brute_force_answers(BruteForce brute_force, int eyes, int queries, uint32_t seed) {
     for (const Shape& shape : fan_shapes()) {
         SCOPED_TRACE(shape.name);
         const core::EdgeTable table = core::build_edge_table(shape.mesh);
-        const Queries r = random_queries(shape.mesh, table, 16, 500, 1);
-        const core::RaycastOcclusion raycast(shape.mesh, table);
+        const Queries r = random_queries(shape.mesh, table, eyes, queries, seed);
+        const Occlusion occlusion(shape.mesh, table);
         size_t occluded = 0;
-        EXPECT_EQ(count_differences(shape.mesh, table, r, raycast, brute_force_raycast, occluded), 0u);
+        EXPECT_EQ(count_differences(shape.mesh, table, r, occlusion, brute_force, occluded), 0u);
         EXPECT_GT(occluded, r.eyes.size() * r.queries.size() / 20) << "some points must be hidden";
     }
 }
 
+TEST(FanVisibility, RaycastEqualsBruteForceOnFans) {
+    SKIP_WITHOUT_EMBREE();
+    expect_brute_force_answers<core::RaycastOcclusion>(brute_force_raycast, 16, 500, 1);
+}
+
 TEST(FanVisibility, ExactEqualsBruteForceOnFans) {
-    for (const Shape& shape : fan_shapes()) {
-        SCOPED_TRACE(shape.name);
-        const core::EdgeTable table = core::build_edge_table(shape.mesh);
-        const Queries r = random_queries(shape.mesh, table, 8, 150, 2);
-        const core::ExactOcclusion exact(shape.mesh, table);
-        size_t occluded = 0;
-        EXPECT_EQ(count_differences(shape.mesh, table, r, exact, brute_force_exact, occluded), 0u);
-        EXPECT_GT(occluded, r.eyes.size() * r.queries.size() / 20) << "some points must be hidden";
-    }
+    expect_brute_force_answers<core::ExactOcclusion>(brute_force_exact, 8, 150, 2);
 }
 
 TEST(FanVisibility, RaysThroughAndNearTheApex) {
