@@ -252,7 +252,16 @@ int run_render(const RenderArgs& args) {
 }
 
 int run_info(const std::string& mesh_path) {
-    const core::LoadedMesh loaded = core::load_mesh(mesh_path);
+    // A glTF shot is reported as the mesh of its first frame, with its objects and animation.
+    core::LoadedMesh loaded;
+    std::optional<core::GltfShot> shot;
+    if (core::is_gltf_path(mesh_path)) {
+        shot.emplace(mesh_path);
+        loaded.mesh = shot->rest();
+        loaded.warnings = shot->warnings();
+    } else {
+        loaded = core::load_mesh(mesh_path);
+    }
     const core::EdgeTable table = core::build_edge_table(loaded.mesh);
     const core::MeshReport r = core::describe_mesh(loaded.mesh, table);
     const core::Bounds b = core::bounds_of(loaded.mesh.positions);
@@ -263,6 +272,12 @@ int run_info(const std::string& mesh_path) {
     std::printf("degenerate faces: %zu\nduplicate faces: %zu\ninconsistently oriented edges: %zu\nconnected components: %zu\n",
                 r.degenerate_faces, r.duplicate_faces, r.inconsistent_edges, r.connected_components);
     std::printf("bounds: [%g, %g, %g] .. [%g, %g, %g]\n", b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z);
+    if (shot) {
+        std::printf("objects: %zu\n", shot->objects().size());
+        for (const core::GltfObject& o : shot->objects()) std::printf("  %s (node %d): %u faces\n", o.name.c_str(), o.node, o.faces);
+        if (const auto range = shot->frame_range()) std::printf("frames: %d..%d at %g fps\n", range->first, range->second, shot->fps());
+        if (shot->camera()) std::printf("camera: %s (%s)\n", shot->camera()->name.c_str(), shot->camera()->orthographic ? "orthographic" : "perspective");
+    }
     for (const std::string& w : loaded.warnings) std::printf("warning: %s\n", w.c_str());
     for (const std::string& w : core::mesh_warnings(r)) std::printf("warning: %s\n", w.c_str());
     return 0;

@@ -209,6 +209,17 @@ TEST_F(Gltf, TrackerEqualsBruteForceUnderSkinningAndMorphing) {
     }
 }
 
+TEST_F(Gltf, InfoReportsTheWeldedMeshItsObjectsFramesAndCamera) {
+    moving_cube().write(dir / "shot.glb");
+    const auto r = test::run_inkline("info " + (dir / "shot.glb").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("vertices: 8\n"), std::string::npos) << r.output;  // welded cube
+    EXPECT_NE(r.output.find("boundary edges: 0\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("objects: 1\n  Cube (node 0): 12 faces\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("frames: 1..24 at 24 fps\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("camera: Camera (perspective)\n"), std::string::npos) << r.output;
+}
+
 TEST_F(Gltf, BrokenShotExitsTwoWithOneLineAndWritesNothing) {
     test::GltfBuilder b = moving_cube();
     b.json()["accessors"][0]["count"] = 100000;  // POSITION reads past its view
