@@ -91,19 +91,6 @@ Shot open_shot(const RenderArgs& args) {
     return shot;
 }
 
-// The camera of a glTF shot: its own, per frame; a default view around it when it has none.
-void frame_gltf(const Shot& shot, core::Scene& r_scene, bool image_given) {
-    const core::GltfShot& gltf = *shot.gltf;
-    if (r_scene.given.camera) return;
-    if (gltf.camera()) {
-        core::apply_gltf_camera(gltf, r_scene, shot.frames.first, shot.frames.last, image_given);
-        return;
-    }
-    const core::Scene turntable = core::default_turntable_scene(r_scene.mesh.path, core::bounds_of(gltf.rest().positions));
-    r_scene.camera = turntable.camera;
-    if (gltf.frame_range()) r_scene.camera.orbit.reset();  // an animated shot: a still camera
-}
-
 }  // namespace
 
 ChunkRange chunk_range(int first, int last, int k, int n) {
@@ -149,7 +136,7 @@ int run_render(const RenderArgs& args) {
     }
     if (shot.gltf) {
         if (size) scene.image = *size;
-        frame_gltf(shot, scene, scene.given.image || size.has_value());
+        core::apply_gltf_camera(*shot.gltf, scene, frames.first, frames.last, scene.given.image || size.has_value());
     }
     core::check_cameras(scene, frames.first, frames.last);
     check_outputs(outputs, rendered.first, rendered.last, run_inputs(scene, frames.first, frames.last));

@@ -1047,8 +1047,14 @@ bool is_gltf_path(const std::filesystem::path& path) {
 }
 
 void apply_gltf_camera(const GltfShot& shot, Scene& r_scene, int first, int last, bool image_given) {
+    if (r_scene.given.camera) return;
     const std::optional<GltfCamera>& cam = shot.camera();
-    if (!cam) return;
+    if (!cam) {
+        // No camera in the file: a bare mesh's view, still when the shot is animated.
+        r_scene.camera = default_turntable_scene(r_scene.mesh.path, bounds_of(shot.rest().positions)).camera;
+        if (shot.frame_range()) r_scene.camera.orbit.reset();
+        return;
+    }
     const double aspect = cam->aspect > 0.0 ? cam->aspect : double(r_scene.image.width) / r_scene.image.height;
     if (!image_given && cam->aspect > 0.0) {
         constexpr int kLongSide = 1024;

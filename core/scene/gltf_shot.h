@@ -93,9 +93,10 @@ class GltfShot final : public AnimatedMesh {
 // Whether a path names a glTF file (.gltf or .glb, any case).
 bool is_gltf_path(const std::filesystem::path& path);
 
-// What a glTF file sets in a scene unless the scene or the command line set it: the frame range
-// (`frames_given`), the image size from the camera's aspect ratio (`image_given`), and the
-// camera of every frame in [first, last] (unless the scene's JSON has a `camera`). An image size
+// The camera a glTF file gives a scene for every frame in [first, last], unless the scene gives
+// one (`given.camera`), and the image size from the camera's aspect ratio unless `image_given`.
+// A file without a camera gets a bare mesh's turntable view (docs/cli.md), still when the shot
+// is animated. An image size
 // that differs from the camera's aspect keeps the view as Blender's automatic sensor fit does:
 // the camera's field of view along its longer side becomes the field along the image's longer
 // side. An orthographic camera is drawn from an eye 10^4 view heights back along its axis with the

@@ -332,6 +332,27 @@ TEST_F(GltfShotTest, OrthographicCameraIsAFarEyeWithTheSameViewHeight) {
     EXPECT_NEAR(distance * std::tan(glm::radians(pose.fov_y_deg) / 2.0), 1.0, 1e-9);
 }
 
+// Without a camera: a bare mesh's turntable, held still when the shot is animated; a scene's own
+// camera is kept.
+TEST_F(GltfShotTest, ShotsWithoutCameraGetTheTurntableView) {
+    GltfBuilder b;
+    const int n = b.mesh_node("tri", kTriangle, {0, 1, 2});
+    b.finish_scene();
+    core::Scene still;
+    core::apply_gltf_camera(load(b), still, 1, 48, false);
+    EXPECT_TRUE(still.camera.orbit.has_value());
+    EXPECT_TRUE(still.camera.per_frame.empty());
+    animate(b, n, "translation", {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0}, "LINEAR", "VEC3");
+    core::Scene animated;
+    core::apply_gltf_camera(load(b), animated, 0, 24, false);
+    EXPECT_FALSE(animated.camera.orbit.has_value());
+    core::Scene given;
+    given.given.camera = true;
+    given.camera.pose.eye = {7, 7, 7};
+    core::apply_gltf_camera(load(b), given, 0, 24, false);
+    EXPECT_EQ(given.camera.pose.eye, glm::dvec3(7, 7, 7));
+}
+
 TEST_F(GltfShotTest, NamedAnimationAndCameraAreChosenOrRefused) {
     GltfBuilder b;
     const int n = b.mesh_node("tri", kTriangle, {0, 1, 2});
