@@ -51,7 +51,7 @@ Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Sce
     style_.background = args.background.empty() ? std::nullopt : std::optional(args.background);
     if (style_.background) output::parse_color(*style_.background, "--background");
     if (args.layers != "kind" && args.layers != "object") {
-        throw InputError("--layers '" + args.layers.substr(0, 40) + "': expected kind or object");
+        throw InputError("--layers '" + quote_value(args.layers) + "': expected kind or object");
     }
     svg_options_.layers_by_object = args.layers == "object";
     pdf_options_.page = args.page.empty() ? std::nullopt : std::optional(output::parse_page_size(args.page));

@@ -323,13 +323,8 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
     return true;
 }
 
-std::string first_line(std::string text) {
-    while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
-    const size_t nl = text.find('\n');
-    if (nl != std::string::npos) text = text.substr(0, nl);
-    if (text.size() > 200) text = text.substr(0, 200) + "...";
-    return text;
-}
+// tinygltf's message up to its first line break, quoted as any value in a message.
+std::string first_line(const std::string& text) { return quote_value(text.substr(0, text.find('\n')), 200); }
 
 }  // namespace
 
@@ -389,7 +384,7 @@ void GltfShot::Impl::load(const std::filesystem::path& path) {
             required.rfind("KHR_texture", 0) == 0 || required.rfind("KHR_materials", 0) == 0) {
             continue;  // changes nothing that lines depend on, or only what the reader handles
         }
-        fail(file, "extensionsRequired", "'" + first_line(required) + "' is not supported");
+        fail(file, "extensionsRequired", "'" + quote_value(required) + "' is not supported");
     }
 }
 
@@ -490,9 +485,9 @@ void GltfShot::Impl::read_animations() {
         if (chosen.empty()) {
             std::string names;
             for (size_t a = 0; a < model.animations.size() && a < 8; ++a) {
-                names += (a ? ", " : "") + (model.animations[a].name.empty() ? std::to_string(a) : "'" + first_line(model.animations[a].name) + "'");
+                names += (a ? ", " : "") + (model.animations[a].name.empty() ? std::to_string(a) : "'" + quote_value(model.animations[a].name) + "'");
             }
-            fail(file, "animations", "no animation named '" + first_line(options.animation) + "' (the file has " +
+            fail(file, "animations", "no animation named '" + quote_value(options.animation) + "' (the file has " +
                                          (names.empty() ? std::string("none") : names) + ")");
         }
         chosen.erase(chosen.begin() + 1, chosen.end());  // the first of that name
@@ -519,7 +514,7 @@ void GltfShot::Impl::read_animations() {
             } else if (ch.target_path == "weights") {
                 out.path = Path::kWeights;
             } else {
-                warnings.push_back(file + ": " + where + ": path '" + first_line(ch.target_path) + "' ignored");
+                warnings.push_back(file + ": " + where + ": path '" + quote_value(ch.target_path) + "' ignored");
                 continue;
             }
             if (s.interpolation == "STEP") {
@@ -529,7 +524,7 @@ void GltfShot::Impl::read_animations() {
             } else if (s.interpolation == "LINEAR" || s.interpolation.empty()) {
                 out.interpolation = Interpolation::kLinear;
             } else {
-                fail(file, swhere, "unknown interpolation '" + first_line(s.interpolation) + "'");
+                fail(file, swhere, "unknown interpolation '" + quote_value(s.interpolation) + "'");
             }
             out.times = reader.read(s.input, swhere + ".input", {TINYGLTF_TYPE_SCALAR}, {TINYGLTF_COMPONENT_TYPE_FLOAT});
             if (out.times.empty()) fail(file, swhere + ".input", "has no keys");
@@ -911,7 +906,7 @@ void GltfShot::Impl::choose_camera() {
         }
     }
     if (node < 0) {
-        if (!options.camera.empty()) fail(file, "cameras", "no camera named '" + first_line(options.camera) + "' in the scene");
+        if (!options.camera.empty()) fail(file, "cameras", "no camera named '" + quote_value(options.camera) + "' in the scene");
         return;
     }
     const auto index = size_t(model.nodes[size_t(node)].camera);
@@ -950,7 +945,7 @@ void GltfShot::Impl::choose_camera() {
 
 GltfShot::GltfShot(const std::filesystem::path& path, const GltfOptions& options) : impl_(std::make_unique<Impl>()) {
     Impl& m = *impl_;
-    m.file = path.string();
+    m.file = quote_value(path.string(), 160);
     m.options = options;
     if (!(options.fps > 0.0 && options.fps <= 1e6)) throw InputError("fps must be above 0 and at most 1e6");
     m.load(path);
