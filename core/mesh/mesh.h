@@ -10,6 +10,11 @@
 
 namespace inkline::core {
 
+// Coordinates beyond this magnitude are refused, from every reader and every glTF frame: their
+// squares still fit a double comfortably, and no real scene needs them (float meshes lose all
+// precision long before).
+inline constexpr double kMaxCoordinate = 1e18;
+
 struct Mesh {
     std::vector<glm::vec3> positions;   // #V, object space
     std::vector<glm::uvec3> triangles;  // #F, counter-clockwise vertex indices

@@ -31,7 +31,6 @@ using OpenMesh::FaceHandle;
 using OpenMesh::HalfedgeHandle;
 using OpenMesh::VertexHandle;
 
-using internal::kMaxCoordinate;
 
 // Collects OpenMesh's reader output as a triangle soup. OpenMesh's own mesh kernel refuses
 // non-manifold faces; inkline draws those too, so it keeps the soup and builds its own edge table.

@@ -2,7 +2,6 @@
 #include "core/scene/gltf_shot.h"
 
 #include "core/error.h"
-#include "core/mesh/internal/mesh_checks.h"
 #include "core/mesh/mesh_io.h"
 #include "core/scene/scene.h"
 
@@ -881,7 +880,7 @@ void GltfShot::Impl::evaluate(double time, std::vector<glm::vec3>& r_positions) 
     }
     for (const glm::vec3& q : r_positions) {
         for (int i = 0; i < 3; ++i) {
-            if (!(std::abs(q[i]) <= internal::kMaxCoordinate)) {
+            if (!(std::abs(q[i]) <= kMaxCoordinate)) {
                 throw InputError(file + ": at time " + std::to_string(time) + " s a vertex coordinate (" + std::to_string(q[i]) +
                                  ") is beyond the limit of 1e18");
             }

@@ -4,6 +4,8 @@
 // (tests/fuzz/); each check names the file and line.
 #pragma once
 
+#include "core/mesh/mesh.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -11,10 +13,6 @@
 #include <string_view>
 
 namespace inkline::core::internal {
-
-// Coordinates beyond this magnitude are refused: their squares still fit a double comfortably,
-// and no real scene needs them (float meshes lose all precision long before).
-inline constexpr double kMaxCoordinate = 1e18;
 
 // Reads one coordinate at r_cursor: the next blank-separated word, which must be a whole decimal
 // number (no hex floats, no "1.5.3" or "1-2" that stream extraction would split), finite and
