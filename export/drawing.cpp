@@ -96,6 +96,7 @@ const char* layer_name(Layer layer) {
         case Layer::kSilhouette: return core::line_kind_name(core::LineKind::kSilhouette);
         case Layer::kBoundary: return core::line_kind_name(core::LineKind::kBoundary);
         case Layer::kCrease: return core::line_kind_name(core::LineKind::kCrease);
+        case Layer::kIntersection: return core::line_kind_name(core::LineKind::kIntersection);
         case Layer::kHidden: return "hidden";
     }
     return "";
@@ -111,6 +112,7 @@ Layer layer_of(const Shape& shape) {
         case core::LineKind::kSilhouette: return Layer::kSilhouette;
         case core::LineKind::kBoundary: return Layer::kBoundary;
         case core::LineKind::kCrease: return Layer::kCrease;
+        case core::LineKind::kIntersection: return Layer::kIntersection;
     }
     return Layer::kSilhouette;
 }

@@ -62,10 +62,10 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
 std::string hex_color(const glm::dvec3& rgb);
 
 // The layers of a drawing: one per line kind, then the hidden lines.
-enum class Layer : uint8_t { kSilhouette, kBoundary, kCrease, kHidden };
+enum class Layer : uint8_t { kSilhouette, kBoundary, kCrease, kIntersection, kHidden };
 // In drawing order.
-inline constexpr std::array<Layer, 4> kAllLayers = {Layer::kSilhouette, Layer::kBoundary, Layer::kCrease,
-                                                    Layer::kHidden};
+inline constexpr std::array<Layer, 5> kAllLayers = {Layer::kSilhouette, Layer::kBoundary, Layer::kCrease,
+                                                    Layer::kIntersection, Layer::kHidden};
 // "silhouette", "boundary", "crease" (the line kinds' names) or "hidden": the SVG layer's id.
 const char* layer_name(Layer layer);
 // Opacity of a whole layer: the style's, halved for hidden lines.

@@ -21,9 +21,11 @@ json light_json(const core::Light& light) {
     return {{"direction", vec3(light.direction)}};
 }
 
-json per_kind(const auto& values, auto transform) {
+// Per line kind; intersection only when the frame traced intersection lines.
+json per_kind(const auto& values, bool intersections, auto transform) {
     json out = json::object();
     for (core::LineKind kind : core::kAllLineKinds) {
+        if (kind == core::LineKind::kIntersection && !intersections) continue;
         out[core::line_kind_name(kind)] = transform(values[size_t(kind)]);
     }
     return out;
@@ -115,8 +117,8 @@ std::string polylines_json(const core::FrameLines& frame, const core::FrameStrok
                   {"edges_tested", s.edges_tested},
                   {"faces_tested", s.faces_tested},
                   {"silhouette_edges", s.silhouette_edges},
-                  {"feature_edges", per_kind(s.feature_edges, [](size_t n) { return n; })},
-                  {"visible_length_px", per_kind(s.visible_length_px, [](double v) { return std::round(v * 1000.0) / 1000.0; })},
+                  {"feature_edges", per_kind(s.feature_edges, s.intersections, [](size_t n) { return n; })},
+                  {"visible_length_px", per_kind(s.visible_length_px, s.intersections, [](double v) { return std::round(v * 1000.0) / 1000.0; })},
                   {"ms", std::move(ms)}};
     if (!s.tracker.empty()) stats["tracker"] = s.tracker;
     if (!s.visibility.empty()) stats["visibility"] = {{"mode", s.visibility}, {"reason", s.visibility_reason}};

@@ -111,7 +111,8 @@ void kind_layers(Writer& w, const Drawing& d, const std::string& indent, const s
         const bool hidden = layer == Layer::kHidden;
         bool any = false;
         for (const Shape& s : d.shapes) any |= layer_of(s) == layer && selected(s);
-        if (!any && (hidden || !prefix.empty())) continue;  // the hidden layer only when there are hidden lines
+        // The hidden and intersection layers only when they have lines.
+        if (!any && (hidden || layer == Layer::kIntersection || !prefix.empty())) continue;
         const char* name = layer_name(layer);
         w << indent << "<g id=\"" << prefix << name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
         if (const double opacity = layer_opacity(d.style, layer); opacity < 1.0) {

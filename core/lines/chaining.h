@@ -5,6 +5,8 @@
 #include "core/lines/features.h"
 #include "core/mesh/topology.h"
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 #include <vector>
 
@@ -12,11 +14,19 @@ namespace inkline::core {
 
 // A polyline through mesh vertices. edges[i] joins vertices[i] and vertices[i+1]; a closed
 // chain repeats its first vertex at the end, so edges.size() + 1 == vertices.size() always.
+//
+// An intersection chain (core/lines/intersections.h) runs through points where an edge of one
+// surface crosses a face of the other instead: `points` holds them (object space) and `vertices`
+// is empty. Its segment i lies on two faces: a face of the first surface, of which edges[i] is an
+// edge (where the segment meets that face's border, else the face's edge nearest the segment),
+// and crossing_faces[i], the face of the other surface; edges.size() + 1 == points.size().
 struct Chain {
     LineKind kind = LineKind::kSilhouette;
     bool closed = false;
     std::vector<uint32_t> vertices;
     std::vector<uint32_t> edges;
+    std::vector<glm::dvec3> points;         // intersection chains only
+    std::vector<uint32_t> crossing_faces;   // intersection chains only
 };
 
 // Links feature edges of the same kind through vertices where exactly two such edges meet;

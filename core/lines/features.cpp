@@ -13,6 +13,7 @@ const char* line_kind_name(LineKind kind) {
         case LineKind::kSilhouette: return "silhouette";
         case LineKind::kBoundary: return "boundary";
         case LineKind::kCrease: return "crease";
+        case LineKind::kIntersection: return "intersection";
     }
     return "unknown";
 }

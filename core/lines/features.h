@@ -14,12 +14,14 @@
 
 namespace inkline::core {
 
-enum class LineKind : uint8_t { kSilhouette = 0, kBoundary = 1, kCrease = 2 };
-inline constexpr int kLineKindCount = 3;
+// Silhouettes, boundaries and creases run along mesh edges; intersection lines run where two
+// surfaces cross (core/lines/intersections.h).
+enum class LineKind : uint8_t { kSilhouette = 0, kBoundary = 1, kCrease = 2, kIntersection = 3 };
+inline constexpr int kLineKindCount = 4;
 inline constexpr std::array<LineKind, kLineKindCount> kAllLineKinds = {
-    LineKind::kSilhouette, LineKind::kBoundary, LineKind::kCrease};
+    LineKind::kSilhouette, LineKind::kBoundary, LineKind::kCrease, LineKind::kIntersection};
 
-// "silhouette", "boundary" or "crease": the names used in JSON and SVG.
+// "silhouette", "boundary", "crease" or "intersection": the names used in JSON and SVG.
 const char* line_kind_name(LineKind kind);
 
 // Which feature lines a frame has (scene "lines").
@@ -27,6 +29,8 @@ struct LineOptions {
     bool silhouette = true;
     bool boundary = true;
     bool crease = true;
+    bool intersection = true;        // where the surfaces of two objects cross
+    bool self_intersection = false;  // also where one object's surface crosses itself
     double crease_angle_deg = 60.0;  // dihedral: angle between the two face normals
     bool hidden = false;             // keep occluded parts as visible:false strokes
 };

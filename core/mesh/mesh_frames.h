@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,8 @@ class MeshFrames {
     // The mesh's objects (empty for a plain mesh file) and the object of a face.
     const std::vector<MeshObject>& objects() const { return objects_; }
     uint32_t object_of_face(uint32_t face) const { return face_objects_[face]; }
+    // The object of every face; empty without objects.
+    std::span<const uint32_t> face_objects() const { return face_objects_; }
     std::filesystem::path path_of(int frame) const;
 
   private:

@@ -26,7 +26,10 @@ struct FrameStats {
     std::string visibility;         // the occlusion test used: "gl", "raycast" or "exact"
     std::string visibility_reason;  // why that one (with --visibility auto)
     std::string gl_context;         // "egl: <renderer>" when a GL context was used
-    std::array<size_t, kLineKindCount> feature_edges{};         // by LineKind
+    // Intersection lines were traced (the mesh has objects, or lines.self_intersection); without
+    // them the writers leave the kind out of the tallies.
+    bool intersections = false;
+    std::array<size_t, kLineKindCount> feature_edges{};         // by LineKind; intersection: segments
     std::array<double, kLineKindCount> visible_length_px{};     // by LineKind
     std::vector<std::pair<std::string, double>> ms;             // stage name -> milliseconds
 };

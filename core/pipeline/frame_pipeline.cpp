@@ -29,6 +29,10 @@ FramePipeline::FramePipeline(const Scene& scene, MeshFrames& meshes, std::unique
         options_.frame_count > 0 ? options_.frame_count : (long long)scene_.last_frame - scene_.first_frame + 1;
     tracker_mode_ = frames > 1 ? options_.tracker : TrackerMode::kBrute;
     for (const MeshObject& object : meshes_.objects()) object_kinds_.push_back(object_line_kinds(scene_, object.name));
+    // Intersection lines need an object that draws them, and a second object or self intersections.
+    bool any_crossing_object = object_kinds_.empty() && scene_.lines.intersection;
+    for (const auto& kinds : object_kinds_) any_crossing_object |= kinds[size_t(LineKind::kIntersection)];
+    trace_intersections_ = any_crossing_object && (object_kinds_.size() > 1 || scene_.lines.self_intersection);
 }
 
 int32_t FramePipeline::object_of(std::span<const uint32_t> edges) const {
@@ -78,15 +82,26 @@ FrameResult FramePipeline::run(int frame) {
         }
         features = tracker_->update(mesh, projection.eye_object(), scene_.lines);
     }
+    const MeshChange change = first_frame_             ? MeshChange::kTopology
+                              : meshes_.deforming()    ? MeshChange::kPositions
+                                                      : MeshChange::kNone;
+    // Intersection lines, where objects cross (and, with lines.self_intersection, where one
+    // crosses itself); retraced only when the mesh moved.
+    const std::vector<Chain>* crossings = nullptr;
+    if (trace_intersections_) {
+        if (!intersections_) {
+            intersections_.emplace(IntersectionOptions{.between_objects = meshes_.objects().size() > 1,
+                                                       .self = scene_.lines.self_intersection});
+        }
+        crossings = &intersections_->trace(mesh, table, meshes_.face_objects(), change != MeshChange::kNone);
+    }
     const double extract_ms = tracker_build_ms + step("extract");
-    const std::vector<Chain> chains = chain_feature_edges(features, table);
+    std::vector<Chain> chains = chain_feature_edges(features, table);
+    if (crossings) chains.insert(chains.end(), crossings->begin(), crossings->end());
     const double chain_ms = step("chain");
 
     // Visibility. Occluded parts are always found (the samples are classified anyway): the
     // stroke stage bridges short ones. Without lines.hidden they stay out of the output.
-    const MeshChange change = first_frame_             ? MeshChange::kTopology
-                              : meshes_.deforming()    ? MeshChange::kPositions
-                                                      : MeshChange::kNone;
     const Occlusion& occlusion = occlusion_->prepare(mesh, table, projection, change);
     const double occlusion_ms = step("occlusion");
     result.polylines = split_by_visibility(chains, mesh, projection, occlusion, {.keep_hidden = true});
@@ -95,9 +110,15 @@ FrameResult FramePipeline::run(int frame) {
         // their faces still hide other lines.
         result.objects = meshes_.objects();
         for (Polyline& line : result.polylines) line.object = object_of(line.edges);
-        std::erase_if(result.polylines, [&](const Polyline& line) {
-            return line.object >= 0 && !object_kinds_[size_t(line.object)][size_t(line.kind)];
-        });
+        // An intersection line is drawn when both of its objects draw the kind.
+        const auto draws = [&](const Polyline& line) {
+            if (line.object < 0) return true;
+            const size_t kind = size_t(line.kind);
+            if (!object_kinds_[size_t(line.object)][kind]) return false;
+            return line.crossing_faces.empty() ||
+                   object_kinds_[meshes_.object_of_face(line.crossing_faces.front())][kind];
+        };
+        std::erase_if(result.polylines, [&](const Polyline& line) { return !draws(line); });
         for (size_t i = 0; i < result.polylines.size(); ++i) result.polylines[i].id = uint32_t(i);
     }
     if (!scene_.lines.hidden) set_aside_occluded(result);
@@ -117,6 +138,8 @@ FrameResult FramePipeline::run(int frame) {
     stats.edges_tested = features.edges_tested;
     stats.faces_tested = features.faces_tested;
     stats.feature_edges = features.count_by_kind();
+    stats.intersections = crossings != nullptr;
+    if (crossings) stats.feature_edges[size_t(LineKind::kIntersection)] = intersections_->stats().segments;
     stats.silhouette_edges = stats.feature_edges[size_t(LineKind::kSilhouette)];
     stats.tracker = tracker_mode_name(tracker_mode_);
     stats.visibility = visibility_mode_name(occlusion_->mode());

@@ -10,6 +10,7 @@
 // output::brush_drawing(result.lines, result.strokes, ...).
 #pragma once
 
+#include "core/lines/intersections.h"
 #include "core/lines/silhouette_tracker.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_frames.h"
@@ -88,9 +89,11 @@ class FramePipeline {
     PipelineOptions options_;
     TrackerMode tracker_mode_;
     std::optional<SilhouetteTracker> tracker_;
+    std::optional<IntersectionTracer> intersections_;  // when intersection lines can be drawn
     StrokeCoherence coherence_;
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;
+    bool trace_intersections_ = false;
     bool first_frame_ = true;
     bool warned_inside_ = false;
 };

@@ -341,7 +341,7 @@ double framing_radius(const Bounds& bounds) {
     return 1e-6 * std::max({1.0, std::abs(c.x), std::abs(c.y), std::abs(c.z)});
 }
 
-// "objects": {"PATTERN": {"lines": false | true | {"silhouette": b, "boundary": b, "crease": b}}}.
+// "objects": {"PATTERN": {"lines": false | true | {"silhouette": b, "boundary": b, "crease": b, "intersection": b}}}.
 std::vector<ObjectRule> read_object_rules(const Reader& r) {
     if (!r.value().is_object()) r.fail("", "expected {\"name or glob\": {\"lines\": ...}}");
     std::vector<ObjectRule> globs, exact;
@@ -356,10 +356,11 @@ std::vector<ObjectRule> read_object_rules(const Reader& r) {
                 rule.lines = o.boolean_or("lines", true);
             } else {
                 const Reader l = o.child("lines");
-                l.allow_only({"silhouette", "boundary", "crease"});
+                l.allow_only({"silhouette", "boundary", "crease", "intersection"});
                 if (l.has("silhouette")) rule.silhouette = l.boolean_or("silhouette", true);
                 if (l.has("boundary")) rule.boundary = l.boolean_or("boundary", true);
                 if (l.has("crease")) rule.crease = l.boolean_or("crease", true);
+                if (l.has("intersection")) rule.intersection = l.boolean_or("intersection", true);
             }
         }
         (pattern.find_first_of("*?[") == std::string::npos ? exact : globs).push_back(rule);
@@ -375,6 +376,7 @@ std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std
     kinds[size_t(LineKind::kSilhouette)] = scene.lines.silhouette;
     kinds[size_t(LineKind::kBoundary)] = scene.lines.boundary;
     kinds[size_t(LineKind::kCrease)] = scene.lines.crease;
+    kinds[size_t(LineKind::kIntersection)] = scene.lines.intersection;
     bool lines = true;
     for (const ObjectRule& rule : scene.objects) {
         if (::fnmatch(rule.pattern.c_str(), object_name.c_str(), 0) != 0) continue;
@@ -382,6 +384,7 @@ std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std
         if (rule.silhouette) kinds[size_t(LineKind::kSilhouette)] = *rule.silhouette;
         if (rule.boundary) kinds[size_t(LineKind::kBoundary)] = *rule.boundary;
         if (rule.crease) kinds[size_t(LineKind::kCrease)] = *rule.crease;
+        if (rule.intersection) kinds[size_t(LineKind::kIntersection)] = *rule.intersection;
     }
     if (!lines) kinds.fill(false);
     return kinds;
@@ -471,10 +474,13 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
     }
     if (r.has("lines")) {
         const Reader l = r.child("lines");
-        l.allow_only({"silhouette", "boundary", "crease", "crease_angle_deg", "hidden"});
+        l.allow_only({"silhouette", "boundary", "crease", "intersection", "self_intersection", "crease_angle_deg",
+                      "hidden"});
         scene.lines.silhouette = l.boolean_or("silhouette", true);
         scene.lines.boundary = l.boolean_or("boundary", true);
         scene.lines.crease = l.boolean_or("crease", true);
+        scene.lines.intersection = l.boolean_or("intersection", true);
+        scene.lines.self_intersection = l.boolean_or("self_intersection", false);
         scene.lines.crease_angle_deg = l.number_or("crease_angle_deg", 60.0);
         if (!(scene.lines.crease_angle_deg >= 0.0 && scene.lines.crease_angle_deg <= 180.0))
             l.fail("crease_angle_deg", "must be between 0 and 180");

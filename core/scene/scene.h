@@ -58,7 +58,7 @@ struct GltfSettings {
 struct ObjectRule {
     std::string pattern;  // fnmatch(3) glob over object names ("Ground", "Tree.*")
     bool lines = true;    // false: a holdout, which hides lines and draws none
-    std::optional<bool> silhouette, boundary, crease;  // override the scene's lines.*
+    std::optional<bool> silhouette, boundary, crease, intersection;  // override the scene's lines.*
 };
 
 struct Scene {

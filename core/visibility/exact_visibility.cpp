@@ -105,12 +105,12 @@ void ExactOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Occl
             const OcclusionQuery& q = queries[i];
             const internal::QuerySegment query = internal::query_segment(q.p_object, eye_object, impl.reach);
             const Segment segment(to_point(query.far_end), to_point(query.stop));
-            const auto own = impl.table.faces_of(q.edge);
+            const internal::OwnFaces own{impl.table.faces_of(q.edge), q.crossing_face};
             bool hit = false;
             impl.tree.all_intersected_primitives(
                 segment, boost::make_function_output_iterator([&](const TriangleIterator& it) {
                     const uint32_t face = impl.face_of[size_t(it - first)];
-                    if (!internal::is_own_face(own, face)) hit = true;
+                    if (!own.has(face)) hit = true;
                 }));
             if (!hit && !impl.fan_boxes.empty()) {
                 const glm::dvec3 direction = query.far_end - query.stop;
@@ -121,7 +121,7 @@ void ExactOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Occl
                         hit = impl.fans.find_face(
                             fan, query.stop, direction, 0.0, 1.0,
                             [&](uint32_t face, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-                                return !internal::is_own_face(own, face) &&
+                                return !own.has(face) &&
                                        internal::segment_meets_triangle(query, a, b, c);
                             });
                     }));

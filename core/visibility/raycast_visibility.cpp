@@ -75,7 +75,7 @@ void check_device(RTCDevice device, const char* what) {
 // whole struct.
 struct OwnFacesContext {
     RTCIntersectContext base;
-    std::span<const uint32_t> own_faces;  // mesh faces of the query's edge
+    internal::OwnFaces own_faces;         // faces the query's ray ignores
     const uint32_t* face_of;              // Embree primitive -> mesh face; null: the same number
 };
 static_assert(std::is_standard_layout_v<OwnFacesContext> && offsetof(OwnFacesContext, base) == 0);
@@ -86,7 +86,7 @@ void reject_own_faces(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] == 0) continue;
         const uint32_t primitive = RTCHitN_primID(args->hit, args->N, i);
         const uint32_t face = context->face_of ? context->face_of[primitive] : primitive;
-        if (internal::is_own_face(context->own_faces, face)) args->valid[i] = 0;
+        if (context->own_faces.has(face)) args->valid[i] = 0;
     }
 }
 
@@ -139,7 +139,7 @@ void fan_occluded(const RTCOccludedFunctionNArguments* args) {
             args->primID, glm::dvec3(scaled.origin), glm::dvec3(scaled.direction), double(scaled.tnear),
             double(scaled.tfar),
             [&](uint32_t face, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-                return !internal::is_own_face(context->own_faces, face) && test.meets(a, b, c);
+                return !context->own_faces.has(face) && test.meets(a, b, c);
             });
         if (hit) RTCRayN_tfar(ray, n, i) = -std::numeric_limits<float>::infinity();
     }
@@ -302,7 +302,7 @@ void RaycastOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Oc
         context.face_of = impl.face_of.empty() ? nullptr : impl.face_of.data();
         for (size_t i = begin; i < end; ++i) {
             const OcclusionQuery& q = queries[i];
-            context.own_faces = impl.table.faces_of(q.edge);
+            context.own_faces = {impl.table.faces_of(q.edge), q.crossing_face};
             const internal::ScaledRay cast = internal::occlusion_ray(q.p_object, eye_object, impl.reach, impl.scale);
             RTCRay ray;
             ray.org_x = cast.origin.x;

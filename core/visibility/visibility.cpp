@@ -27,13 +27,22 @@ class ChainGeometry {
     glm::dvec3 point(double g) const {
         const size_t s = segment_of(g);
         const double t = g - double(s);
-        const glm::dvec3 a(mesh_.positions[chain_.vertices[s]]);
-        const glm::dvec3 b(mesh_.positions[chain_.vertices[s + 1]]);
+        const glm::dvec3 a = corner(s), b = corner(s + 1);
         return a + (b - a) * t;
     }
     uint32_t edge_at(double g) const { return chain_.edges[segment_of(g)]; }
+    OcclusionQuery query_at(double g) const {
+        const size_t s = segment_of(g);
+        return {point(g), chain_.edges[s], chain_.crossing_faces.empty() ? kNoCrossingFace : chain_.crossing_faces[s]};
+    }
+    uint32_t crossing_face_at(double g) const { return chain_.crossing_faces[segment_of(g)]; }
+    bool crossing() const { return !chain_.crossing_faces.empty(); }
 
   private:
+    glm::dvec3 corner(size_t i) const {
+        return chain_.points.empty() ? glm::dvec3(mesh_.positions[chain_.vertices[i]]) : chain_.points[i];
+    }
+
     const Chain& chain_;
     const Mesh& mesh_;
 };
@@ -60,7 +69,7 @@ class Splitter {
                 if (outside(p)) {
                     states[c][i] = State::kOutside;
                 } else {
-                    queries.push_back({p, geom.edge_at(g)});
+                    queries.push_back(geom.query_at(g));
                     query_owner.emplace_back(c, i);
                 }
             }
@@ -127,7 +136,7 @@ class Splitter {
                 if (outside(p)) {
                     halve(b, mid, State::kOutside);
                 } else {
-                    queries.push_back({p, geom.edge_at(mid)});
+                    queries.push_back(geom.query_at(mid));
                     asked.push_back(k);
                 }
             }
@@ -271,7 +280,11 @@ class Splitter {
             line.points_world.push_back(glm::dvec3(projection_.world_from_object() * glm::dvec4(p, 1.0)));
             line.points_px.push_back(projection_.pixel(p));
         }
-        for (size_t i = 0; i + 1 < ps.size(); ++i) line.edges.push_back(geom.edge_at(wrap(0.5 * (ps[i] + ps[i + 1]))));
+        for (size_t i = 0; i + 1 < ps.size(); ++i) {
+            const double mid = wrap(0.5 * (ps[i] + ps[i + 1]));
+            line.edges.push_back(geom.edge_at(mid));
+            if (geom.crossing()) line.crossing_faces.push_back(geom.crossing_face_at(mid));
+        }
         out.push_back(std::move(line));
     }
 

@@ -18,13 +18,18 @@
 
 namespace inkline::core {
 
+inline constexpr uint32_t kNoCrossingFace = 0xffffffffu;
+
 struct OcclusionQuery {
     glm::dvec3 p_object;  // a point on a feature edge, object space
     uint32_t edge;        // that edge: its own faces never occlude it
+    // On an intersection line, the other surface's face the point lies on (edge is then an edge of
+    // the first surface's face, core/lines/chaining.h); it never occludes the point either.
+    uint32_t crossing_face = kNoCrossingFace;
 };
 
 // A point is occluded when the open segment from the eye to it meets a valid face other than
-// the faces of its own edge.
+// the faces of its own edge (and its crossing face).
 class Occlusion {
   public:
     virtual ~Occlusion() = default;
@@ -62,6 +67,9 @@ struct Polyline {
     std::vector<glm::dvec2> points_px;     // exact projected feature geometry, px
     std::vector<glm::dvec3> points_world;  // the same points in world space
     std::vector<uint32_t> edges;           // mesh edge of each segment (points - 1)
+    // Intersection lines: the other surface's face of each segment; edges then name an edge of
+    // the first surface's face (core/lines/chaining.h). Empty for the other kinds.
+    std::vector<uint32_t> crossing_faces;
     int32_t object = -1;                   // index into the frame's objects; -1 without objects
 
     double length_px() const;

@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 
+#include <algorithm>
 #include <new>
 
 namespace inkline::output::internal {
@@ -64,6 +65,10 @@ void paint_drawing(cairo_t* cr, const Drawing& d) {
     cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
     for (const Layer layer : kAllLayers) {
         const bool hidden = layer == Layer::kHidden;
+        if (layer == Layer::kIntersection &&
+            std::none_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return layer_of(s) == Layer::kIntersection; })) {
+            continue;  // as in SVG, only when there are intersection lines
+        }
         // Each layer is composited as a group so its opacity applies to the layer, not per path.
         cairo_push_group(cr);
         cairo_set_source_rgb(cr, ink.r, ink.g, ink.b);

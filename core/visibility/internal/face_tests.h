@@ -26,6 +26,15 @@ inline bool is_own_face(std::span<const uint32_t> own, uint32_t face) {
     return std::binary_search(own.begin(), own.end(), face);
 }
 
+// The faces that never occlude a query (core/visibility/visibility.h): its edge's, and on an
+// intersection line the other surface's face.
+struct OwnFaces {
+    std::span<const uint32_t> edge_faces;  // ascending, as EdgeTable::faces_of
+    uint32_t crossing_face = 0xffffffffu;
+
+    bool has(uint32_t face) const { return face == crossing_face || is_own_face(edge_faces, face); }
+};
+
 // Ray casting. The ray stops this fraction of the eye distance short of the point, exactly as
 // exact visibility's segment does, so faces that merely touch the point (around an end vertex of
 // its edge) do not count. The ray starts at the point and runs to the eye: Embree intersects
