@@ -6,8 +6,9 @@
 #   reference.json an inkline scene over that OBJ sequence with Blender's camera of every frame
 #   shot.blend     the scene, for Line Art timing
 # The shot: a ground plane; a box parented under a turning empty with a smooth ball parented
-# to the box; a bending tube skinned to a two-bone armature; a sphere whose shape key swells it;
-# a camera that moves and turns to keep the box in view.
+# to the box; a bending tube skinned to a two-bone armature; a sphere sunk a little into the
+# ground (an intersection line) whose shape key swells it; a camera that moves and turns to keep
+# the box in view. The OBJ frames name each object ("o NAME"), as the glTF file does.
 #
 #   blender -b --factory-startup --python bench/gltf/build_shot.py -- OUT [--frames N] [--detail K]
 import math
@@ -101,8 +102,8 @@ def build(frames, detail):
     bone.rotation_euler = (math.radians(50), 0, 0)
     bone.keyframe_insert("rotation_euler", frame=frames)
 
-    # A sphere whose shape key swells its top.
-    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.5, segments=24 * detail, ring_count=12 * detail, location=(0, -2, 0.6))
+    # A sphere sunk into the ground, whose shape key swells its top.
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.5, segments=24 * detail, ring_count=12 * detail, location=(0, -2, 0.4))
     blob = bpy.context.object
     blob.name = "Blob"
     bpy.ops.object.shade_smooth()
@@ -152,6 +153,7 @@ def write_frames(out, scene, cam, frames):
             ev = obj.evaluated_get(depsgraph)
             m = ev.to_mesh()
             world = ev.matrix_world
+            lines.append("o " + obj.name)
             for v in m.vertices:
                 p = gl(world @ v.co)
                 lines.append("v %.9g %.9g %.9g" % p)

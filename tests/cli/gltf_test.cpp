@@ -131,6 +131,63 @@ TEST_F(Gltf, HoldoutObjectsHideLinesAndDrawNone) {
     EXPECT_EQ(svg.find("data-object=\"Wall\""), std::string::npos);
 }
 
+// A wall through the cube's middle: an intersection line of the cube and the wall, drawn in its
+// own layer and counted in the stats; off with lines.intersection false or when one object turns
+// the kind off. An OBJ file of the same two groups draws the same lines.
+TEST_F(Gltf, ObjectsThatCrossDrawIntersectionLinesInTheirOwnLayer) {
+    test::GltfBuilder b = moving_cube();
+    b.json().erase("animations");
+    // Left of the camera's axis, so that the crossing along the cube's right side is in view.
+    b.json()["nodes"][0]["translation"] = {-1.5, 0, 0};
+    const int wall = b.mesh_node("Wall", {-3, -3, 0, 3, -3, 0, 3, 3, 0, -3, 3, 0}, {0, 1, 2, 0, 2, 3});
+    b.json()["scenes"][0]["nodes"].push_back(wall);
+    b.write(dir / "shot.glb");
+    const auto r = test::run_inkline("render " + (dir / "shot.glb").string() + " --json " + (dir / "a/%04d.json").string() +
+                                     " --svg " + (dir / "a/%04d.svg").string() + " -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(test::read_text(dir / "a/0001.json"));
+    size_t crossing = 0;
+    for (const auto& s : j["strokes"]) {
+        if (s["kind"] != "intersection") continue;
+        ++crossing;
+        EXPECT_EQ(s["object"], "Cube");
+        EXPECT_EQ(s["edges"].size() + 1, s["points"].size());
+        for (const auto& w : s["world"]) EXPECT_NEAR(w[2].get<double>(), 0.0, 1e-9);
+    }
+    EXPECT_GT(crossing, 0u);
+    EXPECT_GT(j["stats"]["feature_edges"]["intersection"].get<int>(), 0);
+    EXPECT_GT(j["stats"]["visible_length_px"]["intersection"].get<double>(), 10.0);
+    const std::string svg = test::read_text(dir / "a/0001.svg");
+    EXPECT_NE(svg.find("<g id=\"intersection\" inkscape:groupmode=\"layer\""), std::string::npos);
+    EXPECT_EQ(test::run_shell("xmllint --noout " + (dir / "a/0001.svg").string()).code, 0);
+
+    for (const char* scene : {R"({"mesh": "shot.glb", "lines": {"intersection": false}})",
+                              R"({"mesh": "shot.glb", "objects": {"Wall": {"lines": {"intersection": false}}}})"}) {
+        test::write_text(dir / "scene.json", scene);
+        fs::remove_all(dir / "b");
+        const auto off = test::run_inkline("render " + (dir / "scene.json").string() + " --json " + (dir / "b/%04d.json").string() +
+                                           " --svg " + (dir / "b/%04d.svg").string() + " -q");
+        ASSERT_EQ(off.code, 0) << off.output;
+        const nlohmann::json k = nlohmann::json::parse(test::read_text(dir / "b/0001.json"));
+        for (const auto& s : k["strokes"]) EXPECT_NE(s["kind"], "intersection") << scene;
+        EXPECT_EQ(test::read_text(dir / "b/0001.svg").find("id=\"intersection\""), std::string::npos) << scene;
+    }
+
+    // The same two objects as OBJ groups, seen from the same place.
+    std::string obj = "o Cube\n";
+    const core::Mesh cube = test::cube(0.5);
+    for (const glm::vec3& p : cube.positions) obj += "v " + std::to_string(p.x - 1.5f) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    for (const glm::uvec3& t : cube.triangles) obj += "f " + std::to_string(t.x + 1) + " " + std::to_string(t.y + 1) + " " + std::to_string(t.z + 1) + "\n";
+    obj += "o Wall\nv -3 -3 0\nv 3 -3 0\nv 3 3 0\nv -3 3 0\nf 9 10 11\nf 9 11 12\n";
+    test::write_text(dir / "shot.obj", obj);
+    test::write_text(dir / "obj.json", R"({"mesh": "shot.obj", "frames": [1, 1], "image": {"width": 512, "height": 512},
+        "camera": {"eye": [0, 0, 8], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 34}})");
+    const auto o = test::run_inkline("render " + (dir / "obj.json").string() + " --json " + (dir / "c/%04d.json").string() + " -q");
+    ASSERT_EQ(o.code, 0) << o.output;
+    const nlohmann::json c = nlohmann::json::parse(test::read_text(dir / "c/0001.json"));
+    EXPECT_GT(c["stats"]["visible_length_px"]["intersection"].get<double>(), 10.0);
+}
+
 // --layers object: a layer per object, its kind layers inside, every path in its object's layer.
 TEST_F(Gltf, LayersByObjectNestKindLayersInObjectLayers) {
     test::GltfBuilder b = moving_cube();
