@@ -74,20 +74,50 @@ Side offset_side(std::span<const glm::dvec2> c, std::span<const double> w, const
     return side;
 }
 
+// Segments shorter than this (px) may touch their neighbours' neighbours in floating point
+// without any turn between them: a window that has one is always searched.
+constexpr double kTinySegmentPx = 1e-6;
+
+// Turning (radians) below which a window of a side cannot cross itself. A polyline that crosses
+// itself closes a loop, whose exterior angles sum to 2 pi with at most pi at the crossing: the
+// vertices between two segments that cross turn by more than pi in all. Kept below pi so that
+// rounding of the angles cannot matter.
+constexpr double kNoFoldTurning = 3.0;
+
 // Cuts the loops an offset makes where the centerline bends tighter than the half-width:
-// a segment that crosses a later one within reach skips everything in between.
+// a segment that crosses a later one within reach skips everything in between. A window that
+// turns too little to cross itself (most of a stroke) is not searched.
 std::vector<glm::dvec2> remove_folds(const Side& side, double reach) {
     const std::vector<glm::dvec2>& p = side.points;
     const size_t n = p.size();
     std::vector<glm::dvec2> out;
     if (n == 0) return out;
+    // turned[k]: absolute turning at points 1..k; tiny[k]: tiny segments among 0..k-1.
+    std::vector<double> turned(n, 0.0);
+    std::vector<uint32_t> tiny(n + 1, 0);
+    glm::dvec2 heading(0.0);
+    for (size_t k = 0; k + 1 < n; ++k) {
+        const glm::dvec2 d = p[k + 1] - p[k];
+        tiny[k + 1] = tiny[k] + (glm::length(d) < kTinySegmentPx ? 1 : 0);
+        double turn = 0.0;
+        if (d != glm::dvec2(0.0)) {
+            if (heading != glm::dvec2(0.0)) turn = std::abs(std::atan2(cross(heading, d), glm::dot(heading, d)));
+            heading = d;
+        }
+        if (k > 0) turned[k] = turned[k - 1] + turn;
+    }
+    if (n > 1) turned[n - 1] = turned[n - 2];
     out.push_back(p[0]);
     size_t i = 0;
+    size_t last = 0;  // the last segment within reach of segment i (never decreases)
     while (i + 1 < n) {
         const glm::dvec2 a = out.back(), b = p[i + 1];
+        last = std::max(last, i + 1);
+        while (last + 2 < n && side.arc[last + 1] - side.arc[i + 1] <= reach) ++last;
+        const bool may_cross = last >= i + 2 && (turned[last] - turned[i] >= kNoFoldTurning || tiny[last + 1] != tiny[i]);
         size_t hit = 0;
         glm::dvec2 x{};
-        for (size_t j = i + 2; j + 1 < n && side.arc[j] - side.arc[i + 1] <= reach; ++j) {
+        for (size_t j = i + 2; may_cross && j + 1 < n && side.arc[j] - side.arc[i + 1] <= reach; ++j) {
             if (const auto q = intersect(a, b, p[j], p[j + 1])) hit = j, x = *q;
         }
         if (hit) {
@@ -207,7 +237,7 @@ Ring simplify_ring(const Ring& ring, double tolerance) {
     }
     std::vector<uint8_t> keep(n, 0);
     keep[0] = keep[far] = 1;
-    auto point = [&](size_t i) { return ring[i % n]; };
+    auto point = [&](size_t i) { return ring[i < n ? i : i - n]; };  // hi may be n: the first point again
     std::vector<std::pair<size_t, size_t>> stack = {{0, far}, {far, n}};
     while (!stack.empty()) {
         const auto [lo, hi] = stack.back();
