@@ -76,6 +76,7 @@ class Crossings {
     }
 
     uint32_t object_of(uint32_t face) const { return face_objects_.empty() ? 0 : face_objects_[face]; }
+    uint32_t object_of_vertex(uint32_t vertex) const { return vertex_objects_[vertex]; }
 
     // The crossing of faces f (first surface) and g, if they cross in a segment.
     std::optional<Segment> cross(uint32_t f, uint32_t g) const {
@@ -160,9 +161,10 @@ class Crossings {
     std::vector<uint32_t> vertex_objects_;
 };
 
+// Boxes in float, as the positions are: comparisons of floats are exact.
 struct Box3 {
-    glm::dvec3 min{HUGE_VAL}, max{-HUGE_VAL};
-    void add(const glm::dvec3& p) {
+    glm::vec3 min{HUGE_VALF}, max{-HUGE_VALF};
+    void add(const glm::vec3& p) {
         min = glm::min(min, p);
         max = glm::max(max, p);
     }
@@ -174,7 +176,7 @@ struct Box3 {
 
 Box3 face_box(const Mesh& mesh, uint32_t f) {
     Box3 box;
-    for (int c = 0; c < 3; ++c) box.add(glm::dvec3(mesh.positions[mesh.triangles[f][c]]));
+    for (int c = 0; c < 3; ++c) box.add(mesh.positions[mesh.triangles[f][c]]);
     return box;
 }
 
@@ -194,27 +196,37 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const Mesh& mesh, con
     const auto faces = uint32_t(mesh.triangles.size());
     // Between objects, only faces inside another object's box can cross one of its faces.
     std::vector<Box3> object_boxes(objects);
-    for (uint32_t f = 0; f < faces; ++f) {
-        if (!table.face_valid[f]) continue;
-        const Box3 b = face_box(mesh, f);
-        object_boxes[crossings.object_of(f)].add(b.min);
-        object_boxes[crossings.object_of(f)].add(b.max);
-    }
+    for (size_t v = 0; v < mesh.positions.size(); ++v) object_boxes[crossings.object_of_vertex(uint32_t(v))].add(mesh.positions[v]);
     std::vector<std::vector<uint32_t>> neighbours(objects);
     for (uint32_t a = 0; a < objects; ++a) {
         for (uint32_t b = 0; b < objects; ++b) {
             if (a != b && object_boxes[a].overlaps(object_boxes[b])) neighbours[a].push_back(b);
         }
     }
+    std::vector<uint8_t> wanted(faces, 0);
+    internal::parallel_for(faces, 65536, [&](size_t begin, size_t end) {
+        for (size_t f = begin; f < end; ++f) {
+            if (!table.face_valid[f]) continue;
+            if (options.self) {
+                wanted[f] = 1;
+                continue;
+            }
+            const std::vector<uint32_t>& near = neighbours[crossings.object_of(uint32_t(f))];
+            if (near.empty()) continue;
+            const Box3 b = face_box(mesh, uint32_t(f));
+            for (uint32_t o : near) {
+                if (object_boxes[o].overlaps(b)) {
+                    wanted[f] = 1;
+                    break;
+                }
+            }
+        }
+    });
     std::vector<FaceBox> boxes;
     for (uint32_t f = 0; f < faces; ++f) {
-        if (!table.face_valid[f]) continue;
+        if (!wanted[f]) continue;
         const Box3 b = face_box(mesh, f);
-        bool wanted = options.self;
-        if (!wanted && options.between_objects) {
-            for (uint32_t o : neighbours[crossings.object_of(f)]) wanted = wanted || object_boxes[o].overlaps(b);
-        }
-        if (wanted) boxes.emplace_back(CGAL::Bbox_3(b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z), f);
+        boxes.emplace_back(CGAL::Bbox_3(b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z), f);
     }
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
     CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const FaceBox& x, const FaceBox& y) {

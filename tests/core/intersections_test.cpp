@@ -7,6 +7,7 @@
 #include "core/mesh/topology.h"
 #include "core/pipeline/frame_pipeline.h"
 #include "core/visibility/occlusion_source.h"
+#include "core/visibility/raycast_visibility.h"
 #include "tests/support/objects.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/shapes.h"
@@ -150,13 +151,14 @@ double total_length_px(const std::vector<core::Polyline>& lines) {
 
 // One frame of the parts through core::FramePipeline with exact visibility.
 core::FrameResult draw_parts(std::vector<test::Part> parts, const test::View& view,
-                             const std::function<void(core::Scene&)>& edit = {}) {
+                             const std::function<void(core::Scene&)>& edit = {},
+                             core::VisibilityMode mode = core::VisibilityMode::kExact) {
     core::Mesh whole;
     for (const test::Part& p : parts) whole = test::combine(whole, p.mesh, {0.0f, 0.0f, 0.0f});
     core::Scene scene = test::scene_for(view, whole);
     if (edit) edit(scene);
     const auto frames = test::objects_frames(std::move(parts));
-    core::FramePipeline pipeline(scene, *frames, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+    core::FramePipeline pipeline(scene, *frames, core::make_cpu_occlusion(mode));
     return pipeline.run(scene.first_frame);
 }
 
@@ -214,6 +216,14 @@ TEST(Intersections, SphereAndPlaneDrawWithinAQuarterPixelOfTheCircle) {
         EXPECT_TRUE(l.visible);
         EXPECT_EQ(l.crossing_faces.size(), l.edges.size());
         EXPECT_EQ(frame.lines.objects[size_t(l.object)].name, "Ball");
+    }
+    // Ray casting agrees with the exact test.
+    if (core::raycast_available()) {
+        const core::FrameResult cast =
+            draw_parts({{"Ball", test::uv_sphere(512, 256, 1.0)}, {"Ground", moved(test::grid(48, 2.0), {0.0, 0.0, h})}},
+                       view, {}, core::VisibilityMode::kRaycast);
+        EXPECT_NEAR(total_length_px(of_kind(cast.lines.polylines, core::LineKind::kIntersection)), total_length_px(lines),
+                    1e-3 * total_length_px(lines));
     }
 }
 

@@ -34,6 +34,8 @@ TEST(Scene, MinimalSceneGetsDefaults) {
     EXPECT_EQ(s.last_frame, 1);
     EXPECT_EQ(s.image.width, 1024);
     EXPECT_TRUE(s.lines.silhouette && s.lines.boundary && s.lines.crease && !s.lines.hidden);
+    EXPECT_TRUE(s.lines.intersection);
+    EXPECT_FALSE(s.lines.self_intersection);
 }
 
 TEST(Scene, AbsolutePathsStayAbsolute) {
@@ -63,6 +65,8 @@ TEST(Scene, ErrorsNameTheFileAndKey) {
         {R"({"mesh": "m.obj", "image": {"width": 100000, "height": 100000}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "exceeds the limit"},
         {R"({"mesh": "m.obj", "frames": [10, 1], "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'frames'"},
         {R"({"mesh": "m.obj", "lines": {"silhouette": "yes"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'lines.silhouette'"},
+        {R"({"mesh": "m.obj", "lines": {"self_intersection": 1}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'lines.self_intersection'"},
+        {R"({"mesh": "m.obj", "objects": {"A": {"lines": {"intersection": "no"}}}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'objects.A.lines.intersection'"},
         {R"({"mesh": "m.obj", "camera": {"frames": [{"frame": 1, "eye": [0,0,4], "target": [0,0,0], "zoom": 2}]}})", "key 'camera.frames[0].zoom'"},
         {R"({"mesh": {"sequence": "f.obj"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'mesh.sequence'"},
         {R"({"version": 2, "mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'version'"},
