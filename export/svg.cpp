@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "export/svg.h"
 
+#include "core/error.h"
+
 #include <algorithm>
-#include <cstdio>
+#include <charconv>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 namespace inkline::output {
@@ -39,18 +42,14 @@ class Writer {
         out_ += std::to_string(v);
         return *this;
     }
-    // A number with bounded decimals and no trailing zeros.
+    // A number with bounded decimals and no trailing zeros: the digits printf's %.*f gives
+    // (both round the exact binary value correctly), without the format parsing.
     Writer& number(double v) {
-        // %f writes every integer digit: a far plane of 1e300 takes 301 of them.
-        char small[64];
-        std::string large;
-        char* buf = small;
-        int n = std::snprintf(small, sizeof small, "%.*f", decimals_, v);
-        if (n >= int(sizeof small)) {
-            large.resize(size_t(n) + 1);
-            buf = large.data();
-            n = std::snprintf(buf, large.size(), "%.*f", decimals_, v);
-        }
+        // Fixed notation writes every integer digit: a far plane of 1e300 takes 301 of them.
+        char buf[512];
+        const auto [end, error] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals_);
+        INKLINE_CHECK(error == std::errc());
+        auto n = int(end - buf);
         if (decimals_ > 0) {
             while (n > 0 && buf[n - 1] == '0') --n;
             if (n > 0 && buf[n - 1] == '.') --n;
