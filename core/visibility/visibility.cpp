@@ -31,9 +31,10 @@ class ChainGeometry {
         return a + (b - a) * t;
     }
     uint32_t edge_at(double g) const { return chain_.edges[segment_of(g)]; }
-    OcclusionQuery query_at(double g) const {
+    // The query for point p = point(g).
+    OcclusionQuery query_at(double g, const glm::dvec3& p) const {
         const size_t s = segment_of(g);
-        return {point(g), chain_.edges[s], chain_.crossing_faces.empty() ? kNoCrossingFace : chain_.crossing_faces[s]};
+        return {p, chain_.edges[s], chain_.crossing_faces.empty() ? kNoCrossingFace : chain_.crossing_faces[s]};
     }
     uint32_t crossing_face_at(double g) const { return chain_.crossing_faces[segment_of(g)]; }
     bool crossing() const { return !chain_.crossing_faces.empty(); }
@@ -69,7 +70,7 @@ class Splitter {
                 if (outside(p)) {
                     states[c][i] = State::kOutside;
                 } else {
-                    queries.push_back(geom.query_at(g));
+                    queries.push_back(geom.query_at(g, p));
                     query_owner.emplace_back(c, i);
                 }
             }
@@ -136,7 +137,7 @@ class Splitter {
                 if (outside(p)) {
                     halve(b, mid, State::kOutside);
                 } else {
-                    queries.push_back(geom.query_at(mid));
+                    queries.push_back(geom.query_at(mid, p));
                     asked.push_back(k);
                 }
             }
