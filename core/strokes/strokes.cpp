@@ -27,8 +27,9 @@ constexpr double kOnPointPx = 1e-6;
 // Strokes turning back by more than this (deg) over max_fold_px are cut (split_at_reversals).
 constexpr double kReversalDeg = 120.0;
 
-// Frames with fewer strokes build them on the calling thread; starting another costs more.
-constexpr size_t kMinParallelStrokes = 16;
+// Frames with less drawn length (px) build their strokes on the calling thread: starting another
+// costs about what 50 px of stroke does.
+constexpr double kMinParallelLengthPx = 500.0;
 
 StrokePathOptions path_options(const BrushStyle& style) {
     StrokePathOptions options;
@@ -276,14 +277,15 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
 
     // Ids, direction and u from the previous frame. Each stroke's centerline, and below its
     // styling, depends on that stroke alone: built in parallel, gathered in stroke order.
+    // A stroke's cost follows its length: the longest go first, one at a time, to every core.
     const size_t n = pure.strokes.size();
+    std::vector<double> weight(n);
+    for (size_t i = 0; i < n; ++i) weight[i] = pure.strokes[i].length_px();
     std::vector<StrokePath> paths(n);
     std::vector<StrokeCandidate> candidates(n);
-    internal::parallel_for(n, kMinParallelStrokes, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-            paths[i] = drawn_path(pure.strokes[i], style);
-            candidates[i] = candidate_of(std::move(pure.strokes[i]), paths[i]);
-        }
+    internal::parallel_for_each(weight, kMinParallelLengthPx, [&](size_t i) {
+        paths[i] = drawn_path(pure.strokes[i], style);
+        candidates[i] = candidate_of(std::move(pure.strokes[i]), paths[i]);
     });
     const std::vector<StrokeMatch> matches = r_coherence.match(candidates);
 
@@ -298,21 +300,19 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     const glm::dmat4 object_from_world = glm::inverse(projection.world_from_object());
     std::vector<Stroke> styled(n);
     std::vector<StrokeTrace> traces(n);
-    internal::parallel_for(n, kMinParallelStrokes, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-            StrokeGeometry& g = candidates[i].geometry;
-            const StrokeMatch& m = matches[i];
-            // The centerline is built again only where the stroke was turned round or restarted.
-            std::optional<StrokePath> path = std::move(paths[i]);
-            if (m.reverse) g.reverse(), path.reset();
-            bool anchored = false;
-            if (g.closed && g.points_px.size() > 2) {
-                anchored = choose_loop_start(g, m, lighting, projection, object_from_world);
-                path.reset();
-            }
-            styled[i] = style_stroke(std::move(g), std::move(path), m.id, m.u_offset, lighting, style);
-            traces[i] = trace_of(styled[i], anchored);
+    internal::parallel_for_each(weight, kMinParallelLengthPx, [&](size_t i) {
+        StrokeGeometry& g = candidates[i].geometry;
+        const StrokeMatch& m = matches[i];
+        // The centerline is built again only where the stroke was turned round or restarted.
+        std::optional<StrokePath> path = std::move(paths[i]);
+        if (m.reverse) g.reverse(), path.reset();
+        bool anchored = false;
+        if (g.closed && g.points_px.size() > 2) {
+            anchored = choose_loop_start(g, m, lighting, projection, object_from_world);
+            path.reset();
         }
+        styled[i] = style_stroke(std::move(g), std::move(path), m.id, m.u_offset, lighting, style);
+        traces[i] = trace_of(styled[i], anchored);
     });
     uint32_t next_id = r_coherence.next_id();
     for (size_t i = 0; i < n; ++i) {
