@@ -1,41 +1,75 @@
 // SPDX-License-Identifier: MIT
-// A minimal deterministic parallel loop over index ranges with std::thread.
+// Minimal deterministic parallel loops with std::thread.
+//
+// Both are safe under memory pressure: a thread that cannot be started leaves its work to the
+// calling thread, and an exception thrown by the body on any thread (std::bad_alloc, say) is
+// rethrown on the calling thread once every started thread has finished.
 #pragma once
 
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <exception>
+#include <mutex>
 #include <numeric>
 #include <span>
+#include <system_error>
 #include <thread>
 #include <vector>
 
 namespace inkline::core::internal {
+
+// Cores this machine has (read once: glibc reads it from sysfs, an open, read and close per call,
+// which costs more than a single occlusion query).
+inline size_t hardware_threads() {
+    static const size_t cores = std::max<size_t>(1, std::thread::hardware_concurrency());
+    return cores;
+}
+
+// Runs task(t) for t in [0, count): t = 0 on the calling thread, the others on new threads where
+// they can be started, else on the calling thread after its own. The first exception of any task
+// is rethrown here after all of them have stopped.
+template <typename Task>
+void run_tasks(size_t count, const Task& task) {
+    std::exception_ptr error;
+    std::mutex error_mutex;
+    auto guarded = [&](size_t t) {
+        try {
+            task(t);
+        } catch (...) {
+            const std::lock_guard lock(error_mutex);
+            if (!error) error = std::current_exception();
+        }
+    };
+    std::vector<std::thread> workers;
+    size_t started = 1;
+    try {
+        workers.reserve(count - 1);
+        for (; started < count; ++started) workers.emplace_back(guarded, started);
+    } catch (const std::system_error&) {
+    } catch (const std::bad_alloc&) {
+    }
+    guarded(0);
+    for (size_t t = started; t < count; ++t) guarded(t);
+    for (std::thread& w : workers) w.join();
+    if (error) std::rethrow_exception(error);
+}
 
 // Calls body(begin, end) on contiguous slices of [0, n), one per hardware thread, when n is at
 // least min_parallel; otherwise once on the calling thread. Slices never overlap, so writes to
 // distinct output elements keep the result independent of scheduling.
 template <typename Body>
 void parallel_for(size_t n, size_t min_parallel, const Body& body) {
-    // Small calls return before asking for the thread count: glibc reads it from sysfs (an
-    // open, read and close per call), which costs more than a single occlusion query.
     if (n < min_parallel) {
         body(size_t(0), n);
         return;
     }
-    const size_t threads = std::max<size_t>(1, std::thread::hardware_concurrency());
-    if (threads == 1) {
+    const size_t slices = std::min(hardware_threads(), n);
+    if (slices <= 1) {
         body(size_t(0), n);
         return;
     }
-    const size_t slices = std::min(threads, n);
-    std::vector<std::thread> workers;
-    workers.reserve(slices - 1);
-    for (size_t s = 1; s < slices; ++s) {
-        workers.emplace_back([&, s] { body(n * s / slices, n * (s + 1) / slices); });
-    }
-    body(0, n / slices);
-    for (std::thread& w : workers) w.join();
+    run_tasks(slices, [&](size_t s) { body(n * s / slices, n * (s + 1) / slices); });
 }
 
 // Calls body(i) once for every i in [0, n) when the items' costs differ widely (a frame's strokes:
@@ -46,14 +80,8 @@ void parallel_for(size_t n, size_t min_parallel, const Body& body) {
 template <typename Body>
 void parallel_for_each(std::span<const double> weight, double min_parallel_weight, const Body& body) {
     const size_t n = weight.size();
-    const double total = std::accumulate(weight.begin(), weight.end(), 0.0);
-    if (n < 2 || total < min_parallel_weight) {
-        for (size_t i = 0; i < n; ++i) body(i);
-        return;
-    }
-    static const size_t cores = std::max<size_t>(1, std::thread::hardware_concurrency());
-    const size_t threads = std::min(cores, n);
-    if (threads == 1) {
+    const size_t threads = std::min(hardware_threads(), n);
+    if (threads <= 1 || std::accumulate(weight.begin(), weight.end(), 0.0) < min_parallel_weight) {
         for (size_t i = 0; i < n; ++i) body(i);
         return;
     }
@@ -61,14 +89,9 @@ void parallel_for_each(std::span<const double> weight, double min_parallel_weigh
     std::iota(order.begin(), order.end(), size_t(0));
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return weight[a] > weight[b]; });
     std::atomic<size_t> next{0};
-    auto work = [&] {
+    run_tasks(threads, [&](size_t) {
         for (size_t k = next.fetch_add(1); k < n; k = next.fetch_add(1)) body(order[k]);
-    };
-    std::vector<std::thread> workers;
-    workers.reserve(threads - 1);
-    for (size_t t = 1; t < threads; ++t) workers.emplace_back(work);
-    work();
-    for (std::thread& w : workers) w.join();
+    });
 }
 
 }  // namespace inkline::core::internal

@@ -21,7 +21,6 @@
 #include <new>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -255,7 +254,7 @@ RaycastOcclusion::RaycastOcclusion(const Mesh& mesh, const EdgeTable& table)
     Impl& impl = *impl_;
 
     // One build thread per core; queries run on our own threads, after the build.
-    const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    const size_t threads = internal::hardware_threads();
     const std::string config = "threads=" + std::to_string(threads);
     impl.device.reset(rtcNewDevice(config.c_str()));
     if (!impl.device) {

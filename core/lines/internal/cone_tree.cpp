@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -144,7 +143,7 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
     };
     // The top levels on this thread, until there is a subtree per thread.
     std::vector<Task> tasks{{0, 0, uint32_t(faces.size()), kNoIndex}};
-    const size_t threads = faces.size() < kMinParallelItems ? 1 : std::max(1u, std::thread::hardware_concurrency());
+    const size_t threads = faces.size() < kMinParallelItems ? 1 : hardware_threads();
     while (tasks.size() < threads) {
         std::vector<Task> next;
         for (const Task& t : tasks) {

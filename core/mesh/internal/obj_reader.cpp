@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <thread>
 #include <vector>
 
 #include "core/internal/parallel.h"
@@ -220,7 +219,7 @@ std::optional<ObjContents> read_plain_obj(std::string_view text, size_t max_tria
 
     // Pieces of whole lines, one per thread, read in parallel and joined in order.
     const size_t pieces_wanted =
-        text.size() < kMinParallelBytes ? 1 : std::max(1u, std::thread::hardware_concurrency());
+        text.size() < kMinParallelBytes ? 1 : hardware_threads();
     std::vector<Piece> pieces;
     for (size_t begin = 0, k = 0; begin < text.size(); ++k) {
         size_t end = std::max(begin, text.size() * (k + 1) / pieces_wanted);
