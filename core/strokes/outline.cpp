@@ -180,9 +180,10 @@ std::vector<Ring> build_outline(std::span<const glm::dvec2> c, std::span<const d
     const double tolerance = std::min(options.simplify_px, kSimplifyWidthFraction * mean_width);
     for (Ring& ring : rings) {
         if (!(tolerance > 0.0)) continue;
-        // Simplification can make a thin ring touch itself; then the full ring is kept.
+        // Simplification can make a thin ring touch itself; then the full ring is kept, unless it
+        // touches itself too (an open stroke whose ends overlap): the overlap is the stroke's own.
         Ring simple = simplify_ring(ring, tolerance);
-        if (simple.size() >= 3 && is_simple(simple)) ring = std::move(simple);
+        if (simple.size() >= 3 && (is_simple(simple) || !is_simple(ring))) ring = std::move(simple);
     }
     std::erase_if(rings, [](const Ring& r) { return r.size() < 3; });
     return rings;

@@ -190,5 +190,27 @@ TEST(Outline, SimplifyKeepsShapeWithinTolerance) {
     EXPECT_NEAR(core::signed_area(simple), core::signed_area(ring), 0.01 * core::signed_area(ring));
 }
 
+// An open stroke that comes round to overlap its own start (a silhouette cut just past where it
+// began): its ring touches itself whatever is done, so it is simplified like any other.
+TEST(Outline, StrokeWhoseEndsOverlapIsSimplifiedToo) {
+    std::vector<dvec2> c;
+    for (int i = 0; i <= 2000; ++i) {
+        const double a = 2.0 * std::numbers::pi * 1.01 * i / 2000;  // a little more than a turn
+        c.push_back(100.0 * dvec2(std::cos(a), std::sin(a)));
+    }
+    const std::vector<double> w(c.size(), 4.0);
+    const std::vector<core::Ring> rings = core::build_outline(c, w, false, {});
+    ASSERT_EQ(rings.size(), 1u);
+    EXPECT_LT(rings[0].size(), c.size() / 4) << "simplified";
+    for (const dvec2& p : rings[0]) EXPECT_LE(excess(p, c, w, false), 0.05 + 1e-9);
+    // The same stroke a little shorter, its ends apart, has the same ring outside the overlap:
+    // about as many points, and a simple ring.
+    const std::vector<dvec2> shorter(c.begin(), c.end() - 40);
+    const std::vector<core::Ring> apart = core::build_outline(shorter, std::vector<double>(shorter.size(), 4.0), false, {});
+    ASSERT_EQ(apart.size(), 1u);
+    EXPECT_TRUE(core::is_simple(apart[0]));
+    EXPECT_NEAR(double(rings[0].size()), double(apart[0].size()), 0.1 * double(apart[0].size()));
+}
+
 }  // namespace
 }  // namespace inkline
