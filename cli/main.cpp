@@ -37,6 +37,9 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
     cmd->add_option("-o,--out", r.out_dir, "folder for every output not given explicitly (default: out)");
     cmd->add_option("--tracker", r.tracker, "silhouette extraction: incremental or brute")
         ->capture_default_str();
+    cmd->add_option("--contour", r.contour,
+                    "silhouettes along mesh edges (mesh) or the smooth contour across faces (smooth); "
+                    "default: the scene's lines.contour, else mesh");
     cmd->add_option("--visibility", r.visibility,
                            "occlusion test: auto (gl on hardware GL, else raycast), gl, raycast or exact")
         ->capture_default_str();

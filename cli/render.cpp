@@ -91,6 +91,13 @@ Shot open_shot(const RenderArgs& args) {
     return shot;
 }
 
+// --contour: mesh or smooth; nothing when not given.
+std::optional<core::ContourMode> parse_contour_option(const std::string& text) {
+    if (text.empty()) return std::nullopt;
+    if (const std::optional<core::ContourMode> mode = core::contour_mode_from_name(text)) return mode;
+    throw InputError("--contour '" + quote_value(text) + "': expected mesh or smooth");
+}
+
 }  // namespace
 
 ChunkRange chunk_range(int first, int last, int k, int n) {
@@ -104,6 +111,7 @@ ChunkRange chunk_range(int first, int last, int k, int n) {
 RenderPlan plan_render(const RenderArgs& args) {
     // The modes too, so that `inkline farm` refuses a bad one before it writes its job scripts.
     core::parse_tracker_mode(args.tracker, "--tracker");
+    parse_contour_option(args.contour);
     parse_visibility_option(args.visibility);
     gl::parse_backend(args.gl_backend);
     const FrameRange frames = open_shot(args).frames;
@@ -162,6 +170,7 @@ int run_render(const RenderArgs& args) {
     // The options override the scene, the default turntable's included.
     if (size) scene.image = *size;
     if (args.hidden) scene.lines.hidden = true;
+    if (const std::optional<core::ContourMode> contour = parse_contour_option(args.contour)) scene.lines.contour = *contour;
 
     // The frame pipeline on the chosen occlusion test; the context outlives both users.
     const VisibilityChoice visibility = choose_visibility(asked_visibility, args.gl_backend);

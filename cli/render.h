@@ -23,6 +23,7 @@ struct RenderArgs {
     std::string background;   // colour behind the lines; empty: transparent (SVG, PNG) / white paper (PDF)
     std::string out_dir;
     std::string tracker = "incremental";  // incremental | brute
+    std::string contour;                  // mesh | smooth; empty: the scene's (mesh)
     std::string visibility = "auto";      // auto | gl | raycast | exact
     std::string gl_backend = "auto";      // auto | egl | osmesa
     bool centerline = false;              // constant-width centerlines instead of brush outlines

@@ -218,7 +218,7 @@ struct DepthOcclusion::Impl {
         }
         for (uint32_t v : candidates) {
             for (uint32_t f : faces_at(v)) {
-                if (face_mark[f] == epoch || !table.face_valid[f]) continue;
+                if (face_mark[f] == epoch || !table.face_valid[f] || is_own(query, f)) continue;
                 face_mark[f] = epoch;
                 const glm::uvec3 t = mesh.triangles[f];
                 if (segment_hits(eye, query.p_object, glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
@@ -230,12 +230,20 @@ struct DepthOcclusion::Impl {
         return false;
     }
 
+    // A smooth contour point's own faces (the neighbourhood of the face it crosses) never cover
+    // it; other points rely on the segment's end gap, as exact visibility does.
+    static bool is_own(const core::OcclusionQuery& query, uint32_t face) {
+        return !query.own_faces.empty() && std::binary_search(query.own_faces.begin(), query.own_faces.end(), face);
+    }
+
     // True when a face seen at the four texels around the point crosses the segment eye -> p.
-    bool seen_faces_cover(const glm::dvec3& eye, const glm::dvec3& p, const internal::DepthSample& sample) const {
+    bool seen_faces_cover(const glm::dvec3& eye, const core::OcclusionQuery& query, const internal::DepthSample& sample) const {
         const core::Mesh& mesh = *frame_mesh;
+        const glm::dvec3& p = query.p_object;
         seen.clear();
         internal::faces_around(map, sample.p_window, 0, seen);
         for (uint32_t f : seen) {
+            if (is_own(query, f)) continue;
             const glm::uvec3 t = mesh.triangles[f];
             if (segment_hits(eye, p, glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
                              glm::dvec3(mesh.positions[t.z]))) {
@@ -413,7 +421,7 @@ void DepthOcclusion::occluded(const glm::dvec3& eye_object, std::span<const core
                 // The planes seen around the point all pass in front of it, but a plane is not its
                 // face: in a valley narrower than a texel, the neighbours' planes do and their
                 // faces do not. The faces themselves confirm it, or the full local test decides.
-                hidden = m.seen_faces_cover(eye_object, queries[i].p_object, sample) ||
+                hidden = m.seen_faces_cover(eye_object, queries[i], sample) ||
                          m.covered_nearby(eye_object, queries[i], sample, internal::DepthVerdict::kEdge);
             }
         }

@@ -181,17 +181,12 @@ struct StrokeDraw {
     bool closed = false;
 };
 
-// Area-weighted vertex normals, object space.
-std::vector<glm::vec3> vertex_normals(const core::Mesh& mesh) {
-    std::vector<glm::dvec3> sum(mesh.positions.size(), glm::dvec3(0.0));
-    for (const glm::uvec3& t : mesh.triangles) {
-        const glm::dvec3 n = core::face_normal(mesh.positions, t);
-        for (int c = 0; c < 3; ++c) sum[t[c]] += n;
-    }
-    std::vector<glm::vec3> out(sum.size(), glm::vec3(0.0f, 0.0f, 1.0f));
-    for (size_t v = 0; v < sum.size(); ++v) {
-        const double len = glm::length(sum[v]);
-        if (len > 0.0) out[v] = glm::vec3(sum[v] / len);
+// core::vertex_normals in float, for the GL buffers; a vertex without faces faces +z.
+std::vector<glm::vec3> float_vertex_normals(const core::Mesh& mesh) {
+    const std::vector<glm::dvec3> normals = core::vertex_normals(mesh);
+    std::vector<glm::vec3> out(normals.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+    for (size_t v = 0; v < normals.size(); ++v) {
+        if (normals[v] != glm::dvec3(0.0)) out[v] = glm::vec3(normals[v]);
     }
     return out;
 }
@@ -392,7 +387,7 @@ struct PreviewRenderer::Impl {
 
     void draw_surface(const core::FrameLines& frame, const PreviewSurface& surface) {
         const core::Mesh& mesh = *surface.mesh;
-        const std::vector<glm::vec3> normals = vertex_normals(mesh);
+        const std::vector<glm::vec3> normals = float_vertex_normals(mesh);
         fn.BindVertexArray(surface_vao);
         fn.BindBuffer(GL_ARRAY_BUFFER, surface_positions);
         fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data(),

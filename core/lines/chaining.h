@@ -20,13 +20,19 @@ namespace inkline::core {
 // is empty. Its segment i lies on two faces: a face of the first surface, of which edges[i] is an
 // edge (where the segment meets that face's border, else the face's edge nearest the segment),
 // and crossing_faces[i], the face of the other surface; edges.size() + 1 == points.size().
+//
+// A smooth contour chain (core/lines/smooth_contours.h) runs through points on mesh edges where
+// the interpolated contour crosses them: `points` holds them (object space), `vertices` is
+// empty, point i lies on edges[i] (the last point on the edge after the last segment's face),
+// and segment i crosses faces[i], of which edges[i] is an edge.
 struct Chain {
     LineKind kind = LineKind::kSilhouette;
     bool closed = false;
     std::vector<uint32_t> vertices;
     std::vector<uint32_t> edges;
-    std::vector<glm::dvec3> points;         // intersection chains only
+    std::vector<glm::dvec3> points;         // intersection and smooth contour chains only
     std::vector<uint32_t> crossing_faces;   // intersection chains only
+    std::vector<uint32_t> faces;            // smooth contour chains only
 };
 
 // Links feature edges of the same kind through vertices where exactly two such edges meet;

@@ -8,6 +8,14 @@
 
 namespace inkline::core {
 
+const char* contour_mode_name(ContourMode mode) { return mode == ContourMode::kSmooth ? "smooth" : "mesh"; }
+
+std::optional<ContourMode> contour_mode_from_name(std::string_view name) {
+    if (name == "mesh") return ContourMode::kMesh;
+    if (name == "smooth") return ContourMode::kSmooth;
+    return std::nullopt;
+}
+
 const char* line_kind_name(LineKind kind) {
     switch (kind) {
         case LineKind::kSilhouette: return "silhouette";

@@ -10,6 +10,8 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 namespace inkline::core {
@@ -25,8 +27,17 @@ inline constexpr std::array<LineKind, kLineKindCount> kAllLineKinds = {
 const char* line_kind_name(LineKind kind);
 
 // Which feature lines a frame has (scene "lines").
+// Where silhouettes run: along mesh edges between front and back faces, or along the smooth
+// contour interpolated across faces (core/lines/smooth_contours.h).
+enum class ContourMode : uint8_t { kMesh, kSmooth };
+
+// "mesh" or "smooth": the names of the scene key lines.contour and of --contour.
+const char* contour_mode_name(ContourMode mode);
+std::optional<ContourMode> contour_mode_from_name(std::string_view name);
+
 struct LineOptions {
     bool silhouette = true;
+    ContourMode contour = ContourMode::kMesh;  // how silhouettes are found
     bool boundary = true;
     bool crease = true;
     bool intersection = true;        // where the surfaces of two objects cross

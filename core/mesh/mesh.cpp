@@ -40,4 +40,19 @@ glm::dvec3 face_normal(const std::vector<glm::vec3>& positions, const glm::uvec3
     return glm::cross(b - a, c - a);
 }
 
+std::vector<glm::dvec3> vertex_normals(const Mesh& mesh) {
+    std::vector<glm::dvec3> normals(mesh.positions.size(), glm::dvec3(0.0));
+    // The unnormalised face normal is twice the area times the unit normal: area weighting.
+    for (const glm::uvec3& tri : mesh.triangles) {
+        if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x) continue;
+        const glm::dvec3 n = face_normal(mesh.positions, tri);
+        for (int c = 0; c < 3; ++c) normals[tri[c]] += n;
+    }
+    for (glm::dvec3& n : normals) {
+        const double len = glm::length(n);
+        n = len > 0.0 ? n / len : glm::dvec3(0.0);
+    }
+    return normals;
+}
+
 }  // namespace inkline::core

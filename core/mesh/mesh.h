@@ -40,4 +40,9 @@ Bounds transformed(const Bounds& b, const glm::dmat4& transform);
 // Unnormalised face normal (cross product of two edges), in double precision.
 glm::dvec3 face_normal(const std::vector<glm::vec3>& positions, const glm::uvec3& tri);
 
+// Area-weighted vertex normals, object space, unit length (zero where a vertex has no face of
+// three distinct corners): the smooth surface's normals, which the brush's light and smooth
+// contours follow.
+std::vector<glm::dvec3> vertex_normals(const Mesh& mesh);
+
 }  // namespace inkline::core

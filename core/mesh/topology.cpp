@@ -168,6 +168,18 @@ size_t mark_duplicate_faces(const Mesh& mesh, EdgeTable& r_table) {
 
 }  // namespace
 
+void faces_around_corners(const Mesh& mesh, const EdgeTable& table, uint32_t face, std::vector<uint32_t>& r_faces) {
+    r_faces.clear();
+    for (int c = 0; c < 3; ++c) {
+        for (const uint32_t e : table.edges_around(mesh.triangles[face][c])) {
+            const std::span<const uint32_t> faces = table.faces_of(e);
+            r_faces.insert(r_faces.end(), faces.begin(), faces.end());
+        }
+    }
+    std::sort(r_faces.begin(), r_faces.end());
+    r_faces.erase(std::unique(r_faces.begin(), r_faces.end()), r_faces.end());
+}
+
 EdgeTable build_edge_table(const Mesh& mesh) {
     const size_t n_faces = mesh.triangles.size();
     std::vector<uint8_t> valid(n_faces);

@@ -57,6 +57,9 @@ uint32_t find_edge(const EdgeTable& table, uint32_t a, uint32_t b);
 // The edges (c0c1, c1c2, c2c0) of each face; kNoIndex for the ignored faces (degenerate, copies).
 std::vector<glm::uvec3> face_edges(const Mesh& mesh, const EdgeTable& table);
 
+// The valid faces that share a corner with `face` (itself included), ascending, into r_faces.
+void faces_around_corners(const Mesh& mesh, const EdgeTable& table, uint32_t face, std::vector<uint32_t>& r_faces);
+
 // What `inkline info` prints about a mesh.
 struct MeshReport {
     size_t vertices = 0;

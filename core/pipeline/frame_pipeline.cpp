@@ -70,17 +70,25 @@ FrameResult FramePipeline::run(int frame) {
                                ": the camera is inside the mesh's bounds; lines may be hidden");
     }
 
-    // Feature edges and chains.
+    // Feature edges and chains. Smooth contours replace the silhouette edges.
     double tracker_build_ms = 0.0;
     FeatureEdges features;
-    if (tracker_mode_ == TrackerMode::kBrute) {
-        features = extract_feature_edges(mesh, table, projection.eye_object(), scene_.lines);
+    const bool smooth = scene_.lines.silhouette && scene_.lines.contour == ContourMode::kSmooth;
+    LineOptions edge_lines = scene_.lines;
+    if (smooth) edge_lines.silhouette = false;
+    if (tracker_mode_ == TrackerMode::kBrute || smooth) {
+        features = extract_feature_edges(mesh, table, projection.eye_object(), edge_lines);
     } else {
         if (!tracker_) {
             tracker_.emplace(table, mesh, TrackerOptions{.deforming = meshes_.deforming()});
             tracker_build_ms = step("tracker build");
         }
-        features = tracker_->update(mesh, projection.eye_object(), scene_.lines);
+        features = tracker_->update(mesh, projection.eye_object(), edge_lines);
+    }
+    const std::vector<Chain>* contours = nullptr;
+    if (smooth) {
+        if (!smooth_) smooth_.emplace(mesh, table);
+        contours = &smooth_->trace(mesh, table, projection.eye_object());
     }
     const MeshChange change = first_frame_             ? MeshChange::kTopology
                               : meshes_.deforming()    ? MeshChange::kPositions
@@ -97,6 +105,7 @@ FrameResult FramePipeline::run(int frame) {
     }
     const double extract_ms = tracker_build_ms + step("extract");
     std::vector<Chain> chains = chain_feature_edges(features, table);
+    if (contours) chains.insert(chains.end(), contours->begin(), contours->end());
     if (crossings) chains.insert(chains.end(), crossings->begin(), crossings->end());
     const double chain_ms = step("chain");
 
@@ -104,7 +113,7 @@ FrameResult FramePipeline::run(int frame) {
     // stroke stage bridges short ones. Without lines.hidden they stay out of the output.
     const Occlusion& occlusion = occlusion_->prepare(mesh, table, projection, change);
     const double occlusion_ms = step("occlusion");
-    result.polylines = split_by_visibility(chains, mesh, projection, occlusion, {.keep_hidden = true});
+    result.polylines = split_by_visibility(chains, mesh, table, projection, occlusion, {.keep_hidden = true});
     if (!object_kinds_.empty()) {
         // Each line's object; holdouts and the kinds an object turns off draw nothing, though
         // their faces still hide other lines.
@@ -140,6 +149,11 @@ FrameResult FramePipeline::run(int frame) {
     stats.feature_edges = features.count_by_kind();
     stats.intersections = crossings != nullptr;
     if (crossings) stats.feature_edges[size_t(LineKind::kIntersection)] = intersections_->stats().segments;
+    if (contours) {
+        // Smooth contours: the faces whose vertex signs were compared, and the faces crossed.
+        stats.faces_tested += smooth_->stats().faces_tested;
+        stats.feature_edges[size_t(LineKind::kSilhouette)] = smooth_->stats().segments;
+    }
     stats.silhouette_edges = stats.feature_edges[size_t(LineKind::kSilhouette)];
     stats.tracker = tracker_mode_name(tracker_mode_);
     stats.visibility = visibility_mode_name(occlusion_->mode());

@@ -12,6 +12,7 @@
 
 #include "core/lines/intersections.h"
 #include "core/lines/silhouette_tracker.h"
+#include "core/lines/smooth_contours.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_frames.h"
 #include "core/pipeline/frame_lines.h"
@@ -90,6 +91,7 @@ class FramePipeline {
     TrackerMode tracker_mode_;
     std::optional<SilhouetteTracker> tracker_;
     std::optional<IntersectionTracer> intersections_;  // when intersection lines can be drawn
+    std::optional<SmoothContourTracer> smooth_;         // with lines.contour "smooth"
     StrokeCoherence coherence_;
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;

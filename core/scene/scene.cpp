@@ -474,9 +474,14 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
     }
     if (r.has("lines")) {
         const Reader l = r.child("lines");
-        l.allow_only({"silhouette", "boundary", "crease", "intersection", "self_intersection", "crease_angle_deg",
-                      "hidden"});
+        l.allow_only({"silhouette", "contour", "boundary", "crease", "intersection", "self_intersection",
+                      "crease_angle_deg", "hidden"});
         scene.lines.silhouette = l.boolean_or("silhouette", true);
+        if (l.has("contour")) {
+            const std::optional<ContourMode> mode = contour_mode_from_name(l.string("contour"));
+            if (!mode) l.fail("contour", "expected \"mesh\" or \"smooth\"");
+            scene.lines.contour = *mode;
+        }
         scene.lines.boundary = l.boolean_or("boundary", true);
         scene.lines.crease = l.boolean_or("crease", true);
         scene.lines.intersection = l.boolean_or("intersection", true);

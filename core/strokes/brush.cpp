@@ -12,21 +12,6 @@
 
 namespace inkline::core {
 
-std::vector<glm::dvec3> vertex_normals(const Mesh& mesh) {
-    std::vector<glm::dvec3> normals(mesh.positions.size(), glm::dvec3(0.0));
-    // The unnormalised face normal is twice the area times the unit normal: area weighting.
-    for (const glm::uvec3& tri : mesh.triangles) {
-        if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x) continue;
-        const glm::dvec3 n = face_normal(mesh.positions, tri);
-        for (int c = 0; c < 3; ++c) normals[tri[c]] += n;
-    }
-    for (glm::dvec3& n : normals) {
-        const double len = glm::length(n);
-        n = len > 0.0 ? n / len : glm::dvec3(0.0);
-    }
-    return normals;
-}
-
 std::vector<glm::dvec3> vertex_normals_at(const Mesh& mesh, const EdgeTable& table, std::span<const uint32_t> vertices) {
     // Degenerate faces are missing from the edge table, but vertex_normals counts those of
     // three distinct corners (their normals are tiny, not zero): listed here to be added back.

@@ -21,9 +21,6 @@
 
 namespace inkline::core {
 
-// Area-weighted vertex normals, object space, unit length (zero where a vertex has no valid face).
-std::vector<glm::dvec3> vertex_normals(const Mesh& mesh);
-
 // vertex_normals(mesh)[v] for each v of `vertices` (ascending, distinct), bit for bit, reading
 // only the faces around them: a frame's strokes touch a few thousand of a million vertices.
 std::vector<glm::dvec3> vertex_normals_at(const Mesh& mesh, const EdgeTable& table, std::span<const uint32_t> vertices);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "core/visibility/visibility.h"
 
+#include "core/error.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -18,7 +20,9 @@ constexpr int kMaxBisections = 48;
 // Chain parameter: g in [0, segments]; floor(g) is the segment, the fraction the position on it.
 class ChainGeometry {
   public:
-    ChainGeometry(const Chain& chain, const Mesh& mesh) : chain_(chain), mesh_(mesh) {}
+    // own_faces: a smooth contour's own faces per segment (ascending), else empty.
+    ChainGeometry(const Chain& chain, const Mesh& mesh, const std::vector<std::vector<uint32_t>>& own_faces)
+        : chain_(chain), mesh_(mesh), own_faces_(own_faces) {}
 
     size_t segments() const { return chain_.edges.size(); }
     size_t segment_of(double g) const {
@@ -34,8 +38,11 @@ class ChainGeometry {
     // The query for point p = point(g).
     OcclusionQuery query_at(double g, const glm::dvec3& p) const {
         const size_t s = segment_of(g);
-        return {p, chain_.edges[s], chain_.crossing_faces.empty() ? kNoCrossingFace : chain_.crossing_faces[s]};
+        return {p, chain_.edges[s], chain_.crossing_faces.empty() ? kNoCrossingFace : chain_.crossing_faces[s],
+                own_faces_.empty() ? std::span<const uint32_t>() : std::span<const uint32_t>(own_faces_[s])};
     }
+    uint32_t face_at(double g) const { return chain_.faces[segment_of(g)]; }
+    bool smooth() const { return !chain_.faces.empty(); }
     uint32_t crossing_face_at(double g) const { return chain_.crossing_faces[segment_of(g)]; }
     bool crossing() const { return !chain_.crossing_faces.empty(); }
 
@@ -46,22 +53,33 @@ class ChainGeometry {
 
     const Chain& chain_;
     const Mesh& mesh_;
+    const std::vector<std::vector<uint32_t>>& own_faces_;
 };
 
 class Splitter {
   public:
-    Splitter(const Mesh& mesh, const Projection& projection, const Occlusion& occlusion,
+    Splitter(const Mesh& mesh, const EdgeTable* table, const Projection& projection, const Occlusion& occlusion,
              const VisibilityOptions& options)
-        : mesh_(mesh), projection_(projection), occlusion_(occlusion), options_(options) {}
+        : mesh_(mesh), table_(table), projection_(projection), occlusion_(occlusion), options_(options) {}
 
     std::vector<Polyline> run(const std::vector<Chain>& chains) {
+        // A smooth contour point is not occluded by the face it crosses or the faces around it.
+        own_faces_.assign(chains.size(), {});
+        for (size_t c = 0; c < chains.size(); ++c) {
+            if (chains[c].faces.empty()) continue;
+            INKLINE_CHECK(table_ != nullptr);  // a smooth contour needs its mesh's edge table
+            own_faces_[c].resize(chains[c].faces.size());
+            for (size_t s = 0; s < chains[c].faces.size(); ++s) {
+                faces_around_corners(mesh_, *table_, chains[c].faces[s], own_faces_[c][s]);
+            }
+        }
         // Coarse samples of every chain, tested in one batch.
         std::vector<std::vector<double>> params(chains.size());
         std::vector<std::vector<State>> states(chains.size());
         std::vector<OcclusionQuery> queries;
         std::vector<std::pair<size_t, size_t>> query_owner;  // (chain, sample)
         for (size_t c = 0; c < chains.size(); ++c) {
-            const ChainGeometry geom(chains[c], mesh_);
+            const ChainGeometry geom(chains[c], mesh_, own_faces_[c]);
             params[c] = sample_params(geom);
             states[c].resize(params[c].size());
             for (size_t i = 0; i < params[c].size(); ++i) {
@@ -129,7 +147,7 @@ class Splitter {
             queries.clear();
             for (size_t k : active) {
                 Bracket& b = brackets[k];
-                const ChainGeometry geom(chains[b.chain], mesh_);
+                const ChainGeometry geom(chains[b.chain], mesh_, own_faces_[b.chain]);
                 if (b.halvings >= kMaxBisections || !(pixel_distance(geom, b.g0, b.g1) > options_.bisection_px)) continue;
                 still_active.push_back(k);
                 const double mid = 0.5 * (b.g0 + b.g1);
@@ -193,7 +211,7 @@ class Splitter {
 
     void emit_chain(const Chain& chain, const std::vector<double>& g, const std::vector<State>& s,
                     const std::vector<double>& cuts, std::vector<Polyline>& out) const {
-        const ChainGeometry geom(chain, mesh_);
+        const ChainGeometry geom(chain, mesh_, {});
         const double g_end = double(geom.segments());
         std::vector<Run> runs;
         double begin = 0.0;
@@ -285,14 +303,17 @@ class Splitter {
             const double mid = wrap(0.5 * (ps[i] + ps[i + 1]));
             line.edges.push_back(geom.edge_at(mid));
             if (geom.crossing()) line.crossing_faces.push_back(geom.crossing_face_at(mid));
+            if (geom.smooth()) line.faces.push_back(geom.face_at(mid));
         }
         out.push_back(std::move(line));
     }
 
     const Mesh& mesh_;
+    const EdgeTable* table_;
     const Projection& projection_;
     const Occlusion& occlusion_;
     const VisibilityOptions& options_;
+    std::vector<std::vector<std::vector<uint32_t>>> own_faces_;  // per chain, per segment
 };
 
 }  // namespace
@@ -314,10 +335,16 @@ double Polyline::length_px() const {
     return len;
 }
 
+std::vector<Polyline> split_by_visibility(const std::vector<Chain>& chains, const Mesh& mesh, const EdgeTable& table,
+                                          const Projection& projection, const Occlusion& occlusion,
+                                          const VisibilityOptions& options) {
+    return Splitter(mesh, &table, projection, occlusion, options).run(chains);
+}
+
 std::vector<Polyline> split_by_visibility(const std::vector<Chain>& chains, const Mesh& mesh,
                                           const Projection& projection, const Occlusion& occlusion,
                                           const VisibilityOptions& options) {
-    return Splitter(mesh, projection, occlusion, options).run(chains);
+    return Splitter(mesh, nullptr, projection, occlusion, options).run(chains);
 }
 
 }  // namespace inkline::core

@@ -26,10 +26,13 @@ struct OcclusionQuery {
     // On an intersection line, the other surface's face the point lies on (edge is then an edge of
     // the first surface's face, core/lines/chaining.h); it never occludes the point either.
     uint32_t crossing_face = kNoCrossingFace;
+    // On a smooth contour, the faces that never occlude the point instead of its edge's (ascending):
+    // the face it crosses and every face sharing a corner with it (core/lines/smooth_contours.h).
+    std::span<const uint32_t> own_faces = {};
 };
 
 // A point is occluded when the open segment from the eye to it meets a valid face other than
-// the faces of its own edge (and its crossing face).
+// the faces of its own edge (and its crossing face), or other than its own faces when it has them.
 class Occlusion {
   public:
     virtual ~Occlusion() = default;
@@ -70,6 +73,9 @@ struct Polyline {
     // Intersection lines: the other surface's face of each segment; edges then name an edge of
     // the first surface's face (core/lines/chaining.h). Empty for the other kinds.
     std::vector<uint32_t> crossing_faces;
+    // Smooth contours: the face each segment crosses; edges then name the edge each segment starts
+    // on (core/lines/chaining.h). Empty for the other lines.
+    std::vector<uint32_t> faces;
     int32_t object = -1;                   // index into the frame's objects; -1 without objects
 
     double length_px() const;
@@ -77,6 +83,11 @@ struct Polyline {
 
 // Splits every chain by visibility. Parts outside the image or behind the near plane are
 // dropped; occluded parts are kept only with keep_hidden. Ids are assigned in output order.
+// Smooth contour chains need the mesh's edge table (their points' own faces come from it).
+std::vector<Polyline> split_by_visibility(const std::vector<Chain>& chains, const Mesh& mesh, const EdgeTable& table,
+                                          const Projection& projection, const Occlusion& occlusion,
+                                          const VisibilityOptions& options);
+// The same for chains without smooth contours.
 std::vector<Polyline> split_by_visibility(const std::vector<Chain>& chains, const Mesh& mesh,
                                           const Projection& projection, const Occlusion& occlusion,
                                           const VisibilityOptions& options);

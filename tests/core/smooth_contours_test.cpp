@@ -1,0 +1,198 @@
+// SPDX-License-Identifier: MIT
+// Smooth contours (core/lines/smooth_contours.h): against the analytic contours of a sphere and
+// a torus, their chains (loops, open curves on a boundary), their visibility (a contour point is
+// not hidden by the faces around it, raycast agrees with exact) and their strokes.
+#include "core/lines/smooth_contours.h"
+
+#include "core/mesh/mesh_frames.h"
+#include "core/pipeline/frame_pipeline.h"
+#include "core/scene/camera.h"
+#include "core/visibility/occlusion_source.h"
+#include "core/visibility/raycast_visibility.h"
+#include "tests/support/pipeline.h"
+#include "tests/support/shapes.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace inkline {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// (x, y, z) -> (x, -z, y): a quarter turn about x, so a torus around y turns around z.
+core::Mesh around_z(core::Mesh mesh) {
+    for (glm::vec3& p : mesh.positions) p = {p.x, -p.z, p.y};
+    return mesh;
+}
+
+// A circle around the z axis (radius, height), which a view down the z axis sees as a circle.
+struct Circle {
+    double radius = 0.0;
+    double z = 0.0;
+};
+
+// The analytic contours of a torus around z (major radius R, minor r) seen from (0, 0, d):
+// with p = ((R + r cos f) cos t, (R + r cos f) sin t, r sin f) and its normal, n . (p - eye) =
+// R cos f + r - d sin f, zero where cos(f + b) = -r / A, A = sqrt(R^2 + d^2), b = atan2(d, R).
+std::vector<Circle> torus_contours(double R, double r, double d) {
+    const double a = std::sqrt(R * R + d * d), b = std::atan2(d, R), c = std::acos(-r / a);
+    std::vector<Circle> out;
+    for (const double f : {c - b, -c - b}) out.push_back({R + r * std::cos(f), r * std::sin(f)});
+    return out;
+}
+
+// Largest image distance (px) from a chain point to the nearest of the circles, as projected.
+double worst_px(const std::vector<core::Chain>& chains, const core::Projection& projection,
+                const std::vector<Circle>& circles) {
+    double worst = 0.0;
+    for (const core::Chain& chain : chains) {
+        for (const glm::dvec3& p : chain.points) {
+            const glm::dvec2 px = projection.pixel(p);
+            double best = HUGE_VAL;
+            for (const Circle& c : circles) {
+                const glm::dvec2 center = projection.pixel({0.0, 0.0, c.z});
+                const double radius = glm::length(projection.pixel({c.radius, 0.0, c.z}) - center);
+                best = std::min(best, std::abs(glm::length(px - center) - radius));
+            }
+            worst = std::max(worst, best);
+        }
+    }
+    return worst;
+}
+
+struct Traced {
+    std::vector<core::Chain> chains;
+    core::Projection projection;
+};
+
+Traced trace(const core::Mesh& mesh, const test::View& view) {
+    const core::EdgeTable table = core::build_edge_table(mesh);
+    core::SmoothContourTracer tracer(mesh, table);
+    const core::Camera camera = test::camera_for(view, mesh);
+    return {tracer.trace(mesh, table, view.eye), core::Projection(camera, {view.size, view.size}, glm::dmat4(1.0))};
+}
+
+TEST(SmoothContours, SphereContourLiesOnTheAnalyticCircle) {
+    // Unit sphere seen from (0, 0, 4): the contour is where p . (p - eye) = 0, the circle
+    // z = 1/4 of radius sqrt(1 - 1/16).
+    const std::vector<Circle> analytic = {{std::sqrt(1.0 - 1.0 / 16.0), 0.25}};
+    double coarse_px = 0.0;
+    for (const int levels : {3, 6}) {
+        const core::Mesh sphere = test::icosphere(levels);
+        const Traced t = trace(sphere, {});
+        ASSERT_EQ(t.chains.size(), 1u) << levels;
+        EXPECT_TRUE(t.chains[0].closed);
+        EXPECT_EQ(t.chains[0].points.front(), t.chains[0].points.back());
+        EXPECT_EQ(t.chains[0].edges.size() + 1, t.chains[0].points.size());
+        EXPECT_EQ(t.chains[0].faces.size(), t.chains[0].edges.size());
+        const double px = worst_px(t.chains, t.projection, analytic);
+        if (levels == 3) {
+            coarse_px = px;
+        } else {
+            EXPECT_LE(px, 0.25) << "81,920 faces";
+        }
+    }
+    EXPECT_GT(coarse_px, 0.25) << "a 1,280-face sphere is not that close: the check can fail";
+}
+
+TEST(SmoothContours, TorusSeenAlongItsAxisHasItsTwoAnalyticCircles) {
+    const double R = 1.0, r = 0.35, d = 4.0;
+    const core::Mesh torus = around_z(test::torus(R, r, 400, 200));
+    const Traced t = trace(torus, {.eye = {0.0, 0.0, d}});
+    ASSERT_EQ(t.chains.size(), 2u);
+    for (const core::Chain& chain : t.chains) EXPECT_TRUE(chain.closed);
+    EXPECT_LE(worst_px(t.chains, t.projection, torus_contours(R, r, d)), 0.25);
+}
+
+TEST(SmoothContours, ChainsEndOnBoundaryEdges) {
+    // A hemisphere (y >= 0) seen from the side: the contour runs from the rim over the top and
+    // back to the rim.
+    const core::Mesh half = test::hemisphere(64, 32, 1.0);
+    const core::EdgeTable table = core::build_edge_table(half);
+    core::SmoothContourTracer tracer(half, table);
+    const std::vector<core::Chain>& chains = tracer.trace(half, table, {0.0, 0.0, 4.0});
+    ASSERT_EQ(chains.size(), 1u);
+    const core::Chain& c = chains[0];
+    EXPECT_FALSE(c.closed);
+    EXPECT_EQ(table.faces_of(c.edges.front()).size(), 1u) << "starts on the rim";
+    EXPECT_NEAR(c.points.front().y, 0.0, 1e-6);
+    EXPECT_NEAR(c.points.back().y, 0.0, 1e-6);
+    EXPECT_GT(c.points[c.points.size() / 2].y, 0.9) << "over the top";
+    // Every segment crosses a face of which its start edge is an edge.
+    for (size_t i = 0; i < c.edges.size(); ++i) {
+        const auto faces = table.faces_of(c.edges[i]);
+        EXPECT_NE(std::find(faces.begin(), faces.end(), c.faces[i]), faces.end()) << i;
+    }
+    EXPECT_EQ(tracer.stats().segments, c.faces.size());
+    EXPECT_EQ(tracer.stats().faces_tested, half.triangles.size());
+}
+
+// Frame 1 of `mesh` seen from `view` with smooth contours, under a visibility mode.
+core::FrameResult render(const core::Mesh& mesh, const test::View& view, core::VisibilityMode mode,
+                         core::ContourMode contour = core::ContourMode::kSmooth) {
+    core::Scene scene = test::scene_for(view, mesh);
+    scene.lines.contour = contour;
+    core::MeshFrames meshes(mesh);
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(mode));
+    return pipeline.run(scene.first_frame);
+}
+
+double visible_length(const core::FrameLines& lines) {
+    double sum = 0.0;
+    for (const core::Polyline& line : lines.polylines) {
+        if (line.visible) sum += line.length_px();
+    }
+    return sum;
+}
+
+TEST(SmoothContours, APointIsNotHiddenByTheFacesAroundIt) {
+    // A coarse sphere's smooth contour crosses faces that the mesh calls back-facing, behind
+    // their front-facing neighbours: still the whole contour is visible, and one stroke.
+    for (const int levels : {1, 2, 3}) {
+        const core::Mesh sphere = test::icosphere(levels);
+        const core::FrameResult r = render(sphere, {}, core::VisibilityMode::kExact);
+        double total = 0.0;
+        for (const core::Polyline& line : r.lines.polylines) total += line.length_px();
+        for (const core::Polyline& line : r.lines.occluded) total += line.length_px();
+        EXPECT_NEAR(visible_length(r.lines), total, 1e-9 * total) << levels;
+        ASSERT_EQ(r.strokes.strokes.size(), 1u) << levels;
+        EXPECT_TRUE(r.strokes.strokes[0].geometry.closed);
+        EXPECT_EQ(r.lines.polylines[0].faces.size(), r.lines.polylines[0].edges.size());
+    }
+}
+
+TEST(SmoothContours, RaycastAgreesWithExact) {
+    if (!core::raycast_available()) GTEST_SKIP() << "this build has no Embree";
+    // A torus from above at an angle: the inner contour is partly hidden behind the tube.
+    const core::Mesh torus = test::torus(1.0, 0.35, 96, 48);
+    for (const glm::dvec3 eye : {glm::dvec3(0.0, 2.0, 3.5), glm::dvec3(1.0, 1.0, 3.0), glm::dvec3(0.3, 0.6, 4.0)}) {
+        const core::FrameResult exact = render(torus, {.eye = eye}, core::VisibilityMode::kExact);
+        const core::FrameResult raycast = render(torus, {.eye = eye}, core::VisibilityMode::kRaycast);
+        const double e = visible_length(exact.lines), c = visible_length(raycast.lines);
+        ASSERT_GT(e, 0.0);
+        EXPECT_NEAR(c, e, 0.005 * e) << eye.x << " " << eye.y << " " << eye.z;
+    }
+}
+
+TEST(SmoothContours, FewerStrokesThanMeshEdgesOnACoarseTorus) {
+    // Seen at an angle, a coarse torus's edge silhouette zig-zags and breaks; the smooth
+    // contour draws each visible piece as one stroke.
+    const core::Mesh torus = test::torus(1.0, 0.35, 48, 24);
+    const test::View view{.eye = {0.0, 3.0, 6.0}};
+    const core::FrameResult smooth = render(torus, view, core::VisibilityMode::kExact);
+    const core::FrameResult mesh = render(torus, view, core::VisibilityMode::kExact, core::ContourMode::kMesh);
+    size_t smooth_drawn = 0, mesh_drawn = 0;
+    for (const core::Stroke& s : smooth.strokes.strokes) smooth_drawn += s.drawn;
+    for (const core::Stroke& s : mesh.strokes.strokes) mesh_drawn += s.drawn;
+    EXPECT_LE(smooth_drawn, 3u) << "the outer loop and the inner contour's two visible arcs";
+    EXPECT_LE(smooth_drawn, mesh_drawn);
+    EXPECT_NEAR(visible_length(smooth.lines), visible_length(mesh.lines), 0.05 * visible_length(mesh.lines));
+}
+
+}  // namespace
+}  // namespace inkline
