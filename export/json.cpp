@@ -67,7 +67,7 @@ json polyline_strokes(const core::FrameLines& frame) {
                            {"visible", line.visible},
                            {"points", points_json(line.points_px)},
                            {"world", world_json(line.points_world)},
-                           {"edges", line.edges}});
+                           {"edges", line.faces.empty() ? line.edges : line.faces}});
         add_object(frame, line.object, strokes.back());
     }
     return strokes;
@@ -87,7 +87,7 @@ json brush_strokes(const core::FrameLines& frame, const core::FrameStrokes& fram
                            {"ends", {core::stroke_end_name(g.ends[0]), core::stroke_end_name(g.ends[1])}},
                            {"points", points_json(g.points_px)},
                            {"world", world_json(g.points_world)},
-                           {"edges", g.edges},
+                           {"edges", s.faces.empty() ? g.edges : s.faces},
                            {"u", rounded(s.u, 1e3)},
                            {"intensity", rounded(s.intensity, 1e4)},
                            {"width", rounded(s.width, 1e3)},

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "core/lines/smooth_contours.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -10,6 +11,28 @@ namespace inkline::core {
 glm::dvec3 contour_point_on_edge(const glm::dvec3& a, const glm::dvec3& b, double ga, double gb) {
     const double t = ga / (ga - gb);  // ga and gb differ in sign (one may be zero): t in [0, 1]
     return a + (b - a) * std::clamp(t, 0.0, 1.0);
+}
+
+std::vector<uint32_t> faces_crossed(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> points_object,
+                                    std::span<const uint32_t> edges) {
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    auto point = [](const glm::dvec3& p) { return Kernel::Point_3(p.x, p.y, p.z); };
+    std::vector<uint32_t> out;
+    out.reserve(edges.size());
+    for (size_t i = 0; i < edges.size() && i + 1 < points_object.size(); ++i) {
+        const Kernel::Point_3 mid = point(0.5 * (points_object[i] + points_object[i + 1]));
+        uint32_t best = kNoIndex;
+        double best_d2 = HUGE_VAL;
+        for (const uint32_t f : table.faces_of(edges[i])) {
+            const glm::uvec3 t = mesh.triangles[f];
+            const Kernel::Triangle_3 tri(point(glm::dvec3(mesh.positions[t.x])), point(glm::dvec3(mesh.positions[t.y])),
+                                         point(glm::dvec3(mesh.positions[t.z])));
+            const double d2 = CGAL::to_double(CGAL::squared_distance(mid, tri));
+            if (d2 < best_d2) best_d2 = d2, best = f;
+        }
+        out.push_back(best);
+    }
+    return out;
 }
 
 SmoothContourTracer::SmoothContourTracer(const Mesh& mesh, const EdgeTable& table)

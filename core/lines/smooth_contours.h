@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace inkline::core {
@@ -47,6 +48,12 @@ class SmoothContourTracer {
     std::vector<Chain> chains_;
     SmoothContourStats stats_;
 };
+
+// The face each segment of a smooth contour line crosses, from the edge each segment starts on
+// (what a stroke keeps through the stroke stage): of that edge's faces, the one nearest the
+// segment's midpoint. points_object has one point more than edges.
+std::vector<uint32_t> faces_crossed(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> points_object,
+                                    std::span<const uint32_t> edges);
 
 // The zero of g on the edge (a, b) with values ga and gb of different signs, computed from the
 // edge's lower-numbered vertex so that both faces of an edge agree bit for bit.

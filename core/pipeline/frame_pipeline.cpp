@@ -7,6 +7,7 @@
 #include "core/pipeline/stopwatch.h"
 #include "core/visibility/visibility.h"
 
+#include <glm/matrix.hpp>
 #include <glm/vector_relational.hpp>
 
 #include <utility>
@@ -136,6 +137,17 @@ FrameResult FramePipeline::run(int frame) {
     // Strokes, coherent with the last frame's.
     out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_);
     for (Stroke& stroke : out.strokes.strokes) stroke.geometry.object = object_of(stroke.geometry.edges);
+    if (contours) {
+        const glm::dmat4 object_from_world = glm::inverse(world_from_object);
+        for (Stroke& stroke : out.strokes.strokes) {
+            const StrokeGeometry& g = stroke.geometry;
+            if (g.kind != LineKind::kSilhouette) continue;
+            std::vector<glm::dvec3> points;
+            points.reserve(g.points_world.size());
+            for (const glm::dvec3& p : g.points_world) points.emplace_back(object_from_world * glm::dvec4(p, 1.0));
+            stroke.faces = faces_crossed(mesh, table, points, g.edges);
+        }
+    }
     out.mesh = &mesh;
     out.world_from_object = world_from_object;
     const double strokes_ms = step("strokes");

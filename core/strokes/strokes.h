@@ -43,6 +43,10 @@ struct Stroke {
 
     double deviation_px = 0.0;  // largest distance of the drawn centerline from the exact points
     double removed_px = 0.0;    // largest distance of an exact point from the drawn centerline
+
+    // Smooth contours: the face each segment of geometry crosses (geometry.edges then name the
+    // edge each segment starts on); empty for the other lines.
+    std::vector<uint32_t> faces;
 };
 
 struct StrokeStats {

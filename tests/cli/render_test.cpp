@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <map>
 #include <regex>
 #include <set>
 
@@ -52,6 +53,36 @@ TEST_F(Cli, SampleRoundTripWritesEveryFrame) {
         EXPECT_NE(test::read_text(svg_file).find("viewBox=\"0 0 512 512\""), std::string::npos);
     }
     EXPECT_FALSE(fs::exists(dir / "json" / "frame_0004.json"));
+}
+
+TEST_F(Cli, SmoothContoursDrawTheTorusInFewerStrokesAndNameFacesInTheJson) {
+    // The sample torus (48 x 24 segments) seen from above at an angle, both ways.
+    std::map<std::string, nlohmann::json> docs;
+    for (const std::string contour : {"mesh", "smooth"}) {
+        const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1 -q --contour " +
+                                contour + " -o " + (dir / contour).string());
+        ASSERT_EQ(r.code, 0) << r.output;
+        docs[contour] = nlohmann::json::parse(test::read_text(dir / contour / "json" / "frame_0001.json"));
+    }
+    auto drawn = [](const nlohmann::json& doc) {
+        int n = 0;
+        for (const auto& s : doc["strokes"]) n += s["drawn"].get<bool>();
+        return n;
+    };
+    EXPECT_LT(drawn(docs["smooth"]), drawn(docs["mesh"]));
+    const double mesh_px = docs["mesh"]["stats"]["visible_length_px"]["silhouette"].get<double>();
+    EXPECT_NEAR(docs["smooth"]["stats"]["visible_length_px"]["silhouette"].get<double>(), mesh_px, 0.05 * mesh_px);
+    // A smooth contour's edges are the faces its segments cross.
+    const size_t faces = docs["smooth"]["stats"]["faces"].get<size_t>();
+    for (const auto& s : docs["smooth"]["strokes"]) {
+        ASSERT_EQ(s["edges"].size() + 1, s["points"].size());
+        for (const auto& f : s["edges"]) EXPECT_LT(f.get<size_t>(), faces);
+    }
+    const RunResult bad = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1 -q --contour round -o " +
+                              (dir / "bad").string());
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_EQ(bad.output, "inkline: error: --contour 'round': expected mesh or smooth\n");
+    EXPECT_FALSE(fs::exists(dir / "bad"));
 }
 
 TEST_F(Cli, PngPdfAndMatchingIds) {

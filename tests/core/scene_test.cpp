@@ -36,6 +36,13 @@ TEST(Scene, MinimalSceneGetsDefaults) {
     EXPECT_TRUE(s.lines.silhouette && s.lines.boundary && s.lines.crease && !s.lines.hidden);
     EXPECT_TRUE(s.lines.intersection);
     EXPECT_FALSE(s.lines.self_intersection);
+    EXPECT_EQ(s.lines.contour, core::ContourMode::kMesh);
+}
+
+TEST(Scene, ContourIsMeshOrSmooth) {
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "lines": {"contour": "smooth"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "dir/scene.json");
+    EXPECT_EQ(s.lines.contour, core::ContourMode::kSmooth);
 }
 
 TEST(Scene, AbsolutePathsStayAbsolute) {
@@ -66,6 +73,8 @@ TEST(Scene, ErrorsNameTheFileAndKey) {
         {R"({"mesh": "m.obj", "frames": [10, 1], "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'frames'"},
         {R"({"mesh": "m.obj", "lines": {"silhouette": "yes"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'lines.silhouette'"},
         {R"({"mesh": "m.obj", "lines": {"self_intersection": 1}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'lines.self_intersection'"},
+        {R"({"mesh": "m.obj", "lines": {"contour": "round"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'lines.contour': expected \"mesh\" or \"smooth\""},
+        {R"({"mesh": "m.obj", "lines": {"contour": true}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'lines.contour': expected a string"},
         {R"({"mesh": "m.obj", "objects": {"A": {"lines": {"intersection": "no"}}}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'objects.A.lines.intersection'"},
         {R"({"mesh": "m.obj", "camera": {"frames": [{"frame": 1, "eye": [0,0,4], "target": [0,0,0], "zoom": 2}]}})", "key 'camera.frames[0].zoom'"},
         {R"({"mesh": {"sequence": "f.obj"}, "camera": {"eye": [0,0,4], "target": [0,0,0]}})", "key 'mesh.sequence'"},

@@ -194,5 +194,28 @@ TEST(SmoothContours, FewerStrokesThanMeshEdgesOnACoarseTorus) {
     EXPECT_NEAR(visible_length(smooth.lines), visible_length(mesh.lines), 0.05 * visible_length(mesh.lines));
 }
 
+TEST(SmoothContours, StrokesKnowTheFaceEachSegmentCrosses) {
+    const core::Mesh torus = test::torus(1.0, 0.35, 48, 24);
+    const core::EdgeTable table = core::build_edge_table(torus);
+    const core::FrameResult r = render(torus, {.eye = {0.0, 3.0, 6.0}}, core::VisibilityMode::kExact);
+    // The lines carry the tracer's faces; recovered from their points and edges they agree.
+    size_t segments = 0;
+    for (const core::Polyline& line : r.lines.polylines) {
+        ASSERT_EQ(line.faces.size(), line.edges.size());
+        // Scene and object space are one here (no object transform).
+        EXPECT_EQ(core::faces_crossed(torus, table, line.points_world, line.edges), line.faces);
+        segments += line.faces.size();
+    }
+    EXPECT_GT(segments, 100u);
+    ASSERT_FALSE(r.strokes.strokes.empty());
+    for (const core::Stroke& s : r.strokes.strokes) {
+        ASSERT_EQ(s.faces.size(), s.geometry.edges.size());
+        for (size_t i = 0; i < s.faces.size(); ++i) {
+            const auto faces = table.faces_of(s.geometry.edges[i]);
+            EXPECT_NE(std::find(faces.begin(), faces.end(), s.faces[i]), faces.end()) << "stroke " << s.id << " segment " << i;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace inkline
