@@ -56,7 +56,7 @@ TEST_F(Cli, SampleRoundTripWritesEveryFrame) {
 }
 
 TEST_F(Cli, SmoothContoursDrawTheTorusInFewerStrokesAndNameFacesInTheJson) {
-    // The sample torus (48 x 24 segments) seen from above at an angle, both ways.
+    // The sample torus (9,216 faces) seen from above at an angle, both ways.
     std::map<std::string, nlohmann::json> docs;
     for (const std::string contour : {"mesh", "smooth"}) {
         const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1 -q --contour " +
