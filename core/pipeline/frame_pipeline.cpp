@@ -167,7 +167,7 @@ FrameResult FramePipeline::run(int frame) {
         stats.feature_edges[size_t(LineKind::kSilhouette)] = smooth_->stats().segments;
     }
     stats.silhouette_edges = stats.feature_edges[size_t(LineKind::kSilhouette)];
-    stats.tracker = tracker_mode_name(tracker_mode_);
+    stats.tracker = tracker_mode_name(smooth ? TrackerMode::kBrute : tracker_mode_);  // smooth: no tracker runs
     stats.visibility = visibility_mode_name(occlusion_->mode());
     stats.visibility_reason = options_.visibility_reason;
     stats.gl_context = occlusion_->device();

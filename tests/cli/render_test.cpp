@@ -70,6 +70,7 @@ TEST_F(Cli, SmoothContoursDrawTheTorusInFewerStrokesAndNameFacesInTheJson) {
         return n;
     };
     EXPECT_LT(drawn(docs["smooth"]), drawn(docs["mesh"]));
+    EXPECT_EQ(docs["smooth"]["stats"]["tracker"], "brute") << "smooth contours are traced by brute force";
     const double mesh_px = docs["mesh"]["stats"]["visible_length_px"]["silhouette"].get<double>();
     EXPECT_NEAR(docs["smooth"]["stats"]["visible_length_px"]["silhouette"].get<double>(), mesh_px, 0.05 * mesh_px);
     // A smooth contour's edges are the faces its segments cross.
