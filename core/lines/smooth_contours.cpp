@@ -8,10 +8,16 @@
 
 namespace inkline::core {
 
+namespace {
+
+// The zero of g on the edge (a, b) with values ga and gb of different signs (one may be zero).
+// Called with a the edge's lower-numbered vertex, so that both faces of an edge agree bit for bit.
 glm::dvec3 contour_point_on_edge(const glm::dvec3& a, const glm::dvec3& b, double ga, double gb) {
-    const double t = ga / (ga - gb);  // ga and gb differ in sign (one may be zero): t in [0, 1]
+    const double t = ga / (ga - gb);
     return a + (b - a) * std::clamp(t, 0.0, 1.0);
 }
+
+}  // namespace
 
 std::vector<uint32_t> faces_crossed(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> points_object,
                                     std::span<const uint32_t> edges) {

@@ -55,8 +55,4 @@ class SmoothContourTracer {
 std::vector<uint32_t> faces_crossed(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> points_object,
                                     std::span<const uint32_t> edges);
 
-// The zero of g on the edge (a, b) with values ga and gb of different signs, computed from the
-// edge's lower-numbered vertex so that both faces of an edge agree bit for bit.
-glm::dvec3 contour_point_on_edge(const glm::dvec3& a, const glm::dvec3& b, double ga, double gb);
-
 }  // namespace inkline::core
