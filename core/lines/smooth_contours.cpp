@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "core/lines/smooth_contours.h"
 
+#include "core/error.h"
+#include "core/lines/internal/cone_tree.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <glm/geometric.hpp>
 
@@ -41,32 +44,98 @@ std::vector<uint32_t> faces_crossed(const Mesh& mesh, const EdgeTable& table, st
     return out;
 }
 
-SmoothContourTracer::SmoothContourTracer(const Mesh& mesh, const EdgeTable& table)
-    : face_edges_(face_edges(mesh, table)) {}
+SmoothContourTracer::SmoothContourTracer(const Mesh& mesh, const EdgeTable& table, const SmoothContourOptions& options)
+    : options_(options), face_edges_(face_edges(mesh, table)), face_used_(mesh.triangles.size(), 0) {}
+
+SmoothContourTracer::~SmoothContourTracer() = default;
+SmoothContourTracer::SmoothContourTracer(SmoothContourTracer&&) noexcept = default;
+SmoothContourTracer& SmoothContourTracer::operator=(SmoothContourTracer&&) noexcept = default;
 
 const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const EdgeTable& table,
                                                      const glm::dvec3& eye_object) {
-    const size_t n_vertices = mesh.positions.size(), n_faces = mesh.triangles.size();
+    INKLINE_CHECK_EQ(mesh.triangles.size(), face_edges_.size());
     chains_.clear();
+    contour_faces_.clear();
     stats_ = {};
-
-    // g at every vertex, and its sign.
-    const std::vector<glm::dvec3> normals = vertex_normals(mesh);
-    std::vector<double> g(n_vertices);
-    back_.assign(n_vertices, 0);
-    for (size_t v = 0; v < n_vertices; ++v) {
-        g[v] = glm::dot(normals[v], glm::dvec3(mesh.positions[v]) - eye_object);
-        back_[v] = g[v] > 0.0 ? 1 : 0;
+    if (options_.mode == TrackerMode::kBrute) {
+        test_every_face(mesh, table, eye_object);
+    } else {
+        if (!tree_) {
+            normals_ = vertex_normals(mesh);
+            tree_ = std::make_unique<internal::ConeTree>(mesh, table, std::max<uint32_t>(1, options_.leaf_faces),
+                                                         normals_);
+            g_.assign(mesh.positions.size(), 0.0);
+            back_.assign(mesh.positions.size(), 0);
+            stamp_.assign(mesh.positions.size(), 0);
+        } else if (options_.deforming) {
+            normals_ = vertex_normals(mesh);
+            tree_->refit(mesh, normals_);
+        }
+        if (frame_ == 0xffffffffu) {  // stamps would wrap: forget them all
+            std::fill(stamp_.begin(), stamp_.end(), 0u);
+            frame_ = 0;
+        }
+        ++frame_;
+        mesh_ = &mesh;
+        eye_ = eye_object;
+        if (!tree_->nodes.empty()) search(0);
+        mesh_ = nullptr;
     }
+    stats_.segments = contour_faces_.size();
+    chain(mesh, table);
+    for (const uint32_t f : contour_faces_) face_used_[f] = 0;
+    return chains_;
+}
 
-    // The edges the contour crosses: those of faces whose corners differ.
-    contour_edges_.clear();
-    for (size_t f = 0; f < n_faces; ++f) {
+void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object) {
+    const std::vector<glm::dvec3> normals = vertex_normals(mesh);
+    g_.resize(mesh.positions.size());
+    back_.resize(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        g_[v] = glm::dot(normals[v], glm::dvec3(mesh.positions[v]) - eye_object);
+        back_[v] = g_[v] > 0.0 ? 1 : 0;
+    }
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
         if (!table.face_valid[f]) continue;
         ++stats_.faces_tested;
         const glm::uvec3 t = mesh.triangles[f];
-        if (back_[t.x] == back_[t.y] && back_[t.y] == back_[t.z]) continue;
-        ++stats_.segments;
+        if (back_[t.x] != back_[t.y] || back_[t.y] != back_[t.z]) contour_faces_.push_back(f);
+    }
+}
+
+bool SmoothContourTracer::back(uint32_t vertex) {
+    if (stamp_[vertex] != frame_) {
+        stamp_[vertex] = frame_;
+        // The same expression as test_every_face, on the same normals: the same bits.
+        g_[vertex] = glm::dot(normals_[vertex], glm::dvec3(mesh_->positions[vertex]) - eye_);
+        back_[vertex] = g_[vertex] > 0.0 ? 1 : 0;
+    }
+    return back_[vertex] != 0;
+}
+
+void SmoothContourTracer::search(uint32_t index) {
+    ++stats_.nodes_visited;
+    if (tree_->facing(index, eye_) != internal::ClusterFacing::kUnknown) return;  // all corners alike
+    const internal::ConeNode& node = tree_->nodes[index];
+    if (!node.is_leaf()) {
+        search(index + 1);
+        search(node.second_child);
+        return;
+    }
+    for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
+        const uint32_t f = tree_->faces[k];
+        ++stats_.faces_tested;
+        const glm::uvec3 t = mesh_->triangles[f];
+        const bool b = back(t.x);
+        if (back(t.y) != b || back(t.z) != b) contour_faces_.push_back(f);
+    }
+}
+
+void SmoothContourTracer::chain(const Mesh& mesh, const EdgeTable& table) {
+    // The edges the contour crosses: those of faces whose corners differ.
+    contour_edges_.clear();
+    for (const uint32_t f : contour_faces_) {
+        const glm::uvec3 t = mesh.triangles[f];
         for (int k = 0; k < 3; ++k) {
             if (back_[t[k]] != back_[t[(k + 1) % 3]]) contour_edges_.push_back(face_edges_[f][k]);
         }
@@ -76,7 +145,7 @@ const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const Edg
 
     auto point_on = [&](uint32_t e) {
         const glm::uvec2 v = table.edge_vertices[e];
-        return contour_point_on_edge(glm::dvec3(mesh.positions[v.x]), glm::dvec3(mesh.positions[v.y]), g[v.x], g[v.y]);
+        return contour_point_on_edge(glm::dvec3(mesh.positions[v.x]), glm::dvec3(mesh.positions[v.y]), g_[v.x], g_[v.y]);
     };
     // The other edge the contour crosses in face f, entered through edge e.
     auto exit_of = [&](uint32_t f, uint32_t e) {
@@ -90,7 +159,6 @@ const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const Edg
     // A chain passes through an edge of exactly two faces; it ends on any other.
     auto passes = [&](uint32_t e) { return table.faces_of(e).size() == 2; };
 
-    face_used_.assign(n_faces, 0);
     // From edge e into face f, on until the chain ends or comes back to where it began.
     auto walk = [&](uint32_t e, uint32_t f) {
         Chain chain;
@@ -127,7 +195,6 @@ const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const Edg
         const uint32_t f = table.faces_of(e)[0];
         if (!face_used_[f]) walk(e, f);
     }
-    return chains_;
 }
 
 }  // namespace inkline::core

@@ -9,9 +9,14 @@
 // is zero, and each face with two such edges as one straight segment. Segments through shared
 // edges chain into closed loops, or into open curves that end on an edge of one face (a
 // boundary) or of three and more (non-manifold).
+//
+// Incremental tracing tests only the faces that a hierarchy of cones over the vertex normals
+// cannot prove free of the contour (all corners of a cluster on one side); it gives the same
+// chains as testing every face.
 #pragma once
 
 #include "core/lines/chaining.h"
+#include "core/lines/silhouette_tracker.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/topology.h"
 
@@ -19,32 +24,66 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace inkline::core {
 
+namespace internal {
+class ConeTree;
+}  // namespace internal
+
+struct SmoothContourOptions {
+    // kIncremental: the cone hierarchy, built on the first trace; kBrute: every face, every trace.
+    TrackerMode mode = TrackerMode::kIncremental;
+    // Positions change between traces (same topology): the vertex normals are recomputed and
+    // the hierarchy refitted each trace. Otherwise every trace must pass the first one's positions.
+    bool deforming = false;
+    uint32_t leaf_faces = 16;  // faces per leaf cluster of the hierarchy
+};
+
 struct SmoothContourStats {
-    size_t faces_tested = 0;  // faces whose vertex signs were compared
-    size_t segments = 0;      // faces the contour crosses
+    size_t faces_tested = 0;   // faces whose vertex signs were compared
+    size_t segments = 0;       // faces the contour crosses
+    size_t nodes_visited = 0;  // cone tests (incremental)
 };
 
 // Traces the smooth contours of one frame's mesh seen from eye_object. Chains are silhouettes
 // (core/lines/chaining.h says how their points, edges and faces relate); deterministic: the
-// same mesh and eye give the same chains, points bit for bit.
+// same mesh and eye give the same chains, points bit for bit, in either mode.
 class SmoothContourTracer {
   public:
-    // Built once per topology: the edges of every face.
-    SmoothContourTracer(const Mesh& mesh, const EdgeTable& table);
+    // `table` is the mesh's edge table; the edges of every face are listed here once.
+    SmoothContourTracer(const Mesh& mesh, const EdgeTable& table, const SmoothContourOptions& options = {});
+    ~SmoothContourTracer();
+    SmoothContourTracer(SmoothContourTracer&&) noexcept;
+    SmoothContourTracer& operator=(SmoothContourTracer&&) noexcept;
 
     const std::vector<Chain>& trace(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object);
     const SmoothContourStats& stats() const { return stats_; }
 
   private:
+    void test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object);
+    void search(uint32_t node);        // the faces under a node the cones cannot rule out
+    bool back(uint32_t vertex);        // g > 0, computed once a trace (incremental)
+    void chain(const Mesh& mesh, const EdgeTable& table);
+
+    SmoothContourOptions options_;
     std::vector<glm::uvec3> face_edges_;
-    std::vector<uint8_t> back_;           // per vertex: g > 0
-    std::vector<uint32_t> contour_edges_; // edges the contour crosses, ascending
-    std::vector<uint8_t> face_used_;
+    std::unique_ptr<internal::ConeTree> tree_;  // incremental, from the first trace on
+    std::vector<glm::dvec3> normals_;           // incremental: the vertex normals of the last trace
+    // Per vertex: g and whether g > 0; incremental, valid where stamp_ holds this trace's frame_.
+    std::vector<double> g_;
+    std::vector<uint8_t> back_;
+    std::vector<uint32_t> stamp_;
+    uint32_t frame_ = 0;
+    // Valid during trace (incremental).
+    const Mesh* mesh_ = nullptr;
+    glm::dvec3 eye_{0.0};
+    std::vector<uint32_t> contour_faces_;  // faces whose corners differ
+    std::vector<uint32_t> contour_edges_;  // edges the contour crosses, ascending
+    std::vector<uint8_t> face_used_;       // per face; zero between traces
     std::vector<Chain> chains_;
     SmoothContourStats stats_;
 };

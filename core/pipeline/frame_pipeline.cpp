@@ -77,8 +77,16 @@ FrameResult FramePipeline::run(int frame) {
     const bool smooth = scene_.lines.silhouette && scene_.lines.contour == ContourMode::kSmooth;
     LineOptions edge_lines = scene_.lines;
     if (smooth) edge_lines.silhouette = false;
-    if (tracker_mode_ == TrackerMode::kBrute || smooth) {
+    if (tracker_mode_ == TrackerMode::kBrute) {
         features = extract_feature_edges(mesh, table, projection.eye_object(), edge_lines);
+    } else if (smooth && !meshes_.deforming()) {
+        // Boundaries and creases alone, of a mesh that does not change: found once.
+        if (!still_edges_) {
+            features = extract_feature_edges(mesh, table, projection.eye_object(), edge_lines);
+            still_edges_ = features.edges;
+        } else {
+            features.edges = *still_edges_;
+        }
     } else {
         if (!tracker_) {
             tracker_.emplace(table, mesh, TrackerOptions{.deforming = meshes_.deforming()});
@@ -88,7 +96,9 @@ FrameResult FramePipeline::run(int frame) {
     }
     const std::vector<Chain>* contours = nullptr;
     if (smooth) {
-        if (!smooth_) smooth_.emplace(mesh, table);
+        if (!smooth_) {
+            smooth_.emplace(mesh, table, SmoothContourOptions{.mode = tracker_mode_, .deforming = meshes_.deforming()});
+        }
         contours = &smooth_->trace(mesh, table, projection.eye_object());
     }
     const MeshChange change = first_frame_             ? MeshChange::kTopology
@@ -167,7 +177,7 @@ FrameResult FramePipeline::run(int frame) {
         stats.feature_edges[size_t(LineKind::kSilhouette)] = smooth_->stats().segments;
     }
     stats.silhouette_edges = stats.feature_edges[size_t(LineKind::kSilhouette)];
-    stats.tracker = tracker_mode_name(smooth ? TrackerMode::kBrute : tracker_mode_);  // smooth: no tracker runs
+    stats.tracker = tracker_mode_name(tracker_mode_);
     stats.visibility = visibility_mode_name(occlusion_->mode());
     stats.visibility_reason = options_.visibility_reason;
     stats.gl_context = occlusion_->device();

@@ -92,6 +92,8 @@ class FramePipeline {
     std::optional<SilhouetteTracker> tracker_;
     std::optional<IntersectionTracer> intersections_;  // when intersection lines can be drawn
     std::optional<SmoothContourTracer> smooth_;         // with lines.contour "smooth"
+    // With smooth contours on a mesh that does not change, its boundary and crease edges.
+    std::optional<std::vector<FeatureEdge>> still_edges_;
     StrokeCoherence coherence_;
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;

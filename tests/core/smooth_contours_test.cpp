@@ -16,6 +16,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
 #include <numbers>
 #include <vector>
 
@@ -129,7 +132,128 @@ TEST(SmoothContours, ChainsEndOnBoundaryEdges) {
         EXPECT_NE(std::find(faces.begin(), faces.end(), c.faces[i]), faces.end()) << i;
     }
     EXPECT_EQ(tracer.stats().segments, c.faces.size());
-    EXPECT_EQ(tracer.stats().faces_tested, half.triangles.size());
+    EXPECT_LT(tracer.stats().faces_tested, half.triangles.size()) << "the cones rule out the rest";
+    core::SmoothContourTracer brute(half, table, {.mode = core::TrackerMode::kBrute});
+    brute.trace(half, table, {0.0, 0.0, 4.0});
+    EXPECT_EQ(brute.stats().faces_tested, half.triangles.size());
+}
+
+// Empty when the two tracers' chains are the same bit for bit, else the first difference.
+std::string difference(const std::vector<core::Chain>& brute, const std::vector<core::Chain>& incremental) {
+    if (brute.size() != incremental.size()) {
+        return "brute has " + std::to_string(brute.size()) + " chains, incremental " +
+               std::to_string(incremental.size());
+    }
+    for (size_t i = 0; i < brute.size(); ++i) {
+        const core::Chain &a = brute[i], &b = incremental[i];
+        if (a.points != b.points) return "chain " + std::to_string(i) + ": points differ";
+        if (a.edges != b.edges) return "chain " + std::to_string(i) + ": edges differ";
+        if (a.faces != b.faces) return "chain " + std::to_string(i) + ": faces differ";
+        if (a.closed != b.closed || a.kind != b.kind) return "chain " + std::to_string(i) + ": kind or closure";
+    }
+    return {};
+}
+
+struct Sequence {
+    size_t frames = 0, mismatched = 0;
+    size_t faces_tested = 0, faces = 0;  // frames after the first
+    size_t max_chains = 0;
+};
+
+// Traces frames [0, count) of mesh_at(i) from eye_at(i) with both modes and compares them.
+template <class MeshAt, class EyeAt>
+Sequence against_brute(const core::EdgeTable& table, int count, bool deforming, MeshAt mesh_at, EyeAt eye_at) {
+    core::SmoothContourTracer brute(mesh_at(0), table, {.mode = core::TrackerMode::kBrute});
+    core::SmoothContourTracer incremental(mesh_at(0), table, {.deforming = deforming});
+    Sequence out;
+    for (int i = 0; i < count; ++i) {
+        const core::Mesh& mesh = mesh_at(i);
+        const std::vector<core::Chain> expected = brute.trace(mesh, table, eye_at(i));
+        const std::vector<core::Chain>& got = incremental.trace(mesh, table, eye_at(i));
+        const std::string diff = difference(expected, got);
+        EXPECT_EQ(diff, "") << "frame " << i;
+        EXPECT_EQ(incremental.stats().segments, brute.stats().segments) << "frame " << i;
+        ++out.frames;
+        out.mismatched += diff.empty() ? 0 : 1;
+        out.max_chains = std::max(out.max_chains, got.size());
+        if (i > 0) {
+            out.faces_tested += incremental.stats().faces_tested;
+            out.faces += brute.stats().faces_tested;
+        }
+    }
+    return out;
+}
+
+glm::dvec3 orbit(double degrees, double distance, double lift) {
+    const double a = degrees * kPi / 180.0;
+    return {distance * std::sin(a), lift, distance * std::cos(a)};
+}
+
+TEST(SmoothContours, IncrementalEqualsBruteForceOnEveryFrame) {
+    // A bumpy sphere (many contour loops, some appearing and vanishing) orbited, then a cut to a
+    // close view; a hemisphere seen from outside and inside; a noisy terrain from low angles.
+    struct Case {
+        const char* name;
+        core::Mesh mesh;
+        std::function<glm::dvec3(int)> eye_at;
+        bool smooth = true;  // a surface the cones can bound (not noise)
+    };
+    std::vector<Case> cases;
+    cases.push_back({"bumpy sphere", test::bumpy_sphere(test::icosphere(5), {.count = 60, .height_max = 0.12}),
+                     [](int i) { return i < 40 ? orbit(3.0 * i, 3.5, 0.4) : glm::dvec3(0.3, -1.6, 0.9) + 0.01 * (i - 40); }});
+    cases.push_back({"hemisphere", test::hemisphere(96, 48, 1.0),
+                     [](int i) { return orbit(7.0 * i, 3.0, 2.5 * std::sin(0.37 * i)); }});
+    cases.push_back({"terrain", test::noise_terrain(64, 0.15), [](int i) { return orbit(5.0 * i, 3.0, 0.3); }, false});
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        const core::EdgeTable table = core::build_edge_table(c.mesh);
+        const Sequence s = against_brute(table, 60, false, [&](int) -> const core::Mesh& { return c.mesh; }, c.eye_at);
+        EXPECT_EQ(s.mismatched, 0u);
+        EXPECT_GT(s.max_chains, 0u);
+        if (c.smooth) {
+            EXPECT_LT(s.faces_tested, s.faces / 3) << "the cones rule out most faces";
+        }
+        std::printf("%s: %zu of %zu faces tested\n", c.name, s.faces_tested, s.faces);
+    }
+}
+
+TEST(SmoothContours, IncrementalEqualsBruteForceOnADeformingMesh) {
+    // A torus whose tube swells and twists over time, orbited: new positions and normals each frame.
+    const core::Mesh rest = test::torus(1.0, 0.35, 96, 32);
+    const core::EdgeTable table = core::build_edge_table(rest);
+    std::vector<core::Mesh> frames;
+    for (int i = 0; i < 40; ++i) {
+        core::Mesh m = rest;
+        const double t = 0.25 * i;
+        for (glm::vec3& p : m.positions) {
+            const double u = std::atan2(double(p.z), double(p.x));
+            const double wave = 1.0 + 0.25 * std::sin(3.0 * u + t);
+            const double lift = 0.3 * std::sin(2.0 * u - 0.5 * t);
+            p = glm::vec3(float(p.x * (0.9 + 0.1 * wave)), float(p.y * wave + lift), float(p.z));
+        }
+        frames.push_back(std::move(m));
+    }
+    const Sequence s = against_brute(
+        table, int(frames.size()), true, [&](int i) -> const core::Mesh& { return frames[size_t(i)]; },
+        [](int i) { return orbit(5.0 * i, 4.0, 1.0); });
+    EXPECT_EQ(s.mismatched, 0u);
+    EXPECT_LT(s.faces_tested, s.faces);
+}
+
+TEST(SmoothContours, DegenerateAndNonManifoldFacesMatchBruteForce) {
+    // A folded grid with a zero-area face and a fin: a third face on one of its edges.
+    core::Mesh mesh = test::grid(12, 1.0);
+    for (glm::vec3& p : mesh.positions) p.z = 0.6f * std::abs(p.x) - 0.3f * p.y * p.y;
+    const uint32_t a = mesh.triangles[40].x, b = mesh.triangles[40].y;
+    mesh.positions.push_back(mesh.positions[a] + glm::vec3(0.0f, 0.0f, 0.5f));
+    mesh.triangles.push_back({a, b, uint32_t(mesh.positions.size() - 1)});
+    mesh.triangles.push_back({a, a, b});
+    const core::EdgeTable table = core::build_edge_table(mesh);
+    const Sequence s =
+        against_brute(table, 36, false, [&](int) -> const core::Mesh& { return mesh; },
+                      [](int i) { return orbit(10.0 * i, 3.0, 1.5 * std::cos(0.2 * i)); });
+    EXPECT_EQ(s.mismatched, 0u);
+    EXPECT_GT(s.max_chains, 0u);
 }
 
 // Frame 1 of `mesh` seen from `view` with smooth contours, under a visibility mode.

@@ -74,8 +74,14 @@ class SubtreeSizes {
 
 }  // namespace
 
-ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces) : leaf_faces_(leaf_faces) {
+ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces,
+                   std::span<const glm::dvec3> vertex_normals)
+    : leaf_faces_(leaf_faces), over_vertex_normals_(!vertex_normals.empty()) {
     INKLINE_CHECK(leaf_faces >= 1);
+    if (over_vertex_normals_) {
+        INKLINE_CHECK_EQ(vertex_normals.size(), mesh.positions.size());
+        corners_.resize(mesh.triangles.size());
+    }
     const size_t n_faces = mesh.triangles.size();
     for (uint32_t f = 0; f < n_faces; ++f) {
         if (table.face_valid[f]) faces.push_back(f);
@@ -84,7 +90,7 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
     // The cones are built in face order and then reordered by the splits; each carries its face.
     cones_.resize(faces.size());
     parallel_for(faces.size(), kMinParallelItems, [&](size_t begin, size_t end) {
-        for (size_t k = begin; k < end; ++k) cones_[k] = face_cone(mesh, faces[k]);
+        for (size_t k = begin; k < end; ++k) cones_[k] = cone_of(mesh, vertex_normals, faces[k]);
     });
 
     // Top-down splits near the median, depth first so that a traversal reads the nodes in order. A node
@@ -175,6 +181,7 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
     // A static mesh never needs the cones again (refit recomputes them): released before the
     // edge lists grow. Not "cones_ = {}", which assigns an empty list and keeps the memory.
     cones_ = std::vector<FaceCone>();
+    corners_ = std::vector<CornerBounds>();
 
     // Each interior edge goes to the deepest node holding both its faces (counting sort).
     std::vector<uint32_t> edge_node(table.edge_count(), kNoIndex);
@@ -239,6 +246,44 @@ ConeTree::FaceCone ConeTree::face_cone(const Mesh& mesh, uint32_t face) {
     return fc;
 }
 
+ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, std::span<const glm::dvec3> vertex_normals, uint32_t face) {
+    const glm::uvec3 t = mesh.triangles[face];
+    CornerBounds& bounds = corners_[face];
+    bounds.box_min = glm::dvec3(std::numeric_limits<double>::max());
+    bounds.box_max = glm::dvec3(-std::numeric_limits<double>::max());
+    glm::dvec3 sum(0.0);
+    bool unit = true;
+    for (int c = 0; c < 3; ++c) {
+        const glm::dvec3 p(mesh.positions[t[c]]);
+        bounds.box_min = glm::min(bounds.box_min, p);
+        bounds.box_max = glm::max(bounds.box_max, p);
+        const glm::dvec3& n = vertex_normals[t[c]];
+        unit = unit && std::abs(glm::dot(n, n) - 1.0) < 1e-9;  // a zero normal bounds nothing
+        sum += n;
+    }
+    // The corners' values are dot products of the very normals bounded here: only their own
+    // rounding (and that of corner - eye, which the box padding covers) is left.
+    FaceCone fc{.centroid = 0.5 * (bounds.box_min + bounds.box_max),
+                .normal = glm::dvec3(0.0, 0.0, 1.0),
+                .error = 8.0 * kEpsilon,
+                .face = face};
+    bounds.spread = 2.0;
+    const double len = glm::length(sum);
+    if (!unit || !(len > 1e-6)) return fc;
+    fc.normal = sum / len;
+    double spread2 = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        const glm::dvec3 d = vertex_normals[t[c]] - fc.normal;
+        spread2 = std::max(spread2, glm::dot(d, d));
+    }
+    bounds.spread = std::sqrt(spread2);
+    return fc;
+}
+
+ConeTree::FaceCone ConeTree::cone_of(const Mesh& mesh, std::span<const glm::dvec3> vertex_normals, uint32_t face) {
+    return over_vertex_normals_ ? corner_cone(mesh, vertex_normals, face) : face_cone(mesh, face);
+}
+
 void ConeTree::fit_node(ConeNode& node) const {
     glm::dvec3 sum(0.0);
     node.box_min = glm::dvec3(std::numeric_limits<double>::max());
@@ -247,8 +292,13 @@ void ConeTree::fit_node(ConeNode& node) const {
     for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
         const FaceCone& fc = cones_[k];
         sum += fc.normal;
-        node.box_min = glm::min(node.box_min, fc.centroid);
-        node.box_max = glm::max(node.box_max, fc.centroid);
+        if (over_vertex_normals_) {
+            node.box_min = glm::min(node.box_min, corners_[fc.face].box_min);
+            node.box_max = glm::max(node.box_max, corners_[fc.face].box_max);
+        } else {
+            node.box_min = glm::min(node.box_min, fc.centroid);
+            node.box_max = glm::max(node.box_max, fc.centroid);
+        }
         node.error = std::max(node.error, fc.error);
     }
     const double len = glm::length(sum);
@@ -258,6 +308,16 @@ void ConeTree::fit_node(ConeNode& node) const {
         return;
     }
     node.axis = sum / len;
+    if (over_vertex_normals_) {
+        // Every corner normal lies within its face's spread of the face's normal.
+        double spread = 0.0;
+        for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
+            const glm::dvec3 d = cones_[k].normal - node.axis;
+            spread = std::max(spread, std::sqrt(glm::dot(d, d)) + corners_[cones_[k].face].spread);
+        }
+        set_spread(node, spread);
+        return;
+    }
     double spread2 = 0.0;
     for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
         const glm::dvec3 d = cones_[k].normal - node.axis;
@@ -268,13 +328,15 @@ void ConeTree::fit_node(ConeNode& node) const {
 
 void ConeTree::set_spread(ConeNode& node, double spread) { node.spread = std::min(2.0, spread); }
 
-void ConeTree::refit(const Mesh& mesh) {
+void ConeTree::refit(const Mesh& mesh, std::span<const glm::dvec3> vertex_normals) {
+    INKLINE_CHECK_EQ(over_vertex_normals_, !vertex_normals.empty());
     cones_.resize(faces.size());
+    if (over_vertex_normals_) corners_.resize(mesh.triangles.size());
     for (size_t i = nodes.size(); i-- > 0;) {
         ConeNode& node = nodes[i];
         if (node.is_leaf()) {
             // Each face belongs to one leaf: fit it while its cones are in cache.
-            for (uint32_t k = node.face_begin; k < node.face_end; ++k) cones_[k] = face_cone(mesh, faces[k]);
+            for (uint32_t k = node.face_begin; k < node.face_end; ++k) cones_[k] = cone_of(mesh, vertex_normals, faces[k]);
             fit_node(node);
             continue;
         }
