@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <span>
 
 namespace inkline::core {
 namespace {
@@ -17,12 +19,44 @@ enum class State : uint8_t { kVisible, kOccluded, kOutside };
 // happens when a bracket end lies behind the camera.
 constexpr int kMaxBisections = 48;
 
+// The faces that cannot hide a smooth contour's segment (the face it crosses and those around its
+// corners, ascending), listed when a query first asks: on a fine mesh most segments get none.
+// Each list keeps its own buffer as more are added, so a query's span of it stays valid.
+class OwnFaceLists {
+  public:
+    OwnFaceLists(const Mesh& mesh, const EdgeTable* table, const std::vector<Chain>& chains)
+        : mesh_(mesh), table_(table), slots_(chains.size()) {
+        for (size_t c = 0; c < chains.size(); ++c) {
+            if (chains[c].faces.empty()) continue;
+            INKLINE_CHECK(table_ != nullptr);  // a smooth contour needs its mesh's edge table
+            slots_[c].assign(chains[c].faces.size(), kNoIndex);
+        }
+    }
+    // Empty for a chain that is not a smooth contour.
+    std::span<const uint32_t> at(const Chain& chain, size_t c, size_t segment) {
+        if (slots_[c].empty()) return {};
+        uint32_t& slot = slots_[c][segment];
+        if (slot == kNoIndex) {
+            slot = uint32_t(lists_.size());
+            lists_.emplace_back();
+            faces_around_corners(mesh_, *table_, chain.faces[segment], lists_.back());
+        }
+        return lists_[slot];
+    }
+
+  private:
+    const Mesh& mesh_;
+    const EdgeTable* table_;
+    std::vector<std::vector<uint32_t>> slots_;  // per chain, per segment: index in lists_ or kNoIndex
+    std::vector<std::vector<uint32_t>> lists_;
+};
+
 // Chain parameter: g in [0, segments]; floor(g) is the segment, the fraction the position on it.
 class ChainGeometry {
   public:
-    // own_faces: a smooth contour's own faces per segment (ascending), else empty.
-    ChainGeometry(const Chain& chain, const Mesh& mesh, const std::vector<std::vector<uint32_t>>& own_faces)
-        : chain_(chain), mesh_(mesh), own_faces_(own_faces) {}
+    // own: where chain number `index`'s segments find their own faces.
+    ChainGeometry(const Chain& chain, const Mesh& mesh, OwnFaceLists& own, size_t index)
+        : chain_(chain), mesh_(mesh), own_(own), index_(index) {}
 
     size_t segments() const { return chain_.edges.size(); }
     size_t segment_of(double g) const {
@@ -39,7 +73,7 @@ class ChainGeometry {
     OcclusionQuery query_at(double g, const glm::dvec3& p) const {
         const size_t s = segment_of(g);
         return {p, chain_.edges[s], chain_.crossing_faces.empty() ? kNoCrossingFace : chain_.crossing_faces[s],
-                own_faces_.empty() ? std::span<const uint32_t>() : std::span<const uint32_t>(own_faces_[s])};
+                own_.at(chain_, index_, s)};
     }
     uint32_t face_at(double g) const { return chain_.faces[segment_of(g)]; }
     bool smooth() const { return !chain_.faces.empty(); }
@@ -53,7 +87,8 @@ class ChainGeometry {
 
     const Chain& chain_;
     const Mesh& mesh_;
-    const std::vector<std::vector<uint32_t>>& own_faces_;
+    OwnFaceLists& own_;
+    size_t index_;
 };
 
 class Splitter {
@@ -64,22 +99,14 @@ class Splitter {
 
     std::vector<Polyline> run(const std::vector<Chain>& chains) {
         // A smooth contour point is not occluded by the face it crosses or the faces around it.
-        own_faces_.assign(chains.size(), {});
-        for (size_t c = 0; c < chains.size(); ++c) {
-            if (chains[c].faces.empty()) continue;
-            INKLINE_CHECK(table_ != nullptr);  // a smooth contour needs its mesh's edge table
-            own_faces_[c].resize(chains[c].faces.size());
-            for (size_t s = 0; s < chains[c].faces.size(); ++s) {
-                faces_around_corners(mesh_, *table_, chains[c].faces[s], own_faces_[c][s]);
-            }
-        }
+        own_faces_.emplace(mesh_, table_, chains);
         // Coarse samples of every chain, tested in one batch.
         std::vector<std::vector<double>> params(chains.size());
         std::vector<std::vector<State>> states(chains.size());
         std::vector<OcclusionQuery> queries;
         std::vector<std::pair<size_t, size_t>> query_owner;  // (chain, sample)
         for (size_t c = 0; c < chains.size(); ++c) {
-            const ChainGeometry geom(chains[c], mesh_, own_faces_[c]);
+            const ChainGeometry geom(chains[c], mesh_, *own_faces_, c);
             params[c] = sample_params(geom);
             states[c].resize(params[c].size());
             for (size_t i = 0; i < params[c].size(); ++i) {
@@ -102,7 +129,7 @@ class Splitter {
 
         const std::vector<std::vector<double>> cuts = locate_changes(chains, params, states);
         std::vector<Polyline> out;
-        for (size_t c = 0; c < chains.size(); ++c) emit_chain(chains[c], params[c], states[c], cuts[c], out);
+        for (size_t c = 0; c < chains.size(); ++c) emit_chain(chains[c], c, params[c], states[c], cuts[c], out);
         for (size_t i = 0; i < out.size(); ++i) out[i].id = uint32_t(i);
         return out;
     }
@@ -119,7 +146,7 @@ class Splitter {
     // depend on its own answers only, exactly as when bisected one change at a time.
     std::vector<std::vector<double>> locate_changes(const std::vector<Chain>& chains,
                                                     const std::vector<std::vector<double>>& params,
-                                                    const std::vector<std::vector<State>>& states) const {
+                                                    const std::vector<std::vector<State>>& states) {
         struct Bracket {
             size_t chain;
             double g0, g1;  // the change lies between; g0 has state s0
@@ -147,7 +174,7 @@ class Splitter {
             queries.clear();
             for (size_t k : active) {
                 Bracket& b = brackets[k];
-                const ChainGeometry geom(chains[b.chain], mesh_, own_faces_[b.chain]);
+                const ChainGeometry geom(chains[b.chain], mesh_, *own_faces_, b.chain);
                 if (b.halvings >= kMaxBisections || !(pixel_distance(geom, b.g0, b.g1) > options_.bisection_px)) continue;
                 still_active.push_back(k);
                 const double mid = 0.5 * (b.g0 + b.g1);
@@ -209,9 +236,9 @@ class Splitter {
         State state;
     };
 
-    void emit_chain(const Chain& chain, const std::vector<double>& g, const std::vector<State>& s,
-                    const std::vector<double>& cuts, std::vector<Polyline>& out) const {
-        const ChainGeometry geom(chain, mesh_, {});
+    void emit_chain(const Chain& chain, size_t index, const std::vector<double>& g, const std::vector<State>& s,
+                    const std::vector<double>& cuts, std::vector<Polyline>& out) {
+        const ChainGeometry geom(chain, mesh_, *own_faces_, index);
         const double g_end = double(geom.segments());
         std::vector<Run> runs;
         double begin = 0.0;
@@ -313,7 +340,7 @@ class Splitter {
     const Projection& projection_;
     const Occlusion& occlusion_;
     const VisibilityOptions& options_;
-    std::vector<std::vector<std::vector<uint32_t>>> own_faces_;  // per chain, per segment
+    std::optional<OwnFaceLists> own_faces_;  // during run
 };
 
 }  // namespace
