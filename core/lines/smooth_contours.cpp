@@ -64,15 +64,13 @@ const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const Edg
             normals_ = vertex_normals(mesh);
             tree_ = std::make_unique<internal::ConeTree>(mesh, table, std::max<uint32_t>(1, options_.leaf_faces),
                                                          normals_);
-            g_.assign(mesh.positions.size(), 0.0);
-            back_.assign(mesh.positions.size(), 0);
-            stamp_.assign(mesh.positions.size(), 0);
+            values_.assign(mesh.positions.size(), {});
         } else if (options_.deforming) {
             normals_ = vertex_normals(mesh);
             tree_->refit(mesh, normals_);
         }
         if (frame_ == 0xffffffffu) {  // stamps would wrap: forget them all
-            std::fill(stamp_.begin(), stamp_.end(), 0u);
+            for (VertexValue& value : values_) value.stamp = 0;
             frame_ = 0;
         }
         ++frame_;
@@ -89,28 +87,27 @@ const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const Edg
 
 void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object) {
     const std::vector<glm::dvec3> normals = vertex_normals(mesh);
-    g_.resize(mesh.positions.size());
-    back_.resize(mesh.positions.size());
+    values_.resize(mesh.positions.size());
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
-        g_[v] = glm::dot(normals[v], glm::dvec3(mesh.positions[v]) - eye_object);
-        back_[v] = g_[v] > 0.0 ? 1 : 0;
+        values_[v].g = glm::dot(normals[v], glm::dvec3(mesh.positions[v]) - eye_object);
     }
     for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
         if (!table.face_valid[f]) continue;
         ++stats_.faces_tested;
         const glm::uvec3 t = mesh.triangles[f];
-        if (back_[t.x] != back_[t.y] || back_[t.y] != back_[t.z]) contour_faces_.push_back(f);
+        const bool b = values_[t.x].back();
+        if (values_[t.y].back() != b || values_[t.z].back() != b) contour_faces_.push_back(f);
     }
 }
 
 bool SmoothContourTracer::back(uint32_t vertex) {
-    if (stamp_[vertex] != frame_) {
-        stamp_[vertex] = frame_;
+    VertexValue& value = values_[vertex];
+    if (value.stamp != frame_) {
+        value.stamp = frame_;
         // The same expression as test_every_face, on the same normals: the same bits.
-        g_[vertex] = glm::dot(normals_[vertex], glm::dvec3(mesh_->positions[vertex]) - eye_);
-        back_[vertex] = g_[vertex] > 0.0 ? 1 : 0;
+        value.g = glm::dot(normals_[vertex], glm::dvec3(mesh_->positions[vertex]) - eye_);
     }
-    return back_[vertex] != 0;
+    return value.back();
 }
 
 void SmoothContourTracer::search(uint32_t index) {
@@ -137,7 +134,7 @@ void SmoothContourTracer::chain(const Mesh& mesh, const EdgeTable& table) {
     for (const uint32_t f : contour_faces_) {
         const glm::uvec3 t = mesh.triangles[f];
         for (int k = 0; k < 3; ++k) {
-            if (back_[t[k]] != back_[t[(k + 1) % 3]]) contour_edges_.push_back(face_edges_[f][k]);
+            if (values_[t[k]].back() != values_[t[(k + 1) % 3]].back()) contour_edges_.push_back(face_edges_[f][k]);
         }
     }
     std::sort(contour_edges_.begin(), contour_edges_.end());
@@ -145,14 +142,14 @@ void SmoothContourTracer::chain(const Mesh& mesh, const EdgeTable& table) {
 
     auto point_on = [&](uint32_t e) {
         const glm::uvec2 v = table.edge_vertices[e];
-        return contour_point_on_edge(glm::dvec3(mesh.positions[v.x]), glm::dvec3(mesh.positions[v.y]), g_[v.x], g_[v.y]);
+        return contour_point_on_edge(glm::dvec3(mesh.positions[v.x]), glm::dvec3(mesh.positions[v.y]), values_[v.x].g, values_[v.y].g);
     };
     // The other edge the contour crosses in face f, entered through edge e.
     auto exit_of = [&](uint32_t f, uint32_t e) {
         const glm::uvec3 t = mesh.triangles[f];
         for (int k = 0; k < 3; ++k) {
             const uint32_t edge = face_edges_[f][k];
-            if (edge != e && back_[t[k]] != back_[t[(k + 1) % 3]]) return edge;
+            if (edge != e && values_[t[k]].back() != values_[t[(k + 1) % 3]].back()) return edge;
         }
         return e;  // not reached: a face the contour enters has a second crossed edge
     };

@@ -73,10 +73,14 @@ class SmoothContourTracer {
     std::vector<glm::uvec3> face_edges_;
     std::unique_ptr<internal::ConeTree> tree_;  // incremental, from the first trace on
     std::vector<glm::dvec3> normals_;           // incremental: the vertex normals of the last trace
-    // Per vertex: g and whether g > 0; incremental, valid where stamp_ holds this trace's frame_.
-    std::vector<double> g_;
-    std::vector<uint8_t> back_;
-    std::vector<uint32_t> stamp_;
+    // Per vertex: g, read once per trace where it is tested (incremental: valid where stamp holds
+    // this trace's frame_). One record, so that a vertex costs one cache line.
+    struct VertexValue {
+        double g = 0.0;
+        uint32_t stamp = 0;
+        bool back() const { return g > 0.0; }
+    };
+    std::vector<VertexValue> values_;
     uint32_t frame_ = 0;
     // Valid during trace (incremental).
     const Mesh* mesh_ = nullptr;
