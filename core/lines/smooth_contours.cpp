@@ -2,10 +2,13 @@
 #include "core/lines/smooth_contours.h"
 
 #include "core/error.h"
+#include "core/internal/union_find.h"
+#include "core/lines/features.h"
 #include "core/lines/internal/cone_tree.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <algorithm>
 
@@ -51,6 +54,56 @@ SmoothContourTracer::~SmoothContourTracer() = default;
 SmoothContourTracer::SmoothContourTracer(SmoothContourTracer&&) noexcept = default;
 SmoothContourTracer& SmoothContourTracer::operator=(SmoothContourTracer&&) noexcept = default;
 
+void SmoothContourTracer::smooth_pieces(const Mesh& mesh, const EdgeTable& table) {
+    const size_t n_faces = mesh.triangles.size();
+    const double cos_crease = std::cos(glm::radians(options_.crease_angle_deg));
+    // Corner 3f + c joins the corners of the same vertex in each face across a smooth edge.
+    internal::UnionFind<uint32_t> corners(3 * n_faces);
+    joined_.assign(n_faces, 0);
+    for (uint32_t f = 0; f < n_faces; ++f) {
+        if (!table.face_valid[f]) continue;
+        const glm::uvec3 t = mesh.triangles[f];
+        for (uint32_t k = 0; k < 3; ++k) {
+            const std::span<const uint32_t> faces = table.faces_of(face_edges_[f][k]);
+            if (faces.size() != 2) continue;
+            const uint32_t other = faces[0] == f ? faces[1] : faces[0];
+            if (is_crease(mesh, f, other, cos_crease)) continue;
+            joined_[f] |= uint8_t(1u << k);
+            if (other < f) continue;  // joined from the lower face
+            const glm::uvec3 o = mesh.triangles[other];
+            for (const uint32_t c : {k, (k + 1) % 3}) {
+                for (uint32_t d = 0; d < 3; ++d) {
+                    if (o[d] == t[c]) corners.unite(3 * f + c, 3 * other + d);
+                }
+            }
+        }
+    }
+    // Groups numbered in order of their first corner; each group's normal sums its faces' normals
+    // (area weighted) in face order.
+    face_groups_.resize(n_faces);
+    group_vertex_.clear();
+    std::vector<uint32_t> group_of_root(3 * n_faces, kNoIndex);
+    normals_.clear();
+    for (uint32_t f = 0; f < n_faces; ++f) {
+        const glm::uvec3 t = mesh.triangles[f];
+        const glm::dvec3 n = table.face_valid[f] ? face_normal(mesh.positions, t) : glm::dvec3(0.0);
+        for (uint32_t c = 0; c < 3; ++c) {
+            uint32_t& group = group_of_root[corners.find(3 * f + c)];
+            if (group == kNoIndex) {
+                group = uint32_t(group_vertex_.size());
+                group_vertex_.push_back(t[c]);
+                normals_.emplace_back(0.0);
+            }
+            face_groups_[f][c] = group;
+            normals_[group] += n;
+        }
+    }
+    for (glm::dvec3& n : normals_) {
+        const double len = glm::length(n);
+        n = len > 0.0 ? n / len : glm::dvec3(0.0);
+    }
+}
+
 const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const EdgeTable& table,
                                                      const glm::dvec3& eye_object) {
     INKLINE_CHECK_EQ(mesh.triangles.size(), face_edges_.size());
@@ -61,13 +114,14 @@ const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const Edg
         test_every_face(mesh, table, eye_object);
     } else {
         if (!tree_) {
-            normals_ = vertex_normals(mesh);
+            smooth_pieces(mesh, table);
             tree_ = std::make_unique<internal::ConeTree>(mesh, table, std::max<uint32_t>(1, options_.leaf_faces),
-                                                         normals_);
-            values_.assign(mesh.positions.size(), {});
+                                                         normals_, face_groups_);
+            values_.assign(normals_.size(), {});
         } else if (options_.deforming) {
-            normals_ = vertex_normals(mesh);
-            tree_->refit(mesh, normals_);
+            smooth_pieces(mesh, table);
+            tree_->refit(mesh, normals_, face_groups_);
+            values_.resize(normals_.size());
         }
         if (frame_ == 0xffffffffu) {  // stamps would wrap: forget them all
             for (VertexValue& value : values_) value.stamp = 0;
@@ -86,26 +140,26 @@ const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const Edg
 }
 
 void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object) {
-    const std::vector<glm::dvec3> normals = vertex_normals(mesh);
-    values_.resize(mesh.positions.size());
-    for (size_t v = 0; v < mesh.positions.size(); ++v) {
-        values_[v].g = glm::dot(normals[v], glm::dvec3(mesh.positions[v]) - eye_object);
+    smooth_pieces(mesh, table);
+    values_.resize(normals_.size());
+    for (size_t group = 0; group < normals_.size(); ++group) {
+        values_[group].g = glm::dot(normals_[group], glm::dvec3(mesh.positions[group_vertex_[group]]) - eye_object);
     }
     for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
         if (!table.face_valid[f]) continue;
         ++stats_.faces_tested;
-        const glm::uvec3 t = mesh.triangles[f];
+        const glm::uvec3 t = face_groups_[f];
         const bool b = values_[t.x].back();
         if (values_[t.y].back() != b || values_[t.z].back() != b) contour_faces_.push_back(f);
     }
 }
 
-bool SmoothContourTracer::back(uint32_t vertex) {
-    VertexValue& value = values_[vertex];
+bool SmoothContourTracer::back(uint32_t group) {
+    VertexValue& value = values_[group];
     if (value.stamp != frame_) {
         value.stamp = frame_;
         // The same expression as test_every_face, on the same normals: the same bits.
-        value.g = glm::dot(normals_[vertex], glm::dvec3(mesh_->positions[vertex]) - eye_);
+        value.g = glm::dot(normals_[group], glm::dvec3(mesh_->positions[group_vertex_[group]]) - eye_);
     }
     return value.back();
 }
@@ -122,75 +176,80 @@ void SmoothContourTracer::search(uint32_t index) {
     for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
         const uint32_t f = tree_->faces[k];
         ++stats_.faces_tested;
-        const glm::uvec3 t = mesh_->triangles[f];
-        const bool b = back(t.x);
-        if (back(t.y) != b || back(t.z) != b) contour_faces_.push_back(f);
+        const glm::uvec3 t = face_groups_[f];
+        // All three evaluated: chain() reads the values of every corner of a contour face.
+        const bool x = back(t.x), y = back(t.y), z = back(t.z);
+        if (x != y || y != z) contour_faces_.push_back(f);
     }
 }
 
 void SmoothContourTracer::chain(const Mesh& mesh, const EdgeTable& table) {
-    // The edges the contour crosses: those of faces whose corners differ.
-    contour_edges_.clear();
+    // Where the contour crosses the faces' edges: between corners of different signs.
+    auto crossed = [&](uint32_t f, uint32_t k) {
+        const glm::uvec3 t = face_groups_[f];
+        return values_[t[k]].back() != values_[t[(k + 1) % 3]].back();
+    };
+    crossings_.clear();
     for (const uint32_t f : contour_faces_) {
-        const glm::uvec3 t = mesh.triangles[f];
-        for (int k = 0; k < 3; ++k) {
-            if (values_[t[k]].back() != values_[t[(k + 1) % 3]].back()) contour_edges_.push_back(face_edges_[f][k]);
+        for (uint32_t k = 0; k < 3; ++k) {
+            if (crossed(f, k)) crossings_.push_back({face_edges_[f][k], f, k});
         }
     }
-    std::sort(contour_edges_.begin(), contour_edges_.end());
-    contour_edges_.erase(std::unique(contour_edges_.begin(), contour_edges_.end()), contour_edges_.end());
+    std::sort(crossings_.begin(), crossings_.end(), [](const Crossing& a, const Crossing& b) {
+        return a.edge != b.edge ? a.edge < b.edge : a.face < b.face;
+    });
 
-    auto point_on = [&](uint32_t e) {
-        const glm::uvec2 v = table.edge_vertices[e];
-        return contour_point_on_edge(glm::dvec3(mesh.positions[v.x]), glm::dvec3(mesh.positions[v.y]), values_[v.x].g, values_[v.y].g);
+    // The contour's point on side k of face f, computed from the edge's lower-numbered vertex so
+    // that two faces of the same groups agree bit for bit.
+    auto point_on = [&](uint32_t f, uint32_t k) {
+        uint32_t a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
+        uint32_t ga = face_groups_[f][k], gb = face_groups_[f][(k + 1) % 3];
+        if (a > b) std::swap(a, b), std::swap(ga, gb);
+        return contour_point_on_edge(glm::dvec3(mesh.positions[a]), glm::dvec3(mesh.positions[b]), values_[ga].g,
+                                     values_[gb].g);
     };
-    // The other edge the contour crosses in face f, entered through edge e.
-    auto exit_of = [&](uint32_t f, uint32_t e) {
-        const glm::uvec3 t = mesh.triangles[f];
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t edge = face_edges_[f][k];
-            if (edge != e && values_[t[k]].back() != values_[t[(k + 1) % 3]].back()) return edge;
+    // The other side the contour crosses in face f, entered through side k.
+    auto exit_of = [&](uint32_t f, uint32_t k) {
+        for (uint32_t j = 1; j < 3; ++j) {
+            if (crossed(f, (k + j) % 3)) return (k + j) % 3;
         }
-        return e;  // not reached: a face the contour enters has a second crossed edge
+        return k;  // not reached: a face the contour enters has a second crossed side
     };
-    // A chain passes through an edge of exactly two faces; it ends on any other.
-    auto passes = [&](uint32_t e) { return table.faces_of(e).size() == 2; };
 
-    // From edge e into face f, on until the chain ends or comes back to where it began.
-    auto walk = [&](uint32_t e, uint32_t f) {
+    // From side k into face f, on until the chain ends or comes back to where it began. A chain
+    // passes through an edge of two faces of the same groups; it ends on any other.
+    auto walk = [&](uint32_t f, uint32_t k) {
         Chain chain;
         chain.kind = LineKind::kSilhouette;
-        const uint32_t first = e;
-        chain.points.push_back(point_on(e));
+        const uint32_t first = face_edges_[f][k];
+        chain.points.push_back(point_on(f, k));
         for (;;) {
             face_used_[f] = 1;
-            chain.edges.push_back(e);
+            chain.edges.push_back(face_edges_[f][k]);
             chain.faces.push_back(f);
-            e = exit_of(f, e);
-            chain.points.push_back(point_on(e));
+            k = exit_of(f, k);
+            const uint32_t e = face_edges_[f][k];
+            chain.points.push_back(point_on(f, k));
             if (e == first) {
                 chain.closed = true;
                 break;
             }
-            if (!passes(e)) break;
+            if (!(joined_[f] >> k & 1u)) break;
             const std::span<const uint32_t> faces = table.faces_of(e);
             const uint32_t next = faces[0] == f ? faces[1] : faces[0];
             if (face_used_[next]) break;
             f = next;
+            k = 0;
+            while (face_edges_[f][k] != e) ++k;
         }
         chains_.push_back(std::move(chain));
     };
     // Open chains from their ends first, then the loops that are left.
-    for (const uint32_t e : contour_edges_) {
-        if (passes(e)) continue;
-        for (const uint32_t f : table.faces_of(e)) {
-            if (!face_used_[f]) walk(e, f);
-        }
+    for (const Crossing& c : crossings_) {
+        if (!(joined_[c.face] >> c.side & 1u) && !face_used_[c.face]) walk(c.face, c.side);
     }
-    for (const uint32_t e : contour_edges_) {
-        if (!passes(e)) continue;
-        const uint32_t f = table.faces_of(e)[0];
-        if (!face_used_[f]) walk(e, f);
+    for (const Crossing& c : crossings_) {
+        if (!face_used_[c.face]) walk(c.face, c.side);
     }
 }
 

@@ -10,7 +10,11 @@
 // edges chain into closed loops, or into open curves that end on an edge of one face (a
 // boundary) or of three and more (non-manifold).
 //
-// Incremental tracing tests only the faces that a hierarchy of cones over the vertex normals
+// Creases split the surface into smooth pieces: a vertex on a crease has a normal per piece (its
+// corners whose faces join without crossing a crease edge), and the contour of each piece ends
+// on the crease edges around it.
+//
+// Incremental tracing tests only the faces that a hierarchy of cones over the corner normals
 // cannot prove free of the contour (all corners of a cluster on one side); it gives the same
 // chains as testing every face.
 #pragma once
@@ -41,6 +45,8 @@ struct SmoothContourOptions {
     // the hierarchy refitted each trace. Otherwise every trace must pass the first one's positions.
     bool deforming = false;
     uint32_t leaf_faces = 16;  // faces per leaf cluster of the hierarchy
+    // Edges whose faces meet at a sharper angle than this (is_crease) split the vertex normals.
+    double crease_angle_deg = 180.0;
 };
 
 struct SmoothContourStats {
@@ -64,17 +70,24 @@ class SmoothContourTracer {
     const SmoothContourStats& stats() const { return stats_; }
 
   private:
+    // The corner groups and their normals for the mesh's positions.
+    void smooth_pieces(const Mesh& mesh, const EdgeTable& table);
     void test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object);
     void search(uint32_t node);        // the faces under a node the cones cannot rule out
-    bool back(uint32_t vertex);        // g > 0, computed once a trace (incremental)
+    bool back(uint32_t group);         // g > 0, computed once a trace (incremental)
     void chain(const Mesh& mesh, const EdgeTable& table);
 
     SmoothContourOptions options_;
     std::vector<glm::uvec3> face_edges_;
+    // A vertex's corners whose faces join across edges of two faces that are no crease form a
+    // group, which has one normal. Per face, the group of each corner; per group, its vertex.
+    std::vector<glm::uvec3> face_groups_;
+    std::vector<uint32_t> group_vertex_;
+    std::vector<uint8_t> joined_;       // per face: bit k when edge k leads to a face of its groups
+    std::vector<glm::dvec3> normals_;   // per group (incremental: of the last trace)
     std::unique_ptr<internal::ConeTree> tree_;  // incremental, from the first trace on
-    std::vector<glm::dvec3> normals_;           // incremental: the vertex normals of the last trace
-    // Per vertex: g, read once per trace where it is tested (incremental: valid where stamp holds
-    // this trace's frame_). One record, so that a vertex costs one cache line.
+    // Per group: g, read once per trace where it is tested (incremental: valid where stamp holds
+    // this trace's frame_). One record, so that a group costs one cache line.
     struct VertexValue {
         double g = 0.0;
         uint32_t stamp = 0;
@@ -86,7 +99,10 @@ class SmoothContourTracer {
     const Mesh* mesh_ = nullptr;
     glm::dvec3 eye_{0.0};
     std::vector<uint32_t> contour_faces_;  // faces whose corners differ
-    std::vector<uint32_t> contour_edges_;  // edges the contour crosses, ascending
+    struct Crossing {
+        uint32_t edge, face, side;  // the contour crosses the face's edge `side` (face_edges_ order)
+    };
+    std::vector<Crossing> crossings_;      // by edge, then face
     std::vector<uint8_t> face_used_;       // per face; zero between traces
     std::vector<Chain> chains_;
     SmoothContourStats stats_;

@@ -97,7 +97,10 @@ FrameResult FramePipeline::run(int frame) {
     const std::vector<Chain>* contours = nullptr;
     if (smooth) {
         if (!smooth_) {
-            smooth_.emplace(mesh, table, SmoothContourOptions{.mode = tracker_mode_, .deforming = meshes_.deforming()});
+            smooth_.emplace(mesh, table,
+                            SmoothContourOptions{.mode = tracker_mode_,
+                                                 .deforming = meshes_.deforming(),
+                                                 .crease_angle_deg = scene_.lines.crease_angle_deg});
         }
         contours = &smooth_->trace(mesh, table, projection.eye_object());
     }

@@ -162,9 +162,12 @@ struct Sequence {
 
 // Traces frames [0, count) of mesh_at(i) from eye_at(i) with both modes and compares them.
 template <class MeshAt, class EyeAt>
-Sequence against_brute(const core::EdgeTable& table, int count, bool deforming, MeshAt mesh_at, EyeAt eye_at) {
-    core::SmoothContourTracer brute(mesh_at(0), table, {.mode = core::TrackerMode::kBrute});
-    core::SmoothContourTracer incremental(mesh_at(0), table, {.deforming = deforming});
+Sequence against_brute(const core::EdgeTable& table, int count, bool deforming, MeshAt mesh_at, EyeAt eye_at,
+                       double crease_angle_deg = 180.0) {
+    core::SmoothContourTracer brute(mesh_at(0), table,
+                                    {.mode = core::TrackerMode::kBrute, .crease_angle_deg = crease_angle_deg});
+    core::SmoothContourTracer incremental(mesh_at(0), table,
+                                          {.deforming = deforming, .crease_angle_deg = crease_angle_deg});
     Sequence out;
     for (int i = 0; i < count; ++i) {
         const core::Mesh& mesh = mesh_at(i);
@@ -209,6 +212,10 @@ TEST(SmoothContours, IncrementalEqualsBruteForceOnEveryFrame) {
         const core::EdgeTable table = core::build_edge_table(c.mesh);
         const Sequence s = against_brute(table, 60, false, [&](int) -> const core::Mesh& { return c.mesh; }, c.eye_at);
         EXPECT_EQ(s.mismatched, 0u);
+        // With creases splitting the normals (the terrain has many).
+        EXPECT_EQ(against_brute(table, 20, false, [&](int) -> const core::Mesh& { return c.mesh; }, c.eye_at, 30.0)
+                      .mismatched,
+                  0u);
         EXPECT_GT(s.max_chains, 0u);
         if (c.smooth) {
             EXPECT_LT(s.faces_tested, s.faces / 3) << "the cones rule out most faces";
@@ -238,6 +245,11 @@ TEST(SmoothContours, IncrementalEqualsBruteForceOnADeformingMesh) {
         [](int i) { return orbit(5.0 * i, 4.0, 1.0); });
     EXPECT_EQ(s.mismatched, 0u);
     EXPECT_LT(s.faces_tested, s.faces);
+    // Creases that come and go as the tube folds.
+    const Sequence creased = against_brute(
+        table, int(frames.size()), true, [&](int i) -> const core::Mesh& { return frames[size_t(i)]; },
+        [](int i) { return orbit(5.0 * i, 4.0, 1.0); }, 12.0);
+    EXPECT_EQ(creased.mismatched, 0u);
 }
 
 TEST(SmoothContours, DegenerateAndNonManifoldFacesMatchBruteForce) {
@@ -254,6 +266,57 @@ TEST(SmoothContours, DegenerateAndNonManifoldFacesMatchBruteForce) {
                       [](int i) { return orbit(10.0 * i, 3.0, 1.5 * std::cos(0.2 * i)); });
     EXPECT_EQ(s.mismatched, 0u);
     EXPECT_GT(s.max_chains, 0u);
+}
+
+// A closed cylinder around y (radius 1, height 2) of `sides` sides, its caps fans around a centre:
+// the rims are creases of 90 degrees.
+core::Mesh closed_cylinder(uint32_t sides) {
+    core::Mesh m;
+    for (uint32_t i = 0; i < sides; ++i) {
+        const double a = 2.0 * kPi * i / sides;
+        m.positions.emplace_back(float(std::cos(a)), -1.0f, float(std::sin(a)));
+        m.positions.emplace_back(float(std::cos(a)), 1.0f, float(std::sin(a)));
+    }
+    const uint32_t bottom = uint32_t(m.positions.size()), top = bottom + 1;
+    m.positions.emplace_back(0.0f, -1.0f, 0.0f);
+    m.positions.emplace_back(0.0f, 1.0f, 0.0f);
+    for (uint32_t i = 0; i < sides; ++i) {
+        const uint32_t b0 = 2 * i, t0 = b0 + 1, b1 = 2 * ((i + 1) % sides), t1 = b1 + 1;
+        m.triangles.push_back({b0, t0, t1});  // outward: the side faces away from the axis
+        m.triangles.push_back({b0, t1, b1});
+        m.triangles.push_back({bottom, b0, b1});
+        m.triangles.push_back({top, t1, t0});
+    }
+    return m;
+}
+
+TEST(SmoothContours, CreasesSplitTheNormalsAndEndTheContour) {
+    // Seen from the side, a cylinder's contour runs up its side from rim to rim. With its rims as
+    // creases, each of the two lines is one open chain on the side, ending on the rims; with
+    // normals averaged across the rims, the contour runs on into the caps.
+    const core::Mesh cylinder = closed_cylinder(48);
+    const core::EdgeTable table = core::build_edge_table(cylinder);
+    const glm::dvec3 eye(0.0, 0.0, 5.0);
+    const double inner = std::cos(kPi / 48.0);  // the side's least distance from the axis
+    auto radius = [](const glm::dvec3& p) { return std::hypot(p.x, p.z); };
+    core::SmoothContourTracer split(cylinder, table, {.crease_angle_deg = 60.0});
+    const std::vector<core::Chain>& chains = split.trace(cylinder, table, eye);
+    ASSERT_EQ(chains.size(), 2u);
+    for (const core::Chain& chain : chains) {
+        EXPECT_FALSE(chain.closed);
+        EXPECT_NEAR(std::abs(chain.points.front().y), 1.0, 1e-6);
+        EXPECT_NEAR(std::abs(chain.points.back().y), 1.0, 1e-6);
+        EXPECT_NE(chain.points.front().y, chain.points.back().y) << "from one rim to the other";
+        for (const glm::dvec3& p : chain.points) EXPECT_GE(radius(p), inner - 1e-6) << "on the side";
+    }
+    core::SmoothContourTracer averaged(cylinder, table, {.crease_angle_deg = 180.0});
+    bool on_a_cap = false;
+    for (const core::Chain& chain : averaged.trace(cylinder, table, eye)) {
+        for (const glm::dvec3& p : chain.points) on_a_cap |= radius(p) < inner - 1e-3;
+    }
+    EXPECT_TRUE(on_a_cap) << "the check can fail";
+    core::SmoothContourTracer brute(cylinder, table, {.mode = core::TrackerMode::kBrute, .crease_angle_deg = 60.0});
+    EXPECT_EQ(difference(brute.trace(cylinder, table, eye), chains), "");
 }
 
 // Frame 1 of `mesh` seen from `view` with smooth contours, under a visibility mode.

@@ -74,12 +74,13 @@ class SubtreeSizes {
 
 }  // namespace
 
-ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces,
-                   std::span<const glm::dvec3> vertex_normals)
-    : leaf_faces_(leaf_faces), over_vertex_normals_(!vertex_normals.empty()) {
+ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces, std::span<const glm::dvec3> normals,
+                   std::span<const glm::uvec3> face_corners)
+    : leaf_faces_(leaf_faces), over_corner_normals_(!normals.empty()) {
     INKLINE_CHECK(leaf_faces >= 1);
-    if (over_vertex_normals_) {
-        INKLINE_CHECK_EQ(vertex_normals.size(), mesh.positions.size());
+    const CornerNormals corner_normals{normals, face_corners};
+    if (over_corner_normals_) {
+        INKLINE_CHECK_EQ(face_corners.size(), mesh.triangles.size());
         corners_.resize(mesh.triangles.size());
     }
     const size_t n_faces = mesh.triangles.size();
@@ -90,7 +91,7 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
     // The cones are built in face order and then reordered by the splits; each carries its face.
     cones_.resize(faces.size());
     parallel_for(faces.size(), kMinParallelItems, [&](size_t begin, size_t end) {
-        for (size_t k = begin; k < end; ++k) cones_[k] = cone_of(mesh, vertex_normals, faces[k]);
+        for (size_t k = begin; k < end; ++k) cones_[k] = cone_of(mesh, corner_normals, faces[k]);
     });
 
     // Top-down splits near the median, depth first so that a traversal reads the nodes in order. A node
@@ -246,8 +247,9 @@ ConeTree::FaceCone ConeTree::face_cone(const Mesh& mesh, uint32_t face) {
     return fc;
 }
 
-ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, std::span<const glm::dvec3> vertex_normals, uint32_t face) {
+ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, const CornerNormals& corner_normals, uint32_t face) {
     const glm::uvec3 t = mesh.triangles[face];
+    const glm::uvec3 corner = corner_normals.face_corners[face];
     CornerBounds& bounds = corners_[face];
     bounds.box_min = glm::dvec3(std::numeric_limits<double>::max());
     bounds.box_max = glm::dvec3(-std::numeric_limits<double>::max());
@@ -257,7 +259,7 @@ ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, std::span<const glm::
         const glm::dvec3 p(mesh.positions[t[c]]);
         bounds.box_min = glm::min(bounds.box_min, p);
         bounds.box_max = glm::max(bounds.box_max, p);
-        const glm::dvec3& n = vertex_normals[t[c]];
+        const glm::dvec3& n = corner_normals.normals[corner[c]];
         unit = unit && std::abs(glm::dot(n, n) - 1.0) < 1e-9;  // a zero normal bounds nothing
         sum += n;
     }
@@ -273,15 +275,15 @@ ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, std::span<const glm::
     fc.normal = sum / len;
     double spread2 = 0.0;
     for (int c = 0; c < 3; ++c) {
-        const glm::dvec3 d = vertex_normals[t[c]] - fc.normal;
+        const glm::dvec3 d = corner_normals.normals[corner[c]] - fc.normal;
         spread2 = std::max(spread2, glm::dot(d, d));
     }
     bounds.spread = std::sqrt(spread2);
     return fc;
 }
 
-ConeTree::FaceCone ConeTree::cone_of(const Mesh& mesh, std::span<const glm::dvec3> vertex_normals, uint32_t face) {
-    return over_vertex_normals_ ? corner_cone(mesh, vertex_normals, face) : face_cone(mesh, face);
+ConeTree::FaceCone ConeTree::cone_of(const Mesh& mesh, const CornerNormals& corner_normals, uint32_t face) {
+    return over_corner_normals_ ? corner_cone(mesh, corner_normals, face) : face_cone(mesh, face);
 }
 
 void ConeTree::fit_node(ConeNode& node) const {
@@ -292,7 +294,7 @@ void ConeTree::fit_node(ConeNode& node) const {
     for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
         const FaceCone& fc = cones_[k];
         sum += fc.normal;
-        if (over_vertex_normals_) {
+        if (over_corner_normals_) {
             node.box_min = glm::min(node.box_min, corners_[fc.face].box_min);
             node.box_max = glm::max(node.box_max, corners_[fc.face].box_max);
         } else {
@@ -308,7 +310,7 @@ void ConeTree::fit_node(ConeNode& node) const {
         return;
     }
     node.axis = sum / len;
-    if (over_vertex_normals_) {
+    if (over_corner_normals_) {
         // Every corner normal lies within its face's spread of the face's normal.
         double spread = 0.0;
         for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
@@ -328,15 +330,16 @@ void ConeTree::fit_node(ConeNode& node) const {
 
 void ConeTree::set_spread(ConeNode& node, double spread) { node.spread = std::min(2.0, spread); }
 
-void ConeTree::refit(const Mesh& mesh, std::span<const glm::dvec3> vertex_normals) {
-    INKLINE_CHECK_EQ(over_vertex_normals_, !vertex_normals.empty());
+void ConeTree::refit(const Mesh& mesh, std::span<const glm::dvec3> normals, std::span<const glm::uvec3> face_corners) {
+    INKLINE_CHECK_EQ(over_corner_normals_, !normals.empty());
+    const CornerNormals corner_normals{normals, face_corners};
     cones_.resize(faces.size());
-    if (over_vertex_normals_) corners_.resize(mesh.triangles.size());
+    if (over_corner_normals_) corners_.resize(mesh.triangles.size());
     for (size_t i = nodes.size(); i-- > 0;) {
         ConeNode& node = nodes[i];
         if (node.is_leaf()) {
             // Each face belongs to one leaf: fit it while its cones are in cache.
-            for (uint32_t k = node.face_begin; k < node.face_end; ++k) cones_[k] = cone_of(mesh, vertex_normals, faces[k]);
+            for (uint32_t k = node.face_begin; k < node.face_end; ++k) cones_[k] = cone_of(mesh, corner_normals, faces[k]);
             fit_node(node);
             continue;
         }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Hierarchy of face clusters, each bounded by a normal cone anchored at the box of its face
 // centroids: proves whole clusters front- or back-facing from an eye, or free of creases. Built
-// over vertex normals instead, it bounds the normals at the faces' corners and is anchored at the
+// over corner normals instead, it bounds the normals at the faces' corners and is anchored at the
 // box of the corners: it proves the sign of n . (eye - corner) at every corner of a cluster, the
 // sign smooth contours follow.
 // Based on: P. Sander, X. Gu, S. Gortler, H. Hoppe, J. Snyder. Silhouette Clipping. SIGGRAPH 2000.
@@ -25,7 +25,7 @@ enum class ClusterFacing : uint8_t { kUnknown = 0, kFront = 1, kBack = 2 };
 
 struct ConeNode {
     glm::dvec3 box_min{0.0};         // bounds of the face centroids, computed as facing_value does
-    glm::dvec3 box_max{0.0};         // (over vertex normals: of the faces' corners)
+    glm::dvec3 box_max{0.0};         // (over corner normals: of the faces' corners)
     glm::dvec3 axis{0.0, 0.0, 1.0};  // unit cone axis
     double spread = 2.0;             // max |unit normal - axis| over the faces; 2 bounds nothing
     double error = 1.0;              // largest relative error of facing_value's normal (see .cpp)
@@ -57,19 +57,20 @@ class ConeTree {
     // Splits the valid faces near the median of their widest position or normal spread (the
     // first half gets a whole number of leaves), down to leaves of leaf_faces faces, and fits
     // every cone exactly.
-    // With vertex_normals (one per mesh vertex, unit or zero), the cones bound those normals at
-    // each face's corners instead of the face normals.
-    ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces,
-             std::span<const glm::dvec3> vertex_normals = {});
+    // With corner normals (unit or zero), the cones bound those at each face's corners instead of
+    // the face normals: corner c of face f has normals[face_corners[f][c]].
+    ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces, std::span<const glm::dvec3> normals = {},
+             std::span<const glm::uvec3> face_corners = {});
 
     // New positions, same topology: refits leaves exactly and inner nodes from their children
-    // (looser than a fresh build, but linear time). A tree over vertex normals takes the new ones.
-    void refit(const Mesh& mesh, std::span<const glm::dvec3> vertex_normals = {});
+    // (looser than a fresh build, but linear time). A tree over corner normals takes the new ones.
+    void refit(const Mesh& mesh, std::span<const glm::dvec3> normals = {},
+               std::span<const glm::uvec3> face_corners = {});
 
     // kFront (kBack) when facing_value(mesh, f, eye) > 0 (<= 0) is certain for every face f of
-    // the node, including floating-point error; kUnknown otherwise. Over vertex normals: kFront
+    // the node, including floating-point error; kUnknown otherwise. Over corner normals: kFront
     // (kBack) when glm::dot(n, corner - eye) < 0 (> 0) is certain for every corner of every face
-    // of the node, n the corner's vertex normal.
+    // of the node, n the corner's normal.
     ClusterFacing facing(uint32_t node, const glm::dvec3& eye) const;
 
     uint32_t leaf_faces() const { return leaf_faces_; }
@@ -96,26 +97,31 @@ class ConeTree {
   private:
     uint32_t leaf_faces_;
     struct FaceCone {
-        glm::dvec3 centroid;  // over vertex normals: the centre of the corners' box
+        glm::dvec3 centroid;  // over corner normals: the centre of the corners' box
         glm::dvec3 normal;    // unit
         double error;
         uint32_t face;        // the mesh face
     };
-    // Over vertex normals, what a face's cone adds to its centroid and normal.
+    // Over corner normals, what a face's cone adds to its centroid and normal.
     struct CornerBounds {
         glm::dvec3 box_min;  // of the corners
         glm::dvec3 box_max;
         double spread;       // max |corner normal - FaceCone::normal|; 2 bounds nothing
     };
     static FaceCone face_cone(const Mesh& mesh, uint32_t face);
-    FaceCone corner_cone(const Mesh& mesh, std::span<const glm::dvec3> vertex_normals, uint32_t face);
-    FaceCone cone_of(const Mesh& mesh, std::span<const glm::dvec3> vertex_normals, uint32_t face);
+    // Corner normals: normals[face_corners[f][c]] at corner c of face f.
+    struct CornerNormals {
+        std::span<const glm::dvec3> normals;
+        std::span<const glm::uvec3> face_corners;
+    };
+    FaceCone corner_cone(const Mesh& mesh, const CornerNormals& corners, uint32_t face);
+    FaceCone cone_of(const Mesh& mesh, const CornerNormals& corners, uint32_t face);
     void fit_node(ConeNode& node) const;
     static void set_spread(ConeNode& node, double spread);
 
     std::vector<FaceCone> cones_;  // parallel to faces: split in place by the build, then kept by refit for maybe_crease
-    bool over_vertex_normals_ = false;
-    std::vector<CornerBounds> corners_;  // over vertex normals, per mesh face, while cones_ is held
+    bool over_corner_normals_ = false;
+    std::vector<CornerBounds> corners_;  // over corner normals, per mesh face, while cones_ is held
 };
 
 }  // namespace inkline::core::internal
