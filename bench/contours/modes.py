@@ -13,7 +13,7 @@
 # stage time (median of extract + chain + visibility + strokes over frames 2..). For smooth mode,
 # the sequence is drawn once more with hidden lines kept and every N-th frame's contour
 # visibility is checked by bench/contours/exact_check.py, an independent exact ray test of the
-# same points. Prints a markdown table.
+# same points (numpy: Debian's python3-numpy). Prints a markdown table.
 #
 # The meshes of docs/contours.md are Debian's libcgal-demo data:
 #   tar xzf /usr/share/doc/libcgal-demo/data.tar.gz data/meshes
