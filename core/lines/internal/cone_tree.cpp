@@ -251,25 +251,22 @@ ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, const CornerNormals& 
     const glm::uvec3 t = mesh.triangles[face];
     const glm::uvec3 corner = corner_normals.face_corners[face];
     CornerBounds& bounds = corners_[face];
-    bounds.box_min = glm::dvec3(std::numeric_limits<double>::max());
-    bounds.box_max = glm::dvec3(-std::numeric_limits<double>::max());
+    bounds.box_min = glm::min(glm::min(mesh.positions[t.x], mesh.positions[t.y]), mesh.positions[t.z]);
+    bounds.box_max = glm::max(glm::max(mesh.positions[t.x], mesh.positions[t.y]), mesh.positions[t.z]);
     glm::dvec3 sum(0.0);
     bool unit = true;
     for (int c = 0; c < 3; ++c) {
-        const glm::dvec3 p(mesh.positions[t[c]]);
-        bounds.box_min = glm::min(bounds.box_min, p);
-        bounds.box_max = glm::max(bounds.box_max, p);
         const glm::dvec3& n = corner_normals.normals[corner[c]];
         unit = unit && std::abs(glm::dot(n, n) - 1.0) < 1e-9;  // a zero normal bounds nothing
         sum += n;
     }
     // The corners' values are dot products of the very normals bounded here: only their own
     // rounding (and that of corner - eye, which the box padding covers) is left.
-    FaceCone fc{.centroid = 0.5 * (bounds.box_min + bounds.box_max),
+    FaceCone fc{.centroid = 0.5 * (glm::dvec3(bounds.box_min) + glm::dvec3(bounds.box_max)),
                 .normal = glm::dvec3(0.0, 0.0, 1.0),
                 .error = 8.0 * kEpsilon,
                 .face = face};
-    bounds.spread = 2.0;
+    bounds.spread = 2.0f;
     const double len = glm::length(sum);
     if (!unit || !(len > 1e-6)) return fc;
     fc.normal = sum / len;
@@ -278,7 +275,9 @@ ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, const CornerNormals& 
         const glm::dvec3 d = corner_normals.normals[corner[c]] - fc.normal;
         spread2 = std::max(spread2, glm::dot(d, d));
     }
-    bounds.spread = std::sqrt(spread2);
+    const double spread = std::sqrt(spread2);
+    bounds.spread = float(spread);
+    if (double(bounds.spread) < spread) bounds.spread = std::nextafter(bounds.spread, 3.0f);
     return fc;
 }
 
@@ -295,8 +294,8 @@ void ConeTree::fit_node(ConeNode& node) const {
         const FaceCone& fc = cones_[k];
         sum += fc.normal;
         if (over_corner_normals_) {
-            node.box_min = glm::min(node.box_min, corners_[fc.face].box_min);
-            node.box_max = glm::max(node.box_max, corners_[fc.face].box_max);
+            node.box_min = glm::min(node.box_min, glm::dvec3(corners_[fc.face].box_min));
+            node.box_max = glm::max(node.box_max, glm::dvec3(corners_[fc.face].box_max));
         } else {
             node.box_min = glm::min(node.box_min, fc.centroid);
             node.box_max = glm::max(node.box_max, fc.centroid);
@@ -315,7 +314,7 @@ void ConeTree::fit_node(ConeNode& node) const {
         double spread = 0.0;
         for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
             const glm::dvec3 d = cones_[k].normal - node.axis;
-            spread = std::max(spread, std::sqrt(glm::dot(d, d)) + corners_[cones_[k].face].spread);
+            spread = std::max(spread, std::sqrt(glm::dot(d, d)) + double(corners_[cones_[k].face].spread));
         }
         set_spread(node, spread);
         return;

@@ -103,10 +103,12 @@ class ConeTree {
         uint32_t face;        // the mesh face
     };
     // Over corner normals, what a face's cone adds to its centroid and normal.
+    // Single precision, 28 bytes a face: the corners are floats, so their box is exact; the
+    // spread is rounded up.
     struct CornerBounds {
-        glm::dvec3 box_min;  // of the corners
-        glm::dvec3 box_max;
-        double spread;       // max |corner normal - FaceCone::normal|; 2 bounds nothing
+        glm::vec3 box_min;  // of the corners
+        glm::vec3 box_max;
+        float spread;       // at least max |corner normal - FaceCone::normal|; 2 bounds nothing
     };
     static FaceCone face_cone(const Mesh& mesh, uint32_t face);
     // Corner normals: normals[face_corners[f][c]] at corner c of face f.
