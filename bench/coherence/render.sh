@@ -39,20 +39,7 @@ if [ -n "$mesh" ]; then
   rm -rf "$out/mesh"
   mkdir -p "$out/mesh"
   # The default turntable's camera (core::default_turntable_scene), over 120 frames.
-  "$inkline" info "$mesh" | python3 -c '
-import json, math, re, sys
-mesh = sys.argv[1]
-text = sys.stdin.read()
-lo, hi = (list(map(float, v.split(","))) for v in re.search(r"bounds: \[(.*)\] \.\. \[(.*)\]", text).groups())
-center = [(a + b) / 2 for a, b in zip(lo, hi)]
-radius = max(math.dist(lo, hi) / 2, 1e-6)
-distance = 1.1 * radius / math.sin(math.radians(35 / 2))
-e = math.radians(20)
-eye = [center[0], center[1] + distance * math.sin(e), center[2] + distance * math.cos(e)]
-json.dump({"version": 1, "mesh": mesh, "frames": [1, 120], "image": {"width": 1024, "height": 1024},
-           "camera": {"eye": eye, "target": center, "fov_y_deg": 35,
-                      "orbit": {"axis": [0, 1, 0], "degrees": 360}}}, sys.stdout, indent=2)
-' "$(realpath "$mesh")" > "$out/mesh/scene.json"
+  python3 "$here/turntable.py" "$inkline" "$(realpath "$mesh")" 120 > "$out/mesh/scene.json"
   measure mesh "$out/mesh/scene.json"
 fi
 echo "JSON under $out"

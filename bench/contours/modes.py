@@ -21,8 +21,6 @@
 
 import argparse
 import json
-import math
-import re
 import statistics
 import subprocess
 import sys
@@ -33,21 +31,7 @@ HERE = Path(__file__).resolve().parent
 REPO = HERE.parent.parent
 sys.path.insert(0, str(HERE.parent / "coherence"))
 import coherence  # noqa: E402
-
-
-def turntable_scene(inkline, mesh, frames):
-    """The default turntable's camera (core::default_turntable_scene) over `frames` frames."""
-    text = subprocess.run([inkline, "info", str(mesh)], capture_output=True, text=True, check=True).stdout
-    lo, hi = (list(map(float, v.split(","))) for v in re.search(r"bounds: \[(.*)\] \.\. \[(.*)\]", text).groups())
-    center = [(a + b) / 2 for a, b in zip(lo, hi)]
-    radius = max(math.dist(lo, hi) / 2, 1e-6)
-    distance = 1.1 * radius / math.sin(math.radians(35 / 2))
-    e = math.radians(20)
-    eye = [center[0], center[1] + distance * math.sin(e), center[2] + distance * math.cos(e)]
-    return {"version": 1, "mesh": str(Path(mesh).resolve()), "frames": [1, frames],
-            "image": {"width": 1024, "height": 1024},
-            "camera": {"eye": eye, "target": center, "fov_y_deg": 35,
-                       "orbit": {"axis": [0, 1, 0], "degrees": 3.0 * frames}}}
+from turntable import turntable_scene  # noqa: E402
 
 
 def render(inkline, scene, out, contour, hidden=False):

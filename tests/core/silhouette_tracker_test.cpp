@@ -220,20 +220,8 @@ TEST(SilhouetteTracker, OpenMeshSeenFromBothSidesMatchesBrute) {
 
 TEST(SilhouetteTracker, DeformingSequenceMatchesBrute) {
     // A torus whose tube swells and twists over time: same topology, new positions each frame.
-    const core::Mesh rest = test::torus(1.0, 0.35, 96, 32);
-    const core::EdgeTable table = core::build_edge_table(rest);
-    std::vector<core::Mesh> frames;
-    for (int i = 0; i < 40; ++i) {
-        core::Mesh m = rest;
-        const double t = 0.25 * i;
-        for (glm::vec3& p : m.positions) {
-            const double u = std::atan2(double(p.z), double(p.x));
-            const double wave = 1.0 + 0.25 * std::sin(3.0 * u + t);
-            const double lift = 0.3 * std::sin(2.0 * u - 0.5 * t);
-            p = glm::vec3(float(p.x * (0.9 + 0.1 * wave)), float(p.y * wave + lift), float(p.z));
-        }
-        frames.push_back(std::move(m));
-    }
+    const std::vector<core::Mesh> frames = test::swelling_torus(40);
+    const core::EdgeTable table = core::build_edge_table(frames[0]);
     for (const core::TrackerSearch search : kExactSearches) {
         SCOPED_TRACE(search_name(search));
         core::SilhouetteTracker tracker(table, frames[0], {.deforming = true, .search = search});

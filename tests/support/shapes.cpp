@@ -173,6 +173,23 @@ Mesh bumpy_sphere(Mesh m, const Bumps& b) {
     return m;
 }
 
+std::vector<Mesh> swelling_torus(int frames) {
+    const Mesh rest = torus(1.0, 0.35, 96, 32);
+    std::vector<Mesh> out;
+    for (int i = 0; i < frames; ++i) {
+        Mesh m = rest;
+        const double t = 0.25 * i;
+        for (glm::vec3& p : m.positions) {
+            const double u = std::atan2(double(p.z), double(p.x));
+            const double wave = 1.0 + 0.25 * std::sin(3.0 * u + t);
+            const double lift = 0.3 * std::sin(2.0 * u - 0.5 * t);
+            p = glm::vec3(float(p.x * (0.9 + 0.1 * wave)), float(p.y * wave + lift), float(p.z));
+        }
+        out.push_back(std::move(m));
+    }
+    return out;
+}
+
 Mesh wavy_torus(int major_segments, int minor_segments, double wave, double ripple) {
     return torus_grid(1.0, major_segments, minor_segments, [&](double u, double v) {
         return 0.35 * (1.0 + wave * std::sin(7.0 * u) * std::sin(3.0 * v) + ripple * std::sin(23.0 * u + 5.0 * v));

@@ -7,6 +7,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <vector>
 
 namespace inkline::test {
 
@@ -36,6 +37,9 @@ core::Mesh bumpy_sphere(core::Mesh unit_sphere, const Bumps& bumps);
 // relative amplitudes `wave` (sin 7u sin 3v) and `ripple` (sin(23u + 5v)): folds and
 // self-occlusion everywhere. Faces in grid order, two per quad.
 core::Mesh wavy_torus(int major_segments, int minor_segments, double wave, double ripple);
+// The frames of a deforming sequence: the torus (1, 0.35, 96 x 32) whose tube swells and twists
+// over time, frame i at time 0.25 i; same topology, new positions each frame.
+std::vector<core::Mesh> swelling_torus(int frames);
 // Worst cases for anything quadratic in vertex valence or line count:
 // A closed cone of `sides` sides: apex 0 above, base centre 1, the ring 2.. sides+1 on the unit
 // circle in y = 0; every side face has the apex and every base face the centre (2 * sides faces).
