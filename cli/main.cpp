@@ -55,6 +55,10 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
         ->capture_default_str();
     cmd->add_flag("--centerline", r.centerline,
                          "constant-width centerlines instead of brush outlines (pen plotters, cutters)");
+    cmd->add_option("--path-format", r.path_format,
+                    "brush outlines in SVG, PDF and PNG as polygons (polygon) or cubic Bezier curves fitted within "
+                    "brush.max_deviation_px (bezier)")
+        ->capture_default_str();
     cmd->add_flag("--hidden", r.hidden, "also output occluded lines (visible: false)");
     cmd->add_option("--chunk", r.chunk,
                            "render chunk K of N contiguous chunks of the frames (K/N), or 'slurm' for the job array task");

@@ -17,6 +17,7 @@
 #include "core/scene/frame_pattern.h"
 #include "core/scene/gltf_shot.h"
 #include "core/scene/scene.h"
+#include "export/drawing.h"
 #include "gl/context.h"
 
 #include <algorithm>
@@ -112,6 +113,7 @@ RenderPlan plan_render(const RenderArgs& args) {
     // The modes too, so that `inkline farm` refuses a bad one before it writes its job scripts.
     core::parse_tracker_mode(args.tracker, "--tracker");
     parse_contour_option(args.contour);
+    output::parse_path_format(args.path_format, "--path-format");
     parse_visibility_option(args.visibility);
     gl::parse_backend(args.gl_backend);
     const FrameRange frames = open_shot(args).frames;

@@ -27,6 +27,7 @@ struct RenderArgs {
     std::string visibility = "auto";      // auto | gl | raycast | exact
     std::string gl_backend = "auto";      // auto | egl | osmesa
     bool centerline = false;              // constant-width centerlines instead of brush outlines
+    std::string path_format = "polygon";  // polygon | bezier: how SVG, PDF and PNG write outlines
     std::string layers = "kind";          // SVG layers: kind, or object (each with kind layers inside)
     bool hidden = false;
     int gltf_scene = -1;      // glTF input: the file's scene; -1: the scene JSON's or the file's default

@@ -50,6 +50,8 @@ Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Sce
     style_.opacity = scene.brush.opacity;
     style_.background = args.background.empty() ? std::nullopt : std::optional(args.background);
     if (style_.background) output::parse_color(*style_.background, "--background");
+    style_.path_format = output::parse_path_format(args.path_format, "--path-format");
+    style_.bezier_tolerance_px = scene.brush.max_deviation_px;
     if (args.layers != "kind" && args.layers != "object") {
         throw InputError("--layers '" + quote_value(args.layers) + "': expected kind or object");
     }

@@ -60,6 +60,15 @@ Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style
     return d;
 }
 
+const char* path_format_name(PathFormat format) { return format == PathFormat::kBezier ? "bezier" : "polygon"; }
+
+PathFormat parse_path_format(const std::string& text, const char* key) {
+    for (const PathFormat format : {PathFormat::kPolygon, PathFormat::kBezier}) {
+        if (text == path_format_name(format)) return format;
+    }
+    throw InputError(std::string(key) + " '" + quote_value(text) + "': expected polygon or bezier");
+}
+
 Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& strokes, const DrawStyle& style,
                       bool centerline) {
     Drawing d{frame.frame, frame.image, frame.camera, style, {}};
@@ -75,6 +84,9 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
             s.closed = g.closed;
             s.filled = true;
             s.paths.assign(stroke.outline.begin(), stroke.outline.end());
+            if (style.path_format == PathFormat::kBezier) {
+                for (const core::Ring& ring : stroke.outline) s.curves.push_back(core::fit_cubics(ring, style.bezier_tolerance_px));
+            }
             s.object = object_name(frame, g.object);
             s.object_index = g.object;
             d.shapes.push_back(std::move(s));

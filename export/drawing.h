@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/pipeline/frame_lines.h"
+#include "core/strokes/bezier_fit.h"
 #include "core/strokes/strokes.h"
 
 #include <glm/vec2.hpp>
@@ -23,11 +24,21 @@ struct Rgb {
 // Parses "#rrggbb" or "#rgb"; throws InputError naming `what` otherwise.
 Rgb parse_color(const std::string& text, const std::string& what);
 
+// How filled outlines are written: as the polygons of the stroke stage, or as cubic Bézier
+// curves fitted to them (`--path-format`).
+enum class PathFormat : uint8_t { kPolygon, kBezier };
+// "polygon" or "bezier".
+const char* path_format_name(PathFormat format);
+// The format of that name; throws InputError "KEY 'TEXT': expected polygon or bezier".
+PathFormat parse_path_format(const std::string& text, const char* key);
+
 struct DrawStyle {
     std::string color = "#000000";          // ink
     double opacity = 1.0;
     double centerline_width_px = 1.5;       // stroked centerlines (and hidden dashes)
     std::optional<std::string> background;  // a colour fills the page first; none: transparent
+    PathFormat path_format = PathFormat::kPolygon;
+    double bezier_tolerance_px = 0.5;       // the curves stay this close to the polygons
 };
 
 struct Shape {
@@ -37,6 +48,9 @@ struct Shape {
     bool filled = false;  // paths are closed rings filled together (nonzero rule); else stroked
     bool closed = false;  // a stroked centerline that closes on itself
     std::vector<std::vector<glm::dvec2>> paths;  // px, origin top-left, y down
+    // With PathFormat::kBezier, per filled path its curves, which replace it (empty: the path
+    // is written as a polygon); else empty.
+    std::vector<std::vector<core::CubicBezier>> curves = {};
     std::string object = {};  // the line's object (written as data-object); empty without objects
     int32_t object_index = -1;  // its index among the frame's objects; -1 without objects
 };

@@ -3,8 +3,11 @@
 
 #include "core/error.h"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -61,6 +64,38 @@ class Writer {
         out_.append(buf, size_t(n));
         return *this;
     }
+    // A count of units of the last decimal (10^-decimals), written as number() writes that
+    // value, or with `short_form` without the 0 before the point (-0.5 as -.5): differences of
+    // rounded coordinates stay exact.
+    Writer& units(long long u, bool short_form = false) {
+        if (u < 0) out_ += '-';
+        const unsigned long long a = u < 0 ? 0ull - (unsigned long long)u : (unsigned long long)u;
+        unsigned long long scale = 1;
+        for (int i = 0; i < decimals_; ++i) scale *= 10;
+        if (!(short_form && a < scale && a != 0)) out_ += std::to_string(a / scale);
+        unsigned long long frac = a % scale;
+        if (frac != 0) {
+            int digits = decimals_;
+            while (frac % 10 == 0) frac /= 10, --digits;
+            std::string f = std::to_string(frac);
+            out_ += '.';
+            out_.append(size_t(digits) - f.size(), '0');
+            out_ += f;
+        }
+        return *this;
+    }
+    // The text written so far ends in a number with a decimal point.
+    bool ends_in_fraction() const {
+        for (size_t i = out_.size(); i-- > 0;) {
+            const char c = out_[i];
+            if (c == '.') return true;
+            if (c < '0' || c > '9') return false;
+        }
+        return false;
+    }
+    // Units of the last decimal in v, rounded.
+    long long to_units(double v) const { return std::llround(v * std::pow(10.0, decimals_)); }
+    int decimals() const { return decimals_; }
     std::string take() { return std::move(out_); }
 
   private:
@@ -68,9 +103,70 @@ class Writer {
     int decimals_;
 };
 
+// A closed run of cubic curves in relative commands, every coordinate rounded once to the
+// writer's decimals (so relative steps add up exactly): `c` for a curve, `l` for one whose
+// control points lie on its chord (within 0.01 px), the command letter only when it changes,
+// no 0 before a decimal point and no space where a sign or a second point separates numbers.
+void curve_data(Writer& w, const std::vector<core::CubicBezier>& curves, bool first) {
+    struct Units {
+        long long x, y;
+    };
+    const auto units = [&](const glm::dvec2& p) { return Units{w.to_units(p.x), w.to_units(p.y)}; };
+    char command = 0;
+    bool after_command = false;
+    const auto step = [&](const Units& from, const Units& to) {
+        for (const long long d : {to.x - from.x, to.y - from.y}) {
+            const long long unit = w.to_units(1.0);
+            const bool starts_with_point = d != 0 && d > -unit && d < unit;
+            if (!after_command && d >= 0 && !(starts_with_point && w.ends_in_fraction())) w << " ";
+            w.units(d, true);
+            after_command = false;
+        }
+    };
+    const auto begin = [&](char c) {
+        if (c != command) {
+            w << std::string_view(&c, 1);
+            command = c;
+            after_command = true;
+        }
+    };
+    Units at = units(curves.front().p0);
+    w << (first ? "M" : " M");
+    w.units(at.x) << " ";
+    w.units(at.y);
+    for (const core::CubicBezier& c : curves) {
+        const Units end = units(c.p3);
+        const glm::dvec2 chord = c.p3 - c.p0;
+        const double length = glm::length(chord);
+        const auto off_chord = [&](const glm::dvec2& p) {
+            if (!(length > 0.0)) return glm::length(p - c.p0);
+            const double t = glm::dot(p - c.p0, chord) / (length * length);
+            if (t < 0.0 || t > 1.0) return HUGE_VAL;
+            return std::abs(chord.x * (p.y - c.p0.y) - chord.y * (p.x - c.p0.x)) / length;
+        };
+        if (off_chord(c.p1) <= 0.01 && off_chord(c.p2) <= 0.01) {
+            begin('l');
+            step(at, end);
+        } else {
+            begin('c');
+            step(at, units(c.p1));
+            step(at, units(c.p2));
+            step(at, end);
+        }
+        at = end;
+    }
+    w << "Z";
+}
+
 void path_data(Writer& w, const Shape& shape) {
     bool first = true;
-    for (const std::vector<glm::dvec2>& path : shape.paths) {
+    for (size_t k = 0; k < shape.paths.size(); ++k) {
+        if (k < shape.curves.size() && !shape.curves[k].empty()) {
+            curve_data(w, shape.curves[k], first);
+            first = false;
+            continue;
+        }
+        const std::vector<glm::dvec2>& path = shape.paths[k];
         for (size_t i = 0; i < path.size(); ++i) {
             w << (i == 0 ? (first ? "M" : " M") : " L");
             w.number(path[i].x) << " ";

@@ -11,7 +11,14 @@ namespace {
 
 void trace_path(cairo_t* cr, const Shape& shape) {
     cairo_new_path(cr);
-    for (const std::vector<glm::dvec2>& path : shape.paths) {
+    for (size_t k = 0; k < shape.paths.size(); ++k) {
+        if (k < shape.curves.size() && !shape.curves[k].empty()) {
+            cairo_move_to(cr, shape.curves[k].front().p0.x, shape.curves[k].front().p0.y);
+            for (const core::CubicBezier& c : shape.curves[k]) cairo_curve_to(cr, c.p1.x, c.p1.y, c.p2.x, c.p2.y, c.p3.x, c.p3.y);
+            cairo_close_path(cr);
+            continue;
+        }
+        const std::vector<glm::dvec2>& path = shape.paths[k];
         for (size_t i = 0; i < path.size(); ++i) (i == 0 ? cairo_move_to : cairo_line_to)(cr, path[i].x, path[i].y);
         if (shape.filled || shape.closed) cairo_close_path(cr);
     }

@@ -65,6 +65,7 @@ TEST(Farm, BadModeOptionsAreRefusedBeforeAnyScriptIsWritten) {
              {"--tracker nope", "--tracker 'nope': expected incremental or brute"},
              {"--visibility nope", "--visibility 'nope': expected auto, gl, raycast or exact"},
              {"--contour nope", "--contour 'nope': expected mesh or smooth"},
+             {"--path-format nope", "--path-format 'nope': expected polygon or bezier"},
              {"--gl nope", "--gl 'nope': expected auto, egl or osmesa"}}) {
         const test::RunResult r = test::run_inkline(farm + " -- " + option);
         EXPECT_EQ(r.code, 2) << option << ": " << r.output;

@@ -70,7 +70,7 @@ TEST_F(Cli, SmoothContoursDrawTheTorusInFewerStrokesAndNameFacesInTheJson) {
         return n;
     };
     EXPECT_LT(drawn(docs["smooth"]), drawn(docs["mesh"]));
-    EXPECT_EQ(docs["smooth"]["stats"]["tracker"], "brute") << "smooth contours are traced by brute force";
+    EXPECT_EQ(docs["smooth"]["stats"]["tracker"], "brute") << "a single frame is traced by brute force";
     const double mesh_px = docs["mesh"]["stats"]["visible_length_px"]["silhouette"].get<double>();
     EXPECT_NEAR(docs["smooth"]["stats"]["visible_length_px"]["silhouette"].get<double>(), mesh_px, 0.05 * mesh_px);
     // A smooth contour's edges are the faces its segments cross.
@@ -83,6 +83,29 @@ TEST_F(Cli, SmoothContoursDrawTheTorusInFewerStrokesAndNameFacesInTheJson) {
                               (dir / "bad").string());
     EXPECT_EQ(bad.code, 2);
     EXPECT_EQ(bad.output, "inkline: error: --contour 'round': expected mesh or smooth\n");
+    EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
+TEST_F(Cli, BezierPathsInSvgPdfAndPng) {
+    std::map<std::string, std::string> svgs;
+    for (const std::string format : {"polygon", "bezier"}) {
+        const fs::path out = dir / format;
+        const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1 -q --path-format " +
+                                format + " --svg " + (out / "f%04d.svg").string() + " --png " + (out / "f%04d.png").string() +
+                                " --pdf " + (out / "f.pdf").string());
+        ASSERT_EQ(r.code, 0) << r.output;
+        svgs[format] = test::read_text(out / "f0001.svg");
+        EXPECT_TRUE(fs::exists(out / "f0001.png"));
+        EXPECT_TRUE(fs::exists(out / "f.pdf"));
+    }
+    EXPECT_NE(svgs["bezier"].find("Z\" fill="), std::string::npos);
+    EXPECT_NE(svgs["polygon"].find(" L"), std::string::npos);
+    EXPECT_EQ(svgs["bezier"].find(" L"), std::string::npos) << "curves: relative steps only";
+    EXPECT_LT(2 * svgs["bezier"].size(), svgs["polygon"].size());
+    const RunResult bad = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1 -q --path-format curves -o " +
+                              (dir / "bad").string());
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_EQ(bad.output, "inkline: error: --path-format 'curves': expected polygon or bezier\n");
     EXPECT_FALSE(fs::exists(dir / "bad"));
 }
 

@@ -65,6 +65,64 @@ TEST_F(Raster, BrushOutlinesRenderAlikeInSvgAndCairo) {
     EXPECT_GE(test::iou(coverage(dir / "rsvg.png"), coverage(dir / "f.png")), 0.98);
 }
 
+TEST_F(Raster, BezierOutlinesFollowThePolygonsAtOneAndFourTimesTheSize) {
+    // A bumpy sphere drawn at 1024 px, its outlines written as polygons and as cubic curves: at
+    // the default tolerance (0.5 px) the file is less than half the size and the ink nearly the
+    // same; at 0.02 px, the ink is the same to 1% (and the file no smaller).
+    const core::Mesh mesh = test::bumpy_sphere(test::icosphere(4), {.count = 30, .height_max = 0.1});
+    const test::View view{.eye = {0.0, 1.0, 3.6}, .fov_y_deg = 40.0, .size = 1024};
+    const test::Drawn drawn = test::draw(mesh, test::scene_for(view, mesh));
+    const std::string polygon_svg = output::svg_document(output::brush_drawing(drawn.lines, drawn.strokes, {}, false), {});
+    test::write_text(dir / "polygon.svg", polygon_svg);
+    // Ink IoU of the curves against the polygons, rasterised by rsvg-convert at `zoom`.
+    auto iou_at = [&](const std::string& name, int zoom) {
+        const std::string z = std::to_string(zoom);
+        for (const std::string& file : {std::string("polygon"), name}) {
+            const std::string in = (dir / (file + ".svg")).string(), out = (dir / (file + z + ".png")).string();
+            EXPECT_EQ(test::run_shell("rsvg-convert -z " + z + " " + in + " -o " + out).code, 0);
+        }
+        return test::iou(coverage(dir / ("polygon" + z + ".png")), coverage(dir / (name + z + ".png")));
+    };
+    for (const double tolerance : {0.5, 0.02}) {
+        SCOPED_TRACE(tolerance);
+        output::DrawStyle style;
+        style.path_format = output::PathFormat::kBezier;
+        style.bezier_tolerance_px = tolerance;
+        const output::Drawing curved = output::brush_drawing(drawn.lines, drawn.strokes, style, false);
+        size_t curved_paths = 0;
+        for (const output::Shape& s : curved.shapes) {
+            for (const auto& curves : s.curves) curved_paths += curves.empty() ? 0 : 1;
+        }
+        ASSERT_GT(curved_paths, 5u);
+        const std::string svg = output::svg_document(curved, {});
+        const std::string name = tolerance > 0.1 ? "coarse" : "fine";
+        test::write_text(dir / (name + ".svg"), svg);
+        for (const int zoom : {1, 4}) {
+            EXPECT_GE(iou_at(name, zoom), tolerance > 0.1 ? 0.9 : 0.99) << "zoom " << zoom;
+        }
+        if (tolerance > 0.1) {
+            EXPECT_LT(2 * svg.size(), polygon_svg.size()) << "at least twice smaller";
+            // Cairo draws the same curves.
+            test::write_text(dir / "coarse.png", output::png_image(curved));
+            EXPECT_GE(test::iou(coverage(dir / "coarse1.png"), coverage(dir / "coarse.png")), 0.98);
+        }
+    }
+}
+
+TEST(SvgPaths, CurvesAreWrittenInCompactRelativeSteps) {
+    // Rounded once to 0.01 px: relative steps add up exactly; a curve whose control points lie
+    // on its chord is a line.
+    output::Drawing d;
+    d.image = {20, 20};
+    output::Shape s{.stroke_id = 1, .filled = true, .paths = {{{1, 1}, {9, 1}, {5, 9}}}};
+    s.curves = {{{{1.004, 1}, {3.5, 1}, {6.5, 1}, {9, 1}},
+                 {{9, 1}, {9.5, 4}, {7.25, 8.5}, {5, 9}},
+                 {{5, 9}, {3, 8}, {1, 4}, {1.004, 1}}}};
+    d.shapes.push_back(s);
+    const std::string svg = output::svg_document(d, {});
+    EXPECT_NE(svg.find(" d=\"M1 1l8 0c.5 3-1.75 7.5-4 8-2-1-4-5-4-8Z\""), std::string::npos) << svg;
+}
+
 TEST_F(Raster, PdfHasOnePagePerFrameAndRendersLikeCairo) {
     output::Drawing d = torus_drawing();
     d.style.background = "#ffffff";
