@@ -41,7 +41,7 @@ class ConeTree;
 struct SmoothContourOptions {
     // kIncremental: the cone hierarchy, built on the first trace; kBrute: every face, every trace.
     TrackerMode mode = TrackerMode::kIncremental;
-    // Positions change between traces (same topology): the vertex normals are recomputed and
+    // Positions change between traces (same topology): the corner normals are recomputed and
     // the hierarchy refitted each trace. Otherwise every trace must pass the first one's positions.
     bool deforming = false;
     uint32_t leaf_faces = 16;  // faces per leaf cluster of the hierarchy
@@ -50,7 +50,7 @@ struct SmoothContourOptions {
 };
 
 struct SmoothContourStats {
-    size_t faces_tested = 0;   // faces whose vertex signs were compared
+    size_t faces_tested = 0;   // faces whose corner signs were compared
     size_t segments = 0;       // faces the contour crosses
     size_t nodes_visited = 0;  // cone tests (incremental)
 };

@@ -175,7 +175,7 @@ FrameResult FramePipeline::run(int frame) {
     stats.intersections = crossings != nullptr;
     if (crossings) stats.feature_edges[size_t(LineKind::kIntersection)] = intersections_->stats().segments;
     if (contours) {
-        // Smooth contours: the faces whose vertex signs were compared, and the faces crossed.
+        // Smooth contours: the faces whose corner signs were compared, and the faces crossed.
         stats.faces_tested += smooth_->stats().faces_tested;
         stats.feature_edges[size_t(LineKind::kSilhouette)] = smooth_->stats().segments;
     }
