@@ -35,7 +35,9 @@ std::string xml_escaped(const std::string& text) {
 
 class Writer {
   public:
-    explicit Writer(int decimals) : decimals_(decimals) {}
+    explicit Writer(int decimals) : decimals_(decimals) {
+        for (int i = 0; i < decimals; ++i) unit_ *= 10;
+    }
 
     Writer& operator<<(std::string_view s) {
         out_ += s;
@@ -70,10 +72,8 @@ class Writer {
     Writer& units(long long u, bool short_form = false) {
         if (u < 0) out_ += '-';
         const unsigned long long a = u < 0 ? 0ull - (unsigned long long)u : (unsigned long long)u;
-        unsigned long long scale = 1;
-        for (int i = 0; i < decimals_; ++i) scale *= 10;
-        if (!(short_form && a < scale && a != 0)) out_ += std::to_string(a / scale);
-        unsigned long long frac = a % scale;
+        if (!(short_form && a < unit_ && a != 0)) out_ += std::to_string(a / unit_);
+        unsigned long long frac = a % unit_;
         if (frac != 0) {
             int digits = decimals_;
             while (frac % 10 == 0) frac /= 10, --digits;
@@ -94,13 +94,15 @@ class Writer {
         return false;
     }
     // Units of the last decimal in v, rounded.
-    long long to_units(double v) const { return std::llround(v * std::pow(10.0, decimals_)); }
-    int decimals() const { return decimals_; }
+    long long to_units(double v) const { return std::llround(v * double(unit_)); }
+    // Units in 1.
+    long long unit() const { return (long long)unit_; }
     std::string take() { return std::move(out_); }
 
   private:
     std::string out_;
     int decimals_;
+    unsigned long long unit_ = 1;  // 10^decimals
 };
 
 // A closed run of cubic curves in relative commands, every coordinate rounded once to the
@@ -116,8 +118,7 @@ void curve_data(Writer& w, const std::vector<core::CubicBezier>& curves, bool fi
     bool after_command = false;
     const auto step = [&](const Units& from, const Units& to) {
         for (const long long d : {to.x - from.x, to.y - from.y}) {
-            const long long unit = w.to_units(1.0);
-            const bool starts_with_point = d != 0 && d > -unit && d < unit;
+            const bool starts_with_point = d != 0 && d > -w.unit() && d < w.unit();
             if (!after_command && d >= 0 && !(starts_with_point && w.ends_in_fraction())) w << " ";
             w.units(d, true);
             after_command = false;

@@ -105,7 +105,7 @@ void ExactOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Occl
             const OcclusionQuery& q = queries[i];
             const internal::QuerySegment query = internal::query_segment(q.p_object, eye_object, impl.reach);
             const Segment segment(to_point(query.far_end), to_point(query.stop));
-            const internal::OwnFaces own{q.own_faces.empty() ? impl.table.faces_of(q.edge) : q.own_faces, q.crossing_face};
+            const internal::OwnFaces own = internal::own_faces_of(q, impl.table);
             bool hit = false;
             impl.tree.all_intersected_primitives(
                 segment, boost::make_function_output_iterator([&](const TriangleIterator& it) {

@@ -301,7 +301,7 @@ void RaycastOcclusion::occluded(const glm::dvec3& eye_object, std::span<const Oc
         context.face_of = impl.face_of.empty() ? nullptr : impl.face_of.data();
         for (size_t i = begin; i < end; ++i) {
             const OcclusionQuery& q = queries[i];
-            context.own_faces = {q.own_faces.empty() ? impl.table.faces_of(q.edge) : q.own_faces, q.crossing_face};
+            context.own_faces = internal::own_faces_of(q, impl.table);
             const internal::ScaledRay cast = internal::occlusion_ray(q.p_object, eye_object, impl.reach, impl.scale);
             RTCRay ray;
             ray.org_x = cast.origin.x;

@@ -6,6 +6,9 @@
 // Based on: S. Woop, C. Benthin, I. Wald. Watertight Ray/Triangle Intersection. JCGT 2(1), 2013.
 #pragma once
 
+#include "core/mesh/topology.h"
+#include "core/visibility/visibility.h"
+
 #include <glm/vec3.hpp>
 
 #include <algorithm>
@@ -34,6 +37,11 @@ struct OwnFaces {
 
     bool has(uint32_t face) const { return face == crossing_face || is_own_face(edge_faces, face); }
 };
+
+// A query's own faces: a smooth contour point's list, else its edge's faces in `table`.
+inline OwnFaces own_faces_of(const OcclusionQuery& query, const EdgeTable& table) {
+    return {query.own_faces.empty() ? table.faces_of(query.edge) : query.own_faces, query.crossing_face};
+}
 
 // Ray casting. The ray stops this fraction of the eye distance short of the point, exactly as
 // exact visibility's segment does, so faces that merely touch the point (around an end vertex of
