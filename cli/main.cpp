@@ -51,7 +51,7 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
     cmd->add_option("--camera", r.camera, "glTF input: look through this camera, by its or its node's name (default: the first)");
     cmd->add_option("--fps", r.fps, "glTF input: frame F is animation time F / fps (default: 24, or the scene's fps)")
         ->check(CLI::Range(1e-6, 1e6));
-    cmd->add_option("--layers", r.layers, "SVG layers: kind, or object (a layer per object with its kind layers inside)")
+    cmd->add_option("--layers", r.layers, "SVG layers: kind, object or style (a layer per object or per style with its kind layers inside)")
         ->capture_default_str();
     cmd->add_flag("--centerline", r.centerline,
                          "constant-width centerlines instead of brush outlines (pen plotters, cutters)");

@@ -52,10 +52,13 @@ Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Sce
     if (style_.background) output::parse_color(*style_.background, "--background");
     style_.path_format = output::parse_path_format(args.path_format, "--path-format");
     style_.bezier_tolerance_px = scene.brush.max_deviation_px;
-    if (args.layers != "kind" && args.layers != "object") {
-        throw InputError("--layers '" + quote_value(args.layers) + "': expected kind or object");
+    if (args.layers == "object") {
+        svg_options_.layers = output::SvgLayers::kObject;
+    } else if (args.layers == "style") {
+        svg_options_.layers = output::SvgLayers::kStyle;
+    } else if (args.layers != "kind") {
+        throw InputError("--layers '" + quote_value(args.layers) + "': expected kind, object or style");
     }
-    svg_options_.layers_by_object = args.layers == "object";
     pdf_options_.page = args.page.empty() ? std::nullopt : std::optional(output::parse_page_size(args.page));
     pdf_options_.margin_mm = args.margin_mm;
     pdf_options_.dpi = args.dpi;

@@ -49,8 +49,16 @@ std::string object_name(const core::FrameLines& frame, int32_t object) {
     return object >= 0 && size_t(object) < frame.objects.size() ? frame.objects[size_t(object)].name : std::string();
 }
 
+// The ink of the writer's own style.
+InkStyle base_ink(const DrawStyle& style) {
+    InkStyle ink;
+    ink.color = style.color;
+    ink.opacity = style.opacity;
+    return ink;
+}
+
 Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style) {
-    Drawing d{frame.frame, frame.image, frame.camera, style, {}};
+    Drawing d{frame.frame, frame.image, frame.camera, style, {}, {base_ink(style)}};
     d.shapes.reserve(frame.polylines.size());
     for (const core::Polyline& line : frame.polylines) {
         d.shapes.push_back(stroked_shape(line.id, line.kind, line.visible, line.closed, line.points_px));
@@ -71,7 +79,19 @@ PathFormat parse_path_format(const std::string& text, const char* key) {
 
 Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& strokes, const DrawStyle& style,
                       bool centerline) {
-    Drawing d{frame.frame, frame.image, frame.camera, style, {}};
+    Drawing d{frame.frame, frame.image, frame.camera, style, {}, {base_ink(style)}};
+    for (size_t k = 1; k < strokes.styles.size(); ++k) {
+        const core::StrokeStyle& st = strokes.styles[k];
+        InkStyle ink;
+        ink.name = st.name;
+        ink.rule = st.rule;
+        ink.color = hex_color(st.brush.color);
+        ink.opacity = st.brush.opacity;
+        ink.dash_px = st.brush.dash_px;
+        ink.cap = st.brush.cap;
+        ink.line_width_px = st.brush.line_width_px;
+        d.styles.push_back(std::move(ink));
+    }
     d.shapes.reserve(strokes.strokes.size());
     for (const core::Stroke& stroke : strokes.strokes) {
         const core::StrokeGeometry& g = stroke.geometry;
@@ -89,14 +109,20 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
             }
             s.object = object_name(frame, g.object);
             s.object_index = g.object;
+            s.style = stroke.style;
             d.shapes.push_back(std::move(s));
             continue;
         }
         // Hidden lines and plotter output follow the drawn centerline when there is one.
+        const bool on_centerline = stroke.centerline_px.size() >= 2;
         d.shapes.push_back(stroked_shape(stroke.id, g.kind, g.visible, g.closed,
-                                         stroke.centerline_px.size() >= 2 ? stroke.centerline_px : g.points_px));
-        d.shapes.back().object = object_name(frame, g.object);
-        d.shapes.back().object_index = g.object;
+                                         on_centerline ? stroke.centerline_px : g.points_px));
+        Shape& s = d.shapes.back();
+        s.object = object_name(frame, g.object);
+        s.object_index = g.object;
+        s.style = stroke.style;
+        const std::vector<double>& u = on_centerline ? stroke.centerline_u : stroke.u;
+        s.u_start = u.empty() ? 0.0 : u.front();
     }
     return d;
 }
@@ -114,8 +140,31 @@ const char* layer_name(Layer layer) {
     return "";
 }
 
-double layer_opacity(const DrawStyle& style, Layer layer) {
-    return layer == Layer::kHidden ? 0.5 * style.opacity : style.opacity;
+InkStyle ink_of(const Drawing& d, const Shape& shape) {
+    if (shape.style < d.styles.size()) return d.styles[shape.style];
+    return d.styles.empty() ? base_ink(d.style) : d.styles.front();
+}
+
+double line_width_of(const Drawing& d, const Shape& shape) {
+    return ink_of(d, shape).line_width_px.value_or(d.style.centerline_width_px);
+}
+
+std::vector<double> dashes_of(const Drawing& d, const Shape& shape) {
+    const InkStyle ink = ink_of(d, shape);
+    if (!ink.dash_px.empty()) return ink.dash_px;
+    if (!shape.hidden) return {};
+    const double w = line_width_of(d, shape);
+    return {3.0 * w, 2.0 * w};
+}
+
+double dash_offset_of(const Drawing& d, const Shape& shape) {
+    return ink_of(d, shape).dash_px.empty() ? 0.0 : shape.u_start;
+}
+
+double shape_opacity(const Drawing& d, const Shape& shape, double layer_opacity) {
+    const double factor = layer_of(shape) == Layer::kHidden ? 0.5 : 1.0;
+    const double own = ink_of(d, shape).opacity;
+    return layer_opacity == factor * own ? 1.0 : own;
 }
 
 Layer layer_of(const Shape& shape) {

@@ -41,6 +41,19 @@ struct DrawStyle {
     double bezier_tolerance_px = 0.5;       // the curves stay this close to the polygons
 };
 
+// How a style inks its shapes (core::StrokeStyle as the writers use it).
+struct InkStyle {
+    std::string name;       // the style's (its last rule's) name; empty: the scene's brush
+    int32_t rule = -1;      // index of that rule in the scene's styles; -1 for the scene's brush
+    std::string color;      // "#rrggbb"
+    double opacity = 1.0;
+    // Stroked centerlines: the dash pattern along u (px); empty: solid, or for hidden lines the
+    // writers' dash of 3 and 2 line widths.
+    std::vector<double> dash_px;
+    core::LineCap cap = core::LineCap::kRound;
+    std::optional<double> line_width_px;  // unset: DrawStyle::centerline_width_px
+};
+
 struct Shape {
     uint32_t stroke_id = 0;  // written as the element id stroke-<id>
     core::LineKind kind = core::LineKind::kSilhouette;
@@ -53,6 +66,8 @@ struct Shape {
     std::vector<std::vector<core::CubicBezier>> curves = {};
     std::string object = {};  // the line's object (written as data-object); empty without objects
     int32_t object_index = -1;  // its index among the frame's objects; -1 without objects
+    uint32_t style = 0;         // index into Drawing::styles
+    double u_start = 0.0;       // u at the first point of a stroked centerline: where its dashes start
 };
 
 struct Drawing {
@@ -61,7 +76,20 @@ struct Drawing {
     core::Camera camera;
     DrawStyle style;
     std::vector<Shape> shapes;
+    // The styles of the shapes; styles[0] is DrawStyle's ink (no rule matched).
+    std::vector<InkStyle> styles;
 };
+
+// The ink of a shape (DrawStyle's when the drawing lists no styles).
+InkStyle ink_of(const Drawing& drawing, const Shape& shape);
+// Width of a stroked centerline.
+double line_width_of(const Drawing& drawing, const Shape& shape);
+// Dash pattern (px) of a stroked centerline: its style's, else 3 and 2 line widths for a hidden
+// line; empty: solid.
+std::vector<double> dashes_of(const Drawing& drawing, const Shape& shape);
+// Where a stroked centerline's dash pattern starts: u at its start for a style's pattern (the
+// dashes stay anchored to the stroke), 0 for the hidden lines' own.
+double dash_offset_of(const Drawing& drawing, const Shape& shape);
 
 // Every polyline as a constant-width centerline, one shape per polyline.
 Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style);
@@ -82,9 +110,29 @@ inline constexpr std::array<Layer, 5> kAllLayers = {Layer::kSilhouette, Layer::k
                                                     Layer::kIntersection, Layer::kHidden};
 // "silhouette", "boundary", "crease" (the line kinds' names) or "hidden": the SVG layer's id.
 const char* layer_name(Layer layer);
-// Opacity of a whole layer: the style's, halved for hidden lines.
-double layer_opacity(const DrawStyle& style, Layer layer);
+// Opacity of a whole layer (halved for hidden lines) of the shapes `selected` picks: their
+// styles' opacity when they share one (or DrawStyle's without shapes), else 1 and each shape
+// carries its own (shape_opacity).
+template <typename Selected>
+double layer_opacity(const Drawing& drawing, Layer layer, Selected selected);
+// The opacity a shape carries itself inside a layer of that opacity: 1 when the layer carries it.
+double shape_opacity(const Drawing& drawing, const Shape& shape, double layer_opacity);
 // The layer a shape belongs to.
 Layer layer_of(const Shape& shape);
+
+template <typename Selected>
+double layer_opacity(const Drawing& drawing, Layer layer, Selected selected) {
+    const double factor = layer == Layer::kHidden ? 0.5 : 1.0;
+    bool any = false;
+    double shared = drawing.style.opacity;
+    for (const Shape& s : drawing.shapes) {
+        if (layer_of(s) != layer || !selected(s)) continue;
+        const double opacity = ink_of(drawing, s).opacity;
+        if (any && opacity != shared) return factor;
+        shared = opacity;
+        any = true;
+    }
+    return factor * shared;
+}
 
 }  // namespace inkline::output

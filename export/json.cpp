@@ -100,6 +100,9 @@ json brush_strokes(const core::FrameLines& frame, const core::FrameStrokes& fram
             strokes.back()["hidden_segments"] = std::move(bridged);
         }
         add_object(frame, g.object, strokes.back());
+        if (s.style != 0 && s.style < frame_strokes.styles.size()) {
+            strokes.back()["style"] = frame_strokes.styles[s.style].name;
+        }
     }
     return strokes;
 }

@@ -197,12 +197,20 @@ void metadata(Writer& w, const Drawing& d) {
     w.number(d.camera.far) << "\"/>\n  </metadata>\n";
 }
 
+const char* cap_name(core::LineCap cap) {
+    switch (cap) {
+        case core::LineCap::kRound: return "round";
+        case core::LineCap::kButt: return "butt";
+        case core::LineCap::kSquare: return "square";
+    }
+    return "round";
+}
+
 // The kind layers (silhouette, boundary, crease, hidden) of the selected shapes, each line
 // indented by `indent`, their ids prefixed with `prefix`; inside an object's layer, an empty kind
 // layer is left out.
 template <typename Selected>
 void kind_layers(Writer& w, const Drawing& d, const std::string& indent, const std::string& prefix, Selected selected) {
-    const double line_width = d.style.centerline_width_px;
     for (const Layer layer : kAllLayers) {
         const bool hidden = layer == Layer::kHidden;
         bool any = false;
@@ -211,31 +219,85 @@ void kind_layers(Writer& w, const Drawing& d, const std::string& indent, const s
         if (!any && (hidden || layer == Layer::kIntersection || !prefix.empty())) continue;
         const char* name = layer_name(layer);
         w << indent << "<g id=\"" << prefix << name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
-        if (const double opacity = layer_opacity(d.style, layer); opacity < 1.0) {
+        const double opacity = layer_opacity(d, layer, selected);
+        if (opacity < 1.0) {
             w << " opacity=\"";
             w.number(opacity) << "\"";
         }
         w << ">\n";
         for (const Shape& s : d.shapes) {
             if (layer_of(s) != layer || !selected(s)) continue;
+            const InkStyle ink = ink_of(d, s);
             w << indent << "  <path id=\"stroke-" << long(s.stroke_id) << "\"";
             if (!s.object.empty()) w << " data-object=\"" << xml_escaped(s.object) << "\"";
+            if (!ink.name.empty()) w << " data-style=\"" << xml_escaped(ink.name) << "\"";
             w << " d=\"";
             path_data(w, s);
+            w << "\"";
+            if (const double own = shape_opacity(d, s, opacity); own < 1.0) {
+                w << " opacity=\"";
+                w.number(own) << "\"";
+            }
             if (s.filled) {
-                w << "\" fill=\"" << d.style.color << "\" stroke=\"none\"/>\n";
+                w << " fill=\"" << ink.color << "\" stroke=\"none\"/>\n";
                 continue;
             }
-            w << "\" fill=\"none\" stroke=\"" << d.style.color << "\" stroke-width=\"";
-            w.number(line_width) << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"";
-            if (hidden) {
+            w << " fill=\"none\" stroke=\"" << ink.color << "\" stroke-width=\"";
+            w.number(line_width_of(d, s)) << "\" stroke-linecap=\"" << cap_name(ink.cap) << "\" stroke-linejoin=\"round\"";
+            if (const std::vector<double> dashes = dashes_of(d, s); !dashes.empty()) {
                 w << " stroke-dasharray=\"";
-                w.number(3.0 * line_width) << " ";
-                w.number(2.0 * line_width) << "\"";
+                for (size_t k = 0; k < dashes.size(); ++k) {
+                    if (k > 0) w << " ";
+                    w.number(dashes[k]);
+                }
+                w << "\"";
+                if (const double offset = dash_offset_of(d, s); offset != 0.0) {
+                    w << " stroke-dashoffset=\"";
+                    w.number(offset) << "\"";
+                }
             }
             w << "/>\n";
         }
         w << indent << "</g>\n";
+    }
+}
+
+// One layer per object, in object order, with its kind layers inside.
+void object_layers(Writer& w, const Drawing& d) {
+    std::vector<int32_t> objects;
+    for (const Shape& s : d.shapes) objects.push_back(s.object_index);
+    std::sort(objects.begin(), objects.end());
+    objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
+    for (const int32_t o : objects) {
+        const auto first = std::find_if(d.shapes.begin(), d.shapes.end(), [&](const Shape& s) { return s.object_index == o; });
+        const std::string name = o >= 0 ? xml_escaped(first->object) : std::string("none");
+        const std::string id = o >= 0 ? "object-" + std::to_string(o) : std::string("object-none");
+        w << "  <g id=\"" << id << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
+        if (o >= 0) w << " data-object=\"" << name << "\"";
+        w << ">\n";
+        kind_layers(w, d, "    ", id + "-", [&](const Shape& s) { return s.object_index == o; });
+        w << "  </g>\n";
+    }
+}
+
+// One layer per style name, in the order of the rules ("unstyled" first, for the strokes no rule
+// matched), with its kind layers inside.
+void style_layers(Writer& w, const Drawing& d) {
+    std::vector<std::pair<int32_t, std::string>> names;  // (rule, name)
+    for (const Shape& s : d.shapes) {
+        const InkStyle ink = ink_of(d, s);
+        names.emplace_back(ink.rule, ink.name);
+    }
+    std::sort(names.begin(), names.end());
+    names.erase(std::unique(names.begin(), names.end()), names.end());
+    for (const auto& [rule, name] : names) {
+        const std::string label = name.empty() ? std::string("unstyled") : xml_escaped(name);
+        const std::string id = name.empty() ? std::string("unstyled") : "style-" + label;
+        w << "  <g id=\"" << id << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << label << "\"";
+        if (!name.empty()) w << " data-style=\"" << label << "\"";
+        w << ">\n";
+        kind_layers(w, d, "    ", id + "-", [&](const Shape& s) { return ink_of(d, s).name == name; });
+        w << "  </g>\n";
     }
 }
 
@@ -254,22 +316,11 @@ std::string svg_document(const Drawing& d, const SvgOptions& options) {
         w << "  <rect id=\"background\" width=\"" << width << "\" height=\"" << height << "\" fill=\""
           << *d.style.background << "\"/>\n";
     }
-    if (options.layers_by_object && std::any_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return s.object_index >= 0; })) {
-        // One layer per object, in object order, with its kind layers inside.
-        std::vector<int32_t> objects;
-        for (const Shape& s : d.shapes) objects.push_back(s.object_index);
-        std::sort(objects.begin(), objects.end());
-        objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
-        for (const int32_t o : objects) {
-            const auto first = std::find_if(d.shapes.begin(), d.shapes.end(), [&](const Shape& s) { return s.object_index == o; });
-            const std::string name = o >= 0 ? xml_escaped(first->object) : std::string("none");
-            const std::string id = o >= 0 ? "object-" + std::to_string(o) : std::string("object-none");
-            w << "  <g id=\"" << id << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
-            if (o >= 0) w << " data-object=\"" << name << "\"";
-            w << ">\n";
-            kind_layers(w, d, "    ", id + "-", [&](const Shape& s) { return s.object_index == o; });
-            w << "  </g>\n";
-        }
+    const bool any_object = std::any_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return s.object_index >= 0; });
+    if (options.layers == SvgLayers::kObject && any_object) {
+        object_layers(w, d);
+    } else if (options.layers == SvgLayers::kStyle) {
+        style_layers(w, d);
     } else {
         kind_layers(w, d, "  ", "", [](const Shape&) { return true; });
     }

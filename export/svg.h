@@ -6,13 +6,18 @@
 
 #include "export/drawing.h"
 
+#include <cstdint>
 #include <string>
 
 namespace inkline::output {
 
+// How the layers are grouped (--layers): by line kind; one layer per object with its kind layers
+// inside; one layer per style with its kind layers inside.
+enum class SvgLayers : uint8_t { kKind, kObject, kStyle };
+
 struct SvgOptions {
-    int decimals = 2;                // coordinate precision
-    bool layers_by_object = false;  // one layer per object with its kind layers inside (--layers object)
+    int decimals = 2;  // coordinate precision
+    SvgLayers layers = SvgLayers::kKind;
 };
 
 std::string svg_document(const Drawing& drawing, const SvgOptions& options);

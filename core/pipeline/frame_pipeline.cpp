@@ -148,8 +148,8 @@ FrameResult FramePipeline::run(int frame) {
     const double visibility_ms = occlusion_ms + step("visibility");
 
     // Strokes, coherent with the last frame's.
-    out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_);
-    for (Stroke& stroke : out.strokes.strokes) stroke.geometry.object = object_of(stroke.geometry.edges);
+    out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_, scene_.styles,
+                                [this](std::span<const uint32_t> edges) { return object_of(edges); });
     if (contours) {
         const glm::dmat4 object_from_world = glm::inverse(world_from_object);
         for (Stroke& stroke : out.strokes.strokes) {

@@ -20,6 +20,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <set>
+#include <span>
 #include <sstream>
 
 namespace inkline::core {
@@ -85,6 +86,9 @@ class Reader {
     }
 
     void allow_only(std::initializer_list<const char*> keys) const {
+        allow_only(std::span<const char* const>(keys.begin(), keys.size()));
+    }
+    void allow_only(std::span<const char* const> keys) const {
         expect_object();
         const std::set<std::string> allowed(keys.begin(), keys.end());
         for (const auto& item : value_.items()) {
@@ -102,6 +106,8 @@ class Reader {
         return value_.at(key);
     }
     Reader child(const std::string& key) const { return Reader(file_, at(key), join(key)); }
+    // Element i of an array value.
+    Reader item(size_t i) const { return Reader(file_, value_.at(i), path_ + "[" + std::to_string(i) + "]"); }
 
     double number(const std::string& key) const {
         const json& v = at(key);
@@ -290,25 +296,113 @@ glm::dvec3 read_color(const Reader& r, const std::string& key) {
     return color;
 }
 
+// The brush keys a style rule may set, as "brush" has them.
+constexpr std::initializer_list<const char*> kStyleBrushKeys = {
+    "width_min_px", "width_max_px", "gamma", "invert", "taper_px", "min_length_px", "color", "opacity",
+    "depth_width", "curvature_width", "dash_px", "cap", "line_width_px"};
+
+// Most entries of a dash pattern, and its shortest period (px): a pattern finer than that would
+// cut a long stroke into millions of pieces.
+constexpr size_t kMaxDashEntries = 16;
+constexpr double kMinDashPeriodPx = 1.0;
+
+// The keys of kStyleBrushKeys that `r` has, checked one by one.
+BrushPatch read_brush_patch(const Reader& r) {
+    BrushPatch p;
+    const std::string limit = "exceeds the limit of " + std::to_string(int(kMaxBrushWidthPx)) + " px";
+    auto non_negative = [&r](const char* key) -> std::optional<double> {
+        if (!r.has(key)) return std::nullopt;
+        const double v = r.number(key);
+        if (v < 0.0) r.fail(key, "must not be negative");
+        return v;
+    };
+    auto width = [&](const char* key) {
+        const std::optional<double> v = non_negative(key);
+        if (v && *v > kMaxBrushWidthPx) r.fail(key, limit);
+        return v;
+    };
+    p.width_min_px = width("width_min_px");
+    p.width_max_px = width("width_max_px");
+    if (p.width_min_px && p.width_max_px && *p.width_max_px < *p.width_min_px) {
+        r.fail("width_max_px", "must not be less than width_min_px");
+    }
+    if (r.has("gamma")) {
+        p.gamma = r.number("gamma");
+        if (!(*p.gamma > 0.0 && *p.gamma <= 100.0)) r.fail("gamma", "must be greater than 0 and at most 100");
+    }
+    if (r.has("invert")) p.invert = r.boolean_or("invert", false);
+    p.taper_px = non_negative("taper_px");
+    p.min_length_px = non_negative("min_length_px");
+    if (r.has("color")) p.color = read_color(r, "color");
+    if (r.has("opacity")) {
+        p.opacity = r.number("opacity");
+        if (!(*p.opacity >= 0.0 && *p.opacity <= 1.0)) r.fail("opacity", "must be between 0 and 1");
+    }
+    if (r.has("line_width_px")) {
+        p.line_width_px = r.number("line_width_px");
+        if (!(*p.line_width_px > 0.0)) r.fail("line_width_px", "must be greater than 0");
+        if (*p.line_width_px > kMaxBrushWidthPx) r.fail("line_width_px", limit);
+    }
+    if (r.has("depth_width")) {
+        const Reader d = r.child("depth_width");
+        d.allow_only({"near", "far", "far_scale"});
+        DepthWidth& depth = p.depth_width.emplace();
+        if (d.has("near")) depth.near = d.number("near");
+        if (d.has("far")) depth.far = d.number("far");
+        if (depth.near && depth.far && !(*depth.far > *depth.near)) d.fail("far", "must be greater than near");
+        depth.far_scale = d.number_or("far_scale", depth.far_scale);
+        if (!(depth.far_scale >= 0.0 && depth.far_scale <= 100.0)) d.fail("far_scale", "must be between 0 and 100");
+    }
+    if (r.has("curvature_width")) {
+        const Reader c = r.child("curvature_width");
+        c.allow_only({"radius_px", "scale"});
+        CurvatureWidth& curvature = p.curvature_width.emplace();
+        curvature.radius_px = c.number_or("radius_px", curvature.radius_px);
+        if (!(curvature.radius_px > 0.0 && curvature.radius_px <= 1e6)) {
+            c.fail("radius_px", "must be greater than 0 and at most 1e6");
+        }
+        curvature.scale = c.number_or("scale", curvature.scale);
+        if (!(curvature.scale >= 0.0 && curvature.scale <= 100.0)) c.fail("scale", "must be between 0 and 100");
+    }
+    if (r.has("dash_px")) {
+        const json& v = r.at("dash_px");
+        const char* expected = "expected an array of lengths in px: [on, off, ...] ([] for a solid line)";
+        if (!v.is_array() || v.size() > kMaxDashEntries) r.fail("dash_px", expected);
+        std::vector<double>& dash = p.dash_px.emplace();
+        double period = 0.0;
+        for (const json& x : v) {
+            if (!x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < 0.0) r.fail("dash_px", expected);
+            dash.push_back(x.get<double>());
+            period += dash.back() * (v.size() % 2 == 1 ? 2.0 : 1.0);
+        }
+        if (!dash.empty() && !(period >= kMinDashPeriodPx)) {
+            r.fail("dash_px", "the pattern must repeat after 1 px or more");
+        }
+        if (!dash.empty() && period > 1e6) r.fail("dash_px", "the pattern must repeat within 1e6 px");
+    }
+    if (r.has("cap")) {
+        const std::string cap = r.string("cap");
+        if (cap == "round") p.cap = LineCap::kRound;
+        else if (cap == "butt") p.cap = LineCap::kButt;
+        else if (cap == "square") p.cap = LineCap::kSquare;
+        else r.fail("cap", "expected \"round\", \"butt\" or \"square\"");
+    }
+    return p;
+}
+
 BrushStyle read_brush(const Reader& r, const std::filesystem::path& base) {
-    r.allow_only({"width_min_px", "width_max_px", "gamma", "invert", "taper_px", "min_length_px", "smooth_px",
-                  "max_deviation_px", "turn_angle_deg", "color", "opacity", "tip"});
+    std::vector<const char*> keys = {"smooth_px", "max_deviation_px", "turn_angle_deg", "tip"};
+    keys.insert(keys.end(), kStyleBrushKeys.begin(), kStyleBrushKeys.end());
+    r.allow_only(keys);
     BrushStyle b;
+    read_brush_patch(r).apply_to(b);
+    if (b.width_max_px < b.width_min_px) r.fail("width_max_px", "must not be less than width_min_px");
+    const std::string limit = "exceeds the limit of " + std::to_string(int(kMaxBrushWidthPx)) + " px";
     auto non_negative = [&r](const char* key, double fallback) {
         const double v = r.number_or(key, fallback);
         if (v < 0.0) r.fail(key, "must not be negative");
         return v;
     };
-    b.width_min_px = non_negative("width_min_px", b.width_min_px);
-    b.width_max_px = non_negative("width_max_px", b.width_max_px);
-    if (b.width_max_px < b.width_min_px) r.fail("width_max_px", "must not be less than width_min_px");
-    const std::string limit = "exceeds the limit of " + std::to_string(int(kMaxBrushWidthPx)) + " px";
-    if (b.width_max_px > kMaxBrushWidthPx) r.fail("width_max_px", limit);
-    b.gamma = r.number_or("gamma", b.gamma);
-    if (!(b.gamma > 0.0 && b.gamma <= 100.0)) r.fail("gamma", "must be greater than 0 and at most 100");
-    b.invert = r.boolean_or("invert", b.invert);
-    b.taper_px = non_negative("taper_px", b.taper_px);
-    b.min_length_px = non_negative("min_length_px", b.min_length_px);
     b.smooth_px = non_negative("smooth_px", b.smooth_px);
     if (b.smooth_px > kMaxBrushWidthPx) r.fail("smooth_px", limit);
     b.max_deviation_px = non_negative("max_deviation_px", b.max_deviation_px);
@@ -316,9 +410,6 @@ BrushStyle read_brush(const Reader& r, const std::filesystem::path& base) {
     if (!(b.turn_angle_deg > 0.0 && b.turn_angle_deg <= 180.0)) {
         r.fail("turn_angle_deg", "must be greater than 0 and at most 180");
     }
-    if (r.has("color")) b.color = read_color(r, "color");
-    b.opacity = r.number_or("opacity", b.opacity);
-    if (!(b.opacity >= 0.0 && b.opacity <= 1.0)) r.fail("opacity", "must be between 0 and 1");
     if (r.has("tip")) {
         const std::string tip = r.string("tip");
         if (tip.empty()) r.fail("tip", "is empty");
@@ -329,6 +420,76 @@ BrushStyle read_brush(const Reader& r, const std::filesystem::path& base) {
         }
     }
     return b;
+}
+
+// Most rules in "styles".
+constexpr size_t kMaxStyleRules = 64;
+
+// "select": {"kind": "silhouette" | [...], "object": "glob", "role": "outer" | "inner"}.
+StyleSelector read_selector(const Reader& r) {
+    r.allow_only({"kind", "object", "role"});
+    StyleSelector select;
+    if (r.has("kind")) {
+        const json& v = r.at("kind");
+        const char* expected = "expected a line kind or an array of them (silhouette, boundary, crease, intersection, hidden)";
+        std::vector<std::string> names;
+        if (v.is_string()) {
+            names.push_back(v.get<std::string>());
+        } else if (v.is_array() && !v.empty()) {
+            for (const json& x : v) {
+                if (!x.is_string()) r.fail("kind", expected);
+                names.push_back(x.get<std::string>());
+            }
+        } else {
+            r.fail("kind", expected);
+        }
+        for (const std::string& name : names) {
+            uint8_t bit = 0;
+            if (name == "hidden") bit = kSelectHidden;
+            for (const LineKind kind : kAllLineKinds) {
+                if (name == line_kind_name(kind)) bit = uint8_t(1u << unsigned(kind));
+            }
+            if (bit == 0) r.fail("kind", "'" + quote_value(name) + "': " + expected);
+            select.kinds |= bit;
+        }
+    }
+    if (r.has("object")) {
+        select.object = r.string("object");
+        if (select.object.empty()) r.fail("object", "is empty");
+    }
+    if (r.has("role")) {
+        const std::string role = r.string("role");
+        if (role == "outer") select.role = LineRole::kOuter;
+        else if (role == "inner") select.role = LineRole::kInner;
+        else r.fail("role", "expected \"outer\" or \"inner\"");
+    }
+    return select;
+}
+
+// "styles": [{"name": ..., "select": {...}, brush keys...}, ...]
+std::vector<StyleRule> read_styles(const Reader& r) {
+    if (!r.value().is_array()) r.fail("", "expected an array of style rules");
+    if (r.value().size() > kMaxStyleRules) r.fail("", "more than " + std::to_string(kMaxStyleRules) + " rules");
+    std::vector<StyleRule> rules;
+    std::set<std::string> names;
+    for (size_t i = 0; i < r.value().size(); ++i) {
+        const Reader item = r.item(i);
+        std::vector<const char*> keys = {"name", "select"};
+        keys.insert(keys.end(), kStyleBrushKeys.begin(), kStyleBrushKeys.end());
+        item.allow_only(keys);
+        StyleRule rule;
+        rule.name = item.has("name") ? item.string("name") : "style-" + std::to_string(i + 1);
+        const bool name_ok = !rule.name.empty() && rule.name.size() <= 64 &&
+                             std::all_of(rule.name.begin(), rule.name.end(), [](char c) {
+                                 return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+                             });
+        if (!name_ok) item.fail("name", "expected 1 to 64 letters, digits, '-', '_' or '.'");
+        if (!names.insert(rule.name).second) item.fail("name", "'" + rule.name + "' names an earlier rule too");
+        if (item.has("select")) rule.select = read_selector(item.child("select"));
+        rule.set = read_brush_patch(item);
+        rules.push_back(std::move(rule));
+    }
+    return rules;
 }
 
 // The radius a camera frames: the bounds' own, or, for a single point, one a millionth of the
@@ -406,7 +567,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
     }
     const Reader r(name, root, "");
     r.allow_only({"version", "mesh", "gltf", "fps", "frames", "image", "camera", "object", "objects", "light", "lines",
-                  "brush"});
+                  "brush", "styles"});
 
     Scene scene;
     scene.file = scene_file;
@@ -493,6 +654,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
     }
     if (r.has("brush")) scene.brush = read_brush(r.child("brush"), scene_file.parent_path());
     if (r.has("objects")) scene.objects = read_object_rules(r.child("objects"));
+    if (r.has("styles")) scene.styles = read_styles(r.child("styles"));
     return scene;
 }
 

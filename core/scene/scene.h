@@ -10,6 +10,7 @@
 #include "core/mesh/mesh_frames.h"
 #include "core/scene/camera.h"
 #include "core/strokes/brush_style.h"
+#include "core/strokes/line_styles.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -81,6 +82,8 @@ struct Scene {
     // Per-object line settings: glob patterns in sorted order, exact names after every glob, so
     // a later rule that matches overrides an earlier one key by key.
     std::vector<ObjectRule> objects;
+    // Line styles (docs/styles.md), in the order they apply.
+    std::vector<StyleRule> styles;
 };
 
 // Which kinds of line an object draws: the scene's lines.* with every matching rule applied.

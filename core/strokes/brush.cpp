@@ -124,23 +124,62 @@ double end_profile(StrokeEnd end, double d_px, double taper_px) {
     return x * (2.0 - x);
 }
 
+namespace {
+
+// Values at the exact points of a stroke, linearly interpolated at each sample of its drawn path.
+std::vector<double> along_path(const StrokePath& path, std::span<const double> values) {
+    std::vector<double> out(path.points_px.size(), 0.0);
+    if (values.empty()) return out;
+    for (size_t i = 0; i < out.size(); ++i) {
+        const double g = std::clamp(path.g[i], 0.0, double(values.size() - 1));
+        const size_t k = std::min(size_t(g), values.size() > 1 ? values.size() - 2 : 0);
+        const double f = values.size() > 1 ? g - double(k) : 0.0;
+        out[i] = values[k] + (values[std::min(k + 1, values.size() - 1)] - values[k]) * f;
+    }
+    return out;
+}
+
+// Curvature (1/px) of the drawn path at each sample: the turn between its neighbours over the
+// distance between them, smoothed along the path as the light is.
+std::vector<double> path_curvature(const StrokePath& path, double smooth_px) {
+    const std::vector<glm::dvec2>& p = path.points_px;
+    const size_t n = p.size();
+    std::vector<double> k(n, 0.0);
+    for (size_t i = 0; i < n; ++i) {
+        if (!path.closed && (i == 0 || i + 1 == n)) continue;
+        const glm::dvec2 a = p[(i + n - 1) % n], b = p[i], c = p[(i + 1) % n];
+        const glm::dvec2 u = b - a, v = c - b;
+        const double lu = glm::length(u), lv = glm::length(v);
+        if (!(lu > 0.0 && lv > 0.0)) continue;
+        const double turn = std::atan2(std::abs(u.x * v.y - u.y * v.x), glm::dot(u, v));
+        k[i] = turn / (0.5 * (lu + lv));
+    }
+    if (!path.closed && n >= 3) k.front() = k[1], k.back() = k[n - 2];
+    return smooth_samples(k, path.step_px, smooth_px, path.closed);
+}
+
+}  // namespace
+
 BrushSamples brush_samples(const StrokePath& path, std::span<const double> facing, std::array<StrokeEnd, 2> ends,
-                           const BrushStyle& style) {
+                           const BrushStyle& style, std::span<const double> depth_scale) {
     BrushSamples out;
     const size_t n = path.points_px.size();
     // Raw intensity at each sample: facing interpolated along the exact polyline.
-    std::vector<double> raw(n, 0.0);
-    for (size_t i = 0; i < n && !facing.empty(); ++i) {
-        const double g = std::clamp(path.g[i], 0.0, double(facing.size() - 1));
-        const size_t k = std::min(size_t(g), facing.size() > 1 ? facing.size() - 2 : 0);
-        const double f = facing.size() > 1 ? g - double(k) : 0.0;
-        const double value = facing[k] + (facing[std::min(k + 1, facing.size() - 1)] - facing[k]) * f;
-        raw[i] = std::clamp(value, 0.0, 1.0);
-    }
+    std::vector<double> raw = along_path(path, facing);
+    for (double& x : raw) x = std::clamp(x, 0.0, 1.0);
     out.intensity = smooth_samples(raw, path.step_px, style.smooth_px, path.closed);
 
     out.width.resize(n);
     for (size_t i = 0; i < n; ++i) out.width[i] = light_width_px(out.intensity[i], style);
+    if (!depth_scale.empty()) {
+        const std::vector<double> scale = along_path(path, depth_scale);
+        for (size_t i = 0; i < n; ++i) out.width[i] *= scale[i];
+    }
+    if (style.curvature_width) {
+        const CurvatureWidth& c = *style.curvature_width;
+        const std::vector<double> k = path_curvature(path, std::max(style.smooth_px, 1.0));
+        for (size_t i = 0; i < n; ++i) out.width[i] *= 1.0 + (c.scale - 1.0) * std::min(1.0, c.radius_px * k[i]);
+    }
     if (path.closed || n == 0) return out;
 
     // End profiles; on a short stroke the tapers shrink to meet in the middle.
@@ -151,6 +190,12 @@ BrushSamples brush_samples(const StrokePath& path, std::span<const double> facin
         out.width[i] *= end_profile(ends[0], d0, taper) * end_profile(ends[1], d1, taper);
     }
     return out;
+}
+
+double depth_width_scale(double depth, double near, double far, double far_scale) {
+    if (!(far > near)) return depth > near ? far_scale : 1.0;
+    const double t = std::clamp((depth - near) / (far - near), 0.0, 1.0);
+    return 1.0 + (far_scale - 1.0) * t;
 }
 
 std::string color_hex(const glm::dvec3& color) {

@@ -65,9 +65,15 @@ struct BrushSamples {
     std::vector<double> width;      // px, light width times both end profiles
 };
 
-// facing: dot(N, -l) at each exact point of the stroke the path was built from.
+// facing: dot(N, -l) at each exact point of the stroke the path was built from; depth_scale, when
+// not empty, the width-by-depth factor at each of those points (style.depth_width). The width is
+// the light's, times depth_scale, times the curvature factor (style.curvature_width), times both
+// end profiles.
 BrushSamples brush_samples(const StrokePath& path, std::span<const double> facing, std::array<StrokeEnd, 2> ends,
-                           const BrushStyle& style);
+                           const BrushStyle& style, std::span<const double> depth_scale = {});
+
+// Width-by-depth factor at a depth along the view axis (world units) between near and far.
+double depth_width_scale(double depth, double near, double far, double far_scale);
 
 // "#rrggbb" for a color with components in [0, 1].
 std::string color_hex(const glm::dvec3& color);

@@ -6,7 +6,10 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <vector>
 
 namespace inkline::core {
 
@@ -15,6 +18,25 @@ struct Light {
     bool is_point = false;
     glm::dvec3 direction{-0.4, -0.6, -0.7};  // directional: pointing from the light
     glm::dvec3 position{0.0};               // point light, world space
+};
+
+// How an end with width is closed: a half circle, flat across, or flat half a width beyond.
+enum class LineCap : uint8_t { kRound, kButt, kSquare };
+
+// Width by depth: the weight scales from 1 at `near` to far_scale at `far`, linearly in the
+// distance from the eye (world units), and stays there beyond. Without near or far, the
+// camera's near or far plane (fitted to the mesh each frame unless the scene gives them).
+struct DepthWidth {
+    std::optional<double> near, far;
+    double far_scale = 0.5;
+};
+
+// Width by screen-space curvature: the weight scales by 1 + (scale - 1) * min(1, radius_px * k),
+// k the curvature of the drawn centerline (1/px): `scale` where it bends as tightly as a circle
+// of radius_px or more, 1 where it runs straight.
+struct CurvatureWidth {
+    double radius_px = 20.0;
+    double scale = 0.5;
 };
 
 // Defaults are tuned for a 1024 px image of one object: a thin line on the lit side that swells
@@ -32,6 +54,17 @@ struct BrushStyle {
     glm::dvec3 color{0.09, 0.08, 0.07};  // sRGB in [0, 1] (#rrggbb / 255); a warm ink black
     double opacity = 1.0;                // in [0, 1]
     std::filesystem::path tip;           // brush-tip image of the GL preview (PNG); empty: the built-in tip
+
+    // Off by default: today's look.
+    std::optional<DepthWidth> depth_width;
+    std::optional<CurvatureWidth> curvature_width;
+    // Dash pattern along u (px): on, off, on, off...; an "on" of 0 with round caps is a dot. Empty:
+    // solid. Dashes are anchored to u, so they travel with the stroke from frame to frame.
+    std::vector<double> dash_px;
+    LineCap cap = LineCap::kRound;
+    // Weight of lines drawn as constant-width centerlines (hidden lines, --centerline); unset:
+    // the writers' default (1.5 px).
+    std::optional<double> line_width_px;
 };
 
 }  // namespace inkline::core

@@ -154,6 +154,20 @@ void cap(const glm::dvec2& c, const glm::dvec2& from, const glm::dvec2& through,
     }
 }
 
+// The cap of an end at c of half width r, from the side at `from` (a unit normal) round to the
+// other, bulging along `through` (the unit tangent out of the stroke): butt caps add nothing.
+void end_cap(const glm::dvec2& c, const glm::dvec2& from, const glm::dvec2& through, double r, double step_rad,
+             LineCap kind, std::vector<glm::dvec2>& out) {
+    switch (kind) {
+        case LineCap::kRound: cap(c, from, through, r, step_rad, out); break;
+        case LineCap::kButt: break;
+        case LineCap::kSquare:
+            out.push_back(c + (from + through) * r);
+            out.push_back(c + (through - from) * r);
+            break;
+    }
+}
+
 Ring dedupe(std::vector<glm::dvec2> ring) {
     Ring out;
     for (const glm::dvec2& p : ring) {
@@ -180,11 +194,13 @@ std::vector<Ring> build_outline(std::span<const glm::dvec2> c, std::span<const d
         rings.push_back(dedupe(left));
         rings.push_back(dedupe({right.rbegin(), right.rend()}));
     } else {
-        // Left side forwards, round cap, right side backwards, round cap.
+        // Left side forwards, end cap, right side backwards, start cap.
         std::vector<glm::dvec2> ring = left;
-        if (w.back() > kCapMinWidthPx) cap(c.back(), perp(t.back()), t.back(), 0.5 * w.back(), step, ring);
+        if (w.back() > kCapMinWidthPx) end_cap(c.back(), perp(t.back()), t.back(), 0.5 * w.back(), step, options.cap, ring);
         ring.insert(ring.end(), right.rbegin(), right.rend());
-        if (w.front() > kCapMinWidthPx) cap(c.front(), -perp(t.front()), -t.front(), 0.5 * w.front(), step, ring);
+        if (w.front() > kCapMinWidthPx) {
+            end_cap(c.front(), -perp(t.front()), -t.front(), 0.5 * w.front(), step, options.cap, ring);
+        }
         rings.push_back(dedupe(std::move(ring)));
     }
     // Thin strokes simplify finer, so that the tolerance stays a small part of their width.
@@ -200,6 +216,18 @@ std::vector<Ring> build_outline(std::span<const glm::dvec2> c, std::span<const d
     }
     std::erase_if(rings, [](const Ring& r) { return r.size() < 3; });
     return rings;
+}
+
+std::vector<Ring> dot_outline(const glm::dvec2& c, const glm::dvec2& tangent, double width, const OutlineOptions& options) {
+    if (!(width > kCapMinWidthPx) || options.cap == LineCap::kButt) return {};
+    const glm::dvec2 n = perp(tangent);
+    Ring ring;
+    // Both caps of a stroke of no length, back to back.
+    ring.push_back(c + n * (0.5 * width));
+    end_cap(c, n, tangent, 0.5 * width, glm::radians(std::max(options.join_step_deg, 1.0)), options.cap, ring);
+    ring.push_back(c - n * (0.5 * width));
+    end_cap(c, -n, -tangent, 0.5 * width, glm::radians(std::max(options.join_step_deg, 1.0)), options.cap, ring);
+    return {dedupe(std::move(ring))};
 }
 
 std::vector<glm::dvec2> centerline_tangents(std::span<const glm::dvec2> c, bool closed) {

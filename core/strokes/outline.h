@@ -9,6 +9,8 @@
 #include <span>
 #include <vector>
 
+#include "core/strokes/brush_style.h"
+
 namespace inkline::core {
 
 using Ring = std::vector<glm::dvec2>;  // closed polygon, px; the last point does not repeat the first
@@ -16,12 +18,17 @@ using Ring = std::vector<glm::dvec2>;  // closed polygon, px; the last point doe
 struct OutlineOptions {
     double simplify_px = 0.05;    // dropped points lie this close to the simplified ring (finer on thin strokes)
     double join_step_deg = 15.0;  // the normal turns at most this much between outline points
+    LineCap cap = LineCap::kRound;  // how an open stroke's ends with width are closed
 };
 
 // Outline of a centerline with a width (px) at each point. An open stroke gives one ring, a
 // loop two (outer and inner, of opposite orientation): fill them together with the nonzero rule.
 std::vector<Ring> build_outline(std::span<const glm::dvec2> centerline, std::span<const double> width, bool closed,
                                 const OutlineOptions& options);
+
+// The ink of a dot (a dash of no length) of that width at c, drawn along `tangent` (unit): a
+// circle with round caps, a square with square caps, nothing with butt caps.
+std::vector<Ring> dot_outline(const glm::dvec2& c, const glm::dvec2& tangent, double width, const OutlineOptions& options);
 
 // Unit tangents of a centerline by central differences over the nearest distinct neighbours
 // (wrapping round a loop); the outline's normals are their perpendiculars, and a preview drawn

@@ -42,7 +42,7 @@ struct StrokeGeometry {
     // no segment is; else one mark per segment.
     std::vector<uint8_t> bridged;
     size_t pure_stroke_count = 1;  // how many pure strokes were linked into this one
-    int32_t object = -1;           // the object of its first edge (FrameLines::objects); -1 without objects
+    int32_t object = -1;           // the object of its first edge (FrameLines::objects; build_strokes); -1 without objects
 
     const glm::dvec2& end_px(int end) const { return end == 0 ? points_px.front() : points_px.back(); }
     double length_px() const;

@@ -169,15 +169,78 @@ bool choose_loop_start(StrokeGeometry& g, const StrokeMatch& match, const Stroke
     return true;
 }
 
+// The ink of a dashed centerline: one outline per dash of `pattern` along u, one dot outline per
+// dash of no length. A loop's closing segment is dashed too.
+std::vector<Ring> dashed_outline(std::vector<glm::dvec2> c, std::vector<double> w, std::vector<double> u, bool closed,
+                                 double length_px, std::span<const double> pattern, const OutlineOptions& options) {
+    std::vector<Ring> rings;
+    if (c.size() < 2) return rings;
+    if (closed) {
+        c.push_back(c.front());
+        w.push_back(w.front());
+        u.push_back(u.front() + length_px);
+    }
+    struct At {
+        size_t next;  // first sample past the point
+        glm::dvec2 p;
+        double width;
+    };
+    const auto at = [&](double x) {
+        const size_t k = std::clamp<size_t>(size_t(std::upper_bound(u.begin(), u.end(), x) - u.begin()), 1, u.size() - 1);
+        const double span = u[k] - u[k - 1];
+        const double f = span > 0.0 ? std::clamp((x - u[k - 1]) / span, 0.0, 1.0) : 0.0;
+        return At{k, c[k - 1] + (c[k] - c[k - 1]) * f, w[k - 1] + (w[k] - w[k - 1]) * f};
+    };
+    for (const auto& [a, b] : dash_intervals(pattern, u.front(), u.back())) {
+        const At start = at(a);
+        if (b <= a) {
+            const glm::dvec2 d = c[start.next] - c[start.next - 1];
+            const double len = glm::length(d);
+            const glm::dvec2 tangent = len > 0.0 ? d / len : glm::dvec2(1.0, 0.0);
+            for (Ring& ring : dot_outline(start.p, tangent, start.width, options)) rings.push_back(std::move(ring));
+            continue;
+        }
+        const At end = at(b);
+        std::vector<glm::dvec2> piece{start.p};
+        std::vector<double> width{start.width};
+        for (size_t k = start.next; k < end.next; ++k) {
+            if (u[k] <= a || u[k] >= b) continue;
+            piece.push_back(c[k]);
+            width.push_back(w[k]);
+        }
+        piece.push_back(end.p);
+        width.push_back(end.width);
+        for (Ring& ring : build_outline(piece, width, false, options)) rings.push_back(std::move(ring));
+    }
+    return rings;
+}
+
+// Width-by-depth factors at the exact points `drawn` of g, or none without style.depth_width.
+std::vector<double> depth_scales(const StrokeGeometry& g, const std::vector<size_t>& drawn, const BrushStyle& style,
+                                 const Camera& camera) {
+    std::vector<double> out;
+    if (!style.depth_width) return out;
+    const DepthWidth& d = *style.depth_width;
+    const glm::dvec3 axis = camera.target - camera.eye;
+    const double axis_len = glm::length(axis);
+    const glm::dvec3 forward = axis_len > 0.0 ? axis / axis_len : glm::dvec3(0.0, 0.0, -1.0);
+    const double near = d.near.value_or(camera.near), far = d.far.value_or(camera.far);
+    out.reserve(drawn.size());
+    for (const size_t k : drawn) {
+        out.push_back(depth_width_scale(glm::dot(g.points_world[k] - camera.eye, forward), near, far, d.far_scale));
+    }
+    return out;
+}
+
 // path: the drawn centerline of g when already built, else empty.
 Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint32_t id, double u_offset,
-                    const StrokeLighting& lighting, const BrushStyle& style) {
+                    const StrokeLighting& lighting, const BrushStyle& style, const Camera& camera) {
     Stroke stroke;
     stroke.id = id;
     const std::vector<size_t> drawn = g.drawn_indices();
     const StrokePath path = path_built ? std::move(*path_built) : drawn_path(g, style);
     const std::vector<double> facing = pick(lighting.facing(g.points_world, g.edges), drawn);
-    const BrushSamples brush = brush_samples(path, facing, g.ends, style);
+    const BrushSamples brush = brush_samples(path, facing, g.ends, style, depth_scales(g, drawn, style, camera));
     const std::vector<double> at = drawn_parameter(drawn, g.points_px.size());
 
     // The drawn centerline and its attributes; a loop's u starts at 0 on its first sample.
@@ -195,7 +258,13 @@ Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint
     if (g.closed && !stroke.u.empty()) stroke.u.back() = path.length_px;  // the seam, reached again
 
     stroke.drawn = path.length_px >= style.min_length_px && path.points_px.size() >= 2;
-    if (stroke.drawn) stroke.outline = build_outline(path.points_px, brush.width, path.closed, {});
+    if (stroke.drawn) {
+        OutlineOptions outline;
+        outline.cap = style.cap;
+        stroke.outline = style.dash_px.empty() ? build_outline(path.points_px, brush.width, path.closed, outline)
+                                               : dashed_outline(path.points_px, brush.width, stroke.centerline_u,
+                                                                path.closed, path.length_px, style.dash_px, outline);
+    }
     stroke.deviation_px = path.deviation_px;
     stroke.removed_px = removed_extent_px(pick(g.points_px, drawn), path);
     if (std::find(g.bridged.begin(), g.bridged.end(), uint8_t(1)) == g.bridged.end()) g.bridged.clear();
@@ -231,7 +300,8 @@ StrokeTrace trace_of(const Stroke& stroke, bool start_anchored) {
 }  // namespace
 
 FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
-                           const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence) {
+                           const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence,
+                           std::span<const StyleRule> rules, const ObjectOfEdges& object_of) {
     FrameStrokes out;
     out.frame = frame.frame;
     // Visible lines are stroked alike whether or not hidden lines are output: with hidden lines
@@ -283,11 +353,30 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     for (size_t i = 0; i < n; ++i) weight[i] = pure.strokes[i].length_px();
     std::vector<StrokePath> paths(n);
     std::vector<StrokeCandidate> candidates(n);
+    // Roles only when a rule asks for them: the mask rasterises the whole mesh.
+    const std::optional<BackgroundMask> background =
+        selects_role(rules) ? std::optional<BackgroundMask>(std::in_place, mesh, projection) : std::nullopt;
+    std::vector<LineRole> roles(n, LineRole::kInner);
     internal::parallel_for_each(weight, kMinParallelLengthPx, [&](size_t i) {
         paths[i] = drawn_path(pure.strokes[i], style);
+        if (background && pure.strokes[i].visible) roles[i] = role_of(paths[i], *background);
         candidates[i] = candidate_of(std::move(pure.strokes[i]), paths[i]);
     });
     const std::vector<StrokeMatch> matches = r_coherence.match(candidates);
+
+    // Each stroke's object and style, from what it is.
+    StyleSheet sheet(style, rules);
+    std::vector<uint32_t> stroke_style(n, 0);
+    std::vector<int32_t> objects(n, -1);
+    for (size_t i = 0; i < n; ++i) {
+        const StrokeGeometry& g = candidates[i].geometry;
+        if (object_of && !g.edges.empty()) objects[i] = object_of({matches[i].reverse ? &g.edges.back() : &g.edges.front(), 1});
+        if (rules.empty()) continue;
+        const int32_t o = objects[i];
+        const std::string_view object =
+            o >= 0 && size_t(o) < frame.objects.size() ? std::string_view(frame.objects[size_t(o)].name) : "";
+        stroke_style[i] = sheet.resolve({g.kind, g.visible, object, roles[i]});
+    }
 
     // Normals only where the frame's lines run (bridged gaps included): a full pass over a million vertices would cost
     // more than the rest of this stage.
@@ -311,7 +400,10 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
             anchored = choose_loop_start(g, m, lighting, projection, object_from_world);
             path.reset();
         }
-        styled[i] = style_stroke(std::move(g), std::move(path), m.id, m.u_offset, lighting, style);
+        styled[i] = style_stroke(std::move(g), std::move(path), m.id, m.u_offset, lighting,
+                                 sheet.styles()[stroke_style[i]].brush, frame.camera);
+        styled[i].style = stroke_style[i];
+        styled[i].geometry.object = objects[i];
         traces[i] = trace_of(styled[i], anchored);
     });
     uint32_t next_id = r_coherence.next_id();
@@ -340,6 +432,7 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
         out.strokes.push_back(std::move(stroke));
     }
     r_coherence.remember(std::move(traces), next_id);
+    out.styles = sheet.take();
     return out;
 }
 

@@ -8,6 +8,8 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <span>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -17,6 +19,7 @@
 #include "core/pipeline/frame_lines.h"
 #include "core/scene/camera.h"
 #include "core/strokes/brush_style.h"
+#include "core/strokes/line_styles.h"
 #include "core/strokes/outline.h"
 #include "core/strokes/stroke_coherence.h"
 #include "core/strokes/stroke_geometry.h"
@@ -29,6 +32,7 @@ struct Stroke {
     // marked only where there are any (geometry.bridged is empty otherwise).
     StrokeGeometry geometry;
     bool drawn = true;  // false when shorter than min_length_px: kept in the data, no outline
+    uint32_t style = 0;  // index into FrameStrokes::styles
 
     // Per exact point of geometry.
     std::vector<double> u;          // arc-length parameter, px, carried between frames
@@ -39,7 +43,9 @@ struct Stroke {
     std::vector<glm::dvec2> centerline_px;
     std::vector<double> centerline_u;
     std::vector<double> centerline_width;  // px
-    std::vector<Ring> outline;             // one ring, or outer and inner for a loop (nonzero fill)
+    // One ring, or outer and inner for a loop (nonzero fill); a dashed stroke has one ring per
+    // dash or dot.
+    std::vector<Ring> outline;
 
     double deviation_px = 0.0;  // largest distance of the drawn centerline from the exact points
     double removed_px = 0.0;    // largest distance of an exact point from the drawn centerline
@@ -66,6 +72,9 @@ struct StrokeStats {
 struct FrameStrokes {
     int frame = 0;
     std::vector<Stroke> strokes;
+    // The styles the strokes use; styles[0] is the scene's brush, the style of a stroke no rule
+    // matched.
+    std::vector<StrokeStyle> styles;
     StrokeStats stats;
 };
 
@@ -73,8 +82,15 @@ struct FrameStrokes {
 // mesh and table are the frame's mesh and edge table, projection its camera and object motion.
 // Reads the previous frame's strokes from r_coherence and leaves this frame's there; short
 // occluded gaps (frame.occluded) are bridged as gap_bridge_options says.
+// The object (an index into FrameLines::objects) of the first of these mesh edges.
+using ObjectOfEdges = std::function<int32_t(std::span<const uint32_t> edges)>;
+
+// Each stroke is drawn with `style` and the style rules that match it applied in order. With
+// object_of, each stroke's geometry.object is the object of its first edge in drawing direction
+// (for a loop, before its start is chosen), and rules select by it.
 // Deterministic: the same frames in the same order give the same strokes, bit for bit.
 FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
-                           const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence);
+                           const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence,
+                           std::span<const StyleRule> rules = {}, const ObjectOfEdges& object_of = {});
 
 }  // namespace inkline::core

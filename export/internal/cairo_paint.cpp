@@ -65,38 +65,37 @@ void paint_drawing(cairo_t* cr, const Drawing& d) {
         cairo_set_source_rgb(cr, bg.r, bg.g, bg.b);
         cairo_paint(cr);
     }
-    const Rgb ink = parse_color(d.style.color, "color");
-    const double w = d.style.centerline_width_px;
-    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+    const auto all = [](const Shape&) { return true; };
     for (const Layer layer : kAllLayers) {
-        const bool hidden = layer == Layer::kHidden;
         if (layer == Layer::kIntersection &&
             std::none_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return layer_of(s) == Layer::kIntersection; })) {
             continue;  // as in SVG, only when there are intersection lines
         }
         // Each layer is composited as a group so its opacity applies to the layer, not per path.
+        const double opacity = layer_opacity(d, layer, all);
         cairo_push_group(cr);
-        cairo_set_source_rgb(cr, ink.r, ink.g, ink.b);
-        if (hidden) {
-            const double dashes[] = {3.0 * w, 2.0 * w};
-            cairo_set_dash(cr, dashes, 2, 0.0);
-        } else {
-            cairo_set_dash(cr, nullptr, 0, 0.0);
-        }
         for (const Shape& s : d.shapes) {
             if (layer_of(s) != layer) continue;
+            const InkStyle ink = ink_of(d, s);
+            const Rgb rgb = parse_color(ink.color, "color");
+            cairo_set_source_rgba(cr, rgb.r, rgb.g, rgb.b, shape_opacity(d, s, opacity));
             trace_path(cr, s);
             if (s.filled) {
                 cairo_fill(cr);
-            } else {
-                cairo_set_line_width(cr, w);
-                cairo_stroke(cr);
+                continue;
             }
+            const std::vector<double> dashes = dashes_of(d, s);
+            cairo_set_dash(cr, dashes.empty() ? nullptr : dashes.data(), int(dashes.size()), dash_offset_of(d, s));
+            cairo_set_line_cap(cr, ink.cap == core::LineCap::kButt     ? CAIRO_LINE_CAP_BUTT
+                                   : ink.cap == core::LineCap::kSquare ? CAIRO_LINE_CAP_SQUARE
+                                                                       : CAIRO_LINE_CAP_ROUND);
+            cairo_set_line_width(cr, line_width_of(d, s));
+            cairo_stroke(cr);
         }
         cairo_pop_group_to_source(cr);
-        cairo_paint_with_alpha(cr, layer_opacity(d.style, layer));
+        cairo_paint_with_alpha(cr, opacity);
     }
     cairo_restore(cr);
 }

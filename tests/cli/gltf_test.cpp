@@ -212,7 +212,7 @@ TEST_F(Gltf, LayersByObjectNestKindLayersInObjectLayers) {
     EXPECT_EQ(test::run_shell("xmllint --noout " + (dir / "o/0001.svg").string()).code, 0);
     const auto bad = test::run_inkline("render " + (dir / "shot.glb").string() + " --layers material -o " + (dir / "x").string());
     EXPECT_EQ(bad.code, 2) << bad.output;
-    EXPECT_NE(bad.output.find("--layers 'material': expected kind or object"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("--layers 'material': expected kind, object or style"), std::string::npos) << bad.output;
 }
 
 // A torus whose morph target ripples it while a skin's joint turns it: the incremental tracker

@@ -6,6 +6,7 @@
 #include "core/mesh/topology.h"
 #include "core/scene/gltf_shot.h"
 #include "core/scene/scene.h"
+#include "core/strokes/line_styles.h"
 
 #include <filesystem>
 #include <fstream>
@@ -23,6 +24,16 @@ void scene_target(const uint8_t* data, size_t size) {
         bounds.add({1.0, 1.0, 1.0});
         core::camera_at(scene, scene.first_frame, bounds);
         core::camera_at(scene, scene.last_frame, bounds);
+        // Every combination of what style rules select, and the dashes of each resulting style.
+        core::StyleSheet sheet(scene.brush, scene.styles);
+        for (const core::LineKind kind : core::kAllLineKinds) {
+            for (const bool visible : {true, false}) {
+                for (const core::LineRole role : {core::LineRole::kOuter, core::LineRole::kInner}) {
+                    const uint32_t style = sheet.resolve({kind, visible, "Tree.001", role});
+                    core::dash_intervals(sheet.styles()[style].brush.dash_px, -37.5, 1000.0);
+                }
+            }
+        }
     } catch (const InputError&) {
     }
 }

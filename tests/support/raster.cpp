@@ -28,7 +28,7 @@ std::vector<uint8_t> coverage(const Surface& surface, Ink ink, const std::string
             uint32_t p = 0;
             std::memcpy(&p, data + size_t(y) * size_t(stride) + 4 * size_t(x), sizeof p);
             const uint32_t a = has_alpha ? p >> 24 : 255, g = (p >> 8) & 0xff;
-            const bool inked = ink == Ink::kAlphaOrDark && a == 255 ? g < 128 : a > 127;
+            const bool inked = ink == Ink::kFaint ? a > 51 : ink == Ink::kAlphaOrDark && a == 255 ? g < 128 : a > 127;
             out[size_t(y) * size_t(w) + size_t(x)] = inked;
         }
     }

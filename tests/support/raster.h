@@ -14,6 +14,7 @@ namespace inkline::test {
 enum class Ink : uint8_t {
     kAlpha,        // alpha above one half
     kAlphaOrDark,  // alpha above one half where the pixel is see-through, darker than mid-grey where opaque
+    kFaint,        // alpha above a fifth: lines drawn at half opacity (hidden lines) count too
 };
 
 // Per pixel, rows from the top: 1 where there is ink. Throws std::runtime_error when the PNG
