@@ -298,7 +298,7 @@ glm::dvec3 read_color(const Reader& r, const std::string& key) {
 
 // The brush keys a style rule may set, as "brush" has them.
 constexpr std::initializer_list<const char*> kStyleBrushKeys = {
-    "width_min_px", "width_max_px", "gamma", "invert", "taper_px", "min_length_px", "color", "opacity",
+    "width_min_px", "width_max_px", "gamma", "invert", "taper_px", "max_width_ratio", "min_length_px", "color", "opacity",
     "depth_width", "curvature_width", "dash_px", "cap", "line_width_px"};
 
 // Most entries of a dash pattern, and its shortest period (px): a pattern finer than that would
@@ -332,6 +332,12 @@ BrushPatch read_brush_patch(const Reader& r) {
     }
     if (r.has("invert")) p.invert = r.boolean_or("invert", false);
     p.taper_px = non_negative("taper_px");
+    if (r.has("max_width_ratio")) {
+        p.max_width_ratio = r.number("max_width_ratio");
+        if (!(*p.max_width_ratio > 0.0 && *p.max_width_ratio <= 1000.0)) {
+            r.fail("max_width_ratio", "must be greater than 0 and at most 1000");
+        }
+    }
     p.min_length_px = non_negative("min_length_px");
     if (r.has("color")) p.color = read_color(r, "color");
     if (r.has("opacity")) {

@@ -180,16 +180,28 @@ BrushSamples brush_samples(const StrokePath& path, std::span<const double> facin
         const std::vector<double> k = path_curvature(path, std::max(style.smooth_px, 1.0));
         for (size_t i = 0; i < n; ++i) out.width[i] *= 1.0 + (c.scale - 1.0) * std::min(1.0, c.radius_px * k[i]);
     }
-    if (path.closed || n == 0) return out;
+    if (n == 0) return out;
 
     // End profiles; on a short stroke the tapers shrink to meet in the middle.
     const double length = path.length_px;
-    const double taper = std::min(style.taper_px, 0.5 * length);
-    for (size_t i = 0; i < n; ++i) {
-        const double d0 = path.arc_px[i], d1 = length - path.arc_px[i];
-        out.width[i] *= end_profile(ends[0], d0, taper) * end_profile(ends[1], d1, taper);
+    if (!path.closed) {
+        const double taper = std::min(style.taper_px, 0.5 * length);
+        for (size_t i = 0; i < n; ++i) {
+            const double d0 = path.arc_px[i], d1 = length - path.arc_px[i];
+            out.width[i] *= end_profile(ends[0], d0, taper) * end_profile(ends[1], d1, taper);
+        }
+    }
+    // A short stroke is a short mark: its widest point is scaled down to what its length allows.
+    const double widest = *std::max_element(out.width.begin(), out.width.end());
+    const double allowed = short_stroke_width_px(length, style);
+    if (widest > allowed) {
+        for (double& w : out.width) w *= allowed / widest;
     }
     return out;
+}
+
+double short_stroke_width_px(double length_px, const BrushStyle& style) {
+    return std::max(style.width_min_px, style.max_width_ratio * length_px);
 }
 
 double depth_width_scale(double depth, double near, double far, double far_scale) {

@@ -68,9 +68,13 @@ struct BrushSamples {
 // facing: dot(N, -l) at each exact point of the stroke the path was built from; depth_scale, when
 // not empty, the width-by-depth factor at each of those points (style.depth_width). The width is
 // the light's, times depth_scale, times the curvature factor (style.curvature_width), times both
-// end profiles.
+// end profiles, all scaled down on a short stroke (short_stroke_width_px).
 BrushSamples brush_samples(const StrokePath& path, std::span<const double> facing, std::array<StrokeEnd, 2> ends,
                            const BrushStyle& style, std::span<const double> depth_scale = {});
+
+// The widest a stroke of that drawn length may be: max_width_ratio times its length, but not
+// below width_min_px. brush_samples scales a wider stroke's widths down to it.
+double short_stroke_width_px(double length_px, const BrushStyle& style);
 
 // Width-by-depth factor at a depth along the view axis (world units) between near and far.
 double depth_width_scale(double depth, double near, double far, double far_scale);

@@ -47,6 +47,9 @@ struct BrushStyle {
     double gamma = 1.4;                  // response f(x) = x^gamma of x = 1 - I (or I with invert)
     bool invert = false;                 // true: lit sides are heavier (x = I)
     double taper_px = 22.0;              // length over which free (S) ends thin to a point
+    // A stroke is at most this many times as wide as it is long (but may always be width_min_px
+    // wide): short strokes draw as short marks, not as fat specks.
+    double max_width_ratio = 0.2;
     double min_length_px = 3.0;          // shorter strokes are kept in the data but not drawn
     double smooth_px = 6.0;              // Gaussian sigma along the stroke for the centerline and the light
     double max_deviation_px = 0.5;       // drawn centerline stays this close to the exact polyline

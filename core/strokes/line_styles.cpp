@@ -28,6 +28,7 @@ void BrushPatch::apply_to(BrushStyle& r_style) const {
     set_if(gamma, r_style.gamma);
     set_if(invert, r_style.invert);
     set_if(taper_px, r_style.taper_px);
+    set_if(max_width_ratio, r_style.max_width_ratio);
     set_if(min_length_px, r_style.min_length_px);
     set_if(color, r_style.color);
     set_if(opacity, r_style.opacity);

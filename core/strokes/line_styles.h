@@ -40,7 +40,8 @@ inline constexpr uint8_t kSelectHidden = uint8_t(1u << kLineKindCount);
 
 // The brush keys a rule sets; the others keep what the rules before it (or the scene's brush) set.
 struct BrushPatch {
-    std::optional<double> width_min_px, width_max_px, gamma, taper_px, min_length_px, opacity, line_width_px;
+    std::optional<double> width_min_px, width_max_px, gamma, taper_px, max_width_ratio, min_length_px, opacity,
+        line_width_px;
     std::optional<bool> invert;
     std::optional<glm::dvec3> color;
     std::optional<DepthWidth> depth_width;

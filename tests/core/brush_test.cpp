@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <glm/geometric.hpp>
 #include <vector>
 
@@ -57,6 +59,39 @@ TEST(Brush, TaperFreeMiddleIsMonotoneInShadow) {
         EXPECT_GE(b.width[i], b.width[i - 1]) << "darker along the stroke, heavier: " << a;
         EXPECT_DOUBLE_EQ(b.width[i], core::light_width_px(b.intensity[i], style));
     }
+}
+
+// The example: a 6 px stroke in full shadow with both ends free reached the full 4.8 px
+// in its middle, a fat speck. Now a stroke is at most max_width_ratio times as wide as it is long
+// (and may always be width_min_px wide); long strokes keep their width.
+TEST(Brush, ShortStrokesAreShortMarksNotSpecks) {
+    const core::BrushStyle style;
+    for (const double length : {2.0, 6.0, 12.0, 24.0, 60.0}) {
+        for (const StrokeEnd end : {StrokeEnd::kFree, StrokeEnd::kCorner}) {
+            std::vector<glm::dvec2> line;
+            for (int i = 0; i <= 12; ++i) line.push_back({length * i / 12.0, 0.0});
+            const std::vector<double> facing(line.size(), 0.0);  // in shadow: the widest
+            const core::StrokePath path = core::build_stroke_path(line, false, {});
+            const core::BrushSamples b = core::brush_samples(path, facing, {end, end}, style);
+            const double widest = *std::max_element(b.width.begin(), b.width.end());
+            const double allowed = std::max(style.width_min_px, style.max_width_ratio * path.length_px);
+            EXPECT_DOUBLE_EQ(core::short_stroke_width_px(path.length_px, style), allowed);
+            if (end == StrokeEnd::kCorner) {
+                // Blunt ends: the whole stroke at the widest allowed.
+                EXPECT_NEAR(widest, std::min(allowed, style.width_max_px), 1e-9) << length;
+            } else {
+                EXPECT_LE(widest, allowed + 1e-9) << length;
+            }
+        }
+    }
+    // A 6 px stroke is 1.2 px wide at most, a quarter of the 4.8 px it was.
+    EXPECT_DOUBLE_EQ(core::short_stroke_width_px(6.0, style), 1.2);
+    // A small loop is a short mark too.
+    std::vector<glm::dvec2> ring;
+    for (int i = 0; i <= 16; ++i) ring.push_back({2.0 * std::cos(i * std::numbers::pi / 8.0), 2.0 * std::sin(i * std::numbers::pi / 8.0)});
+    const core::StrokePath loop = core::build_stroke_path(ring, true, {});
+    const core::BrushSamples b = core::brush_samples(loop, std::vector<double>(ring.size(), 0.0), {StrokeEnd::kLoop, StrokeEnd::kLoop}, style);
+    EXPECT_LE(*std::max_element(b.width.begin(), b.width.end()), 0.2 * loop.length_px + 1e-9);
 }
 
 TEST(Brush, WidthIsMonotoneInShadowOnASideLitSphere) {

@@ -129,6 +129,7 @@ TEST(LineStyles, EveryBrushKeyOfARuleIsApplied) {
     p.gamma = 2.0;
     p.invert = true;
     p.taper_px = 5.0;
+    p.max_width_ratio = 0.5;
     p.min_length_px = 9.0;
     p.color = glm::dvec3(0.1, 0.2, 0.3);
     p.opacity = 0.25;
@@ -144,6 +145,7 @@ TEST(LineStyles, EveryBrushKeyOfARuleIsApplied) {
     EXPECT_EQ(b.gamma, 2.0);
     EXPECT_TRUE(b.invert);
     EXPECT_EQ(b.taper_px, 5.0);
+    EXPECT_EQ(b.max_width_ratio, 0.5);
     EXPECT_EQ(b.min_length_px, 9.0);
     EXPECT_EQ(b.color, glm::dvec3(0.1, 0.2, 0.3));
     EXPECT_EQ(b.opacity, 0.25);
