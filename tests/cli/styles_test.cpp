@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -175,6 +177,36 @@ TEST_F(Styles, RulesByObjectAndRoleColourLayerAndNameTheStrokes) {
     EXPECT_EQ(bad.code, 2) << bad.output;
     EXPECT_NE(bad.output.find("key 'styles[0].select.kind': 'outline'"), std::string::npos) << bad.output;
     EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
+// The SVG of a styled frame (colours, a layer opacity, dots and dashes, Bézier paths or polygons)
+// renders the same in librsvg and in Inkscape.
+TEST_F(Styles, SvgRendersTheSameInRsvgAndInkscape) {
+    if (test::run_shell("command -v inkscape").code != 0) GTEST_SKIP() << "inkscape is not installed (.ci/setup installs it)";
+    test::write_text(dir / "scene.json", R"({"mesh": ")" + std::string(INKLINE_SAMPLES) + R"(/torus/torus.obj",
+        "frames": [1, 1], "image": {"width": 800, "height": 800},
+        "camera": {"eye": [0.0, 0.8, 4.6], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 40},
+        "lines": {"hidden": true},
+        "styles": [{"name": "outer", "select": {"role": "outer"}, "width_max_px": 6, "color": "#1d3557"},
+                   {"name": "inner", "select": {"role": "inner"}, "dash_px": [10, 4], "cap": "butt", "opacity": 0.7},
+                   {"name": "dotted", "select": {"kind": "hidden"}, "dash_px": [0, 6], "line_width_px": 2.5}]})");
+    for (const char* format : {"polygon", "bezier"}) {
+        const fs::path svg = dir / (std::string(format) + ".svg");
+        const auto r = test::run_inkline("render " + (dir / "scene.json").string() + " -q --path-format " + format +
+                                         " --svg " + svg.string());
+        ASSERT_EQ(r.code, 0) << r.output;
+        const fs::path by_rsvg = dir / (std::string(format) + "-rsvg.png"), by_inkscape = dir / (std::string(format) + "-inkscape.png");
+        ASSERT_EQ(test::run_shell("rsvg-convert -o " + by_rsvg.string() + " " + svg.string()).code, 0);
+        const auto ink = test::run_shell("HOME=" + dir.string() + " inkscape --export-type=png --export-filename=" +
+                                         by_inkscape.string() + " " + svg.string());
+        ASSERT_EQ(ink.code, 0) << ink.output;
+        const std::vector<uint8_t> a = test::png_file_coverage(by_rsvg, test::Ink::kFaint);
+        const std::vector<uint8_t> b = test::png_file_coverage(by_inkscape, test::Ink::kFaint);
+        EXPECT_GT(std::count(a.begin(), a.end(), uint8_t(1)), 5000) << format;
+        const double iou = test::iou(a, b);
+        std::printf("%s: ink IoU between rsvg-convert and Inkscape %.4f\n", format, iou);
+        EXPECT_GE(iou, 0.98) << format;
+    }
 }
 
 }  // namespace
