@@ -110,6 +110,7 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
             s.object = object_name(frame, g.object);
             s.object_index = g.object;
             s.style = stroke.style;
+            s.darkening = stroke.darkening;
             d.shapes.push_back(std::move(s));
             continue;
         }
@@ -143,6 +144,14 @@ const char* layer_name(Layer layer) {
 InkStyle ink_of(const Drawing& d, const Shape& shape) {
     if (shape.style < d.styles.size()) return d.styles[shape.style];
     return d.styles.empty() ? base_ink(d.style) : d.styles.front();
+}
+
+std::string color_of(const Drawing& d, const Shape& shape) {
+    const InkStyle ink = ink_of(d, shape);
+    if (!(shape.darkening > 0.0)) return ink.color;
+    const Rgb rgb = parse_color(ink.color, "color");
+    const double k = 1.0 - std::clamp(shape.darkening, 0.0, 1.0);
+    return hex_color(glm::dvec3(rgb.r, rgb.g, rgb.b) * k);
 }
 
 double line_width_of(const Drawing& d, const Shape& shape) {

@@ -68,6 +68,7 @@ struct Shape {
     int32_t object_index = -1;  // its index among the frame's objects; -1 without objects
     uint32_t style = 0;         // index into Drawing::styles
     double u_start = 0.0;       // u at the first point of a stroked centerline: where its dashes start
+    double darkening = 0.0;     // the ink drawn this much darker (a textured brush's pressure), in [0, 1]
 };
 
 struct Drawing {
@@ -82,6 +83,8 @@ struct Drawing {
 
 // The ink of a shape (DrawStyle's when the drawing lists no styles).
 InkStyle ink_of(const Drawing& drawing, const Shape& shape);
+// "#rrggbb" a shape is drawn in: its style's colour, darkened as the shape says.
+std::string color_of(const Drawing& drawing, const Shape& shape);
 // Width of a stroked centerline.
 double line_width_of(const Drawing& drawing, const Shape& shape);
 // Dash pattern (px) of a stroked centerline: its style's, else 3 and 2 line widths for a hidden

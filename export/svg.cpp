@@ -239,7 +239,7 @@ void kind_layers(Writer& w, const Drawing& d, const std::string& indent, const s
                 w.number(own) << "\"";
             }
             if (s.filled) {
-                w << " fill=\"" << ink.color << "\" stroke=\"none\"/>\n";
+                w << " fill=\"" << color_of(d, s) << "\" stroke=\"none\"/>\n";
                 continue;
             }
             w << " fill=\"none\" stroke=\"" << ink.color << "\" stroke-width=\"";

@@ -299,7 +299,7 @@ glm::dvec3 read_color(const Reader& r, const std::string& key) {
 // The brush keys a style rule may set, as "brush" has them.
 constexpr std::initializer_list<const char*> kStyleBrushKeys = {
     "width_min_px", "width_max_px", "gamma", "invert", "taper_px", "max_width_ratio", "min_length_px", "color", "opacity",
-    "depth_width", "curvature_width", "dash_px", "cap", "line_width_px"};
+    "depth_width", "curvature_width", "dash_px", "cap", "line_width_px", "texture"};
 
 // Most entries of a dash pattern, and its shortest period (px): a pattern finer than that would
 // cut a long stroke into millions of pieces.
@@ -385,6 +385,24 @@ BrushPatch read_brush_patch(const Reader& r) {
             r.fail("dash_px", "the pattern must repeat after 1 px or more");
         }
         if (!dash.empty() && period > 1e6) r.fail("dash_px", "the pattern must repeat within 1e6 px");
+    }
+    if (r.has("texture")) {
+        const json& v = r.at("texture");
+        if (v.is_boolean()) {
+            p.texture = v.get<bool>() ? std::optional<BrushTexture>(BrushTexture{}) : std::nullopt;
+        } else {
+            const Reader t = r.child("texture");
+            t.allow_only({"dry", "dry_px", "streaks", "pressure"});
+            BrushTexture texture;
+            for (const auto& [key, value] : {std::pair("dry", &texture.dry), std::pair("streaks", &texture.streaks),
+                                             std::pair("pressure", &texture.pressure)}) {
+                *value = t.number_or(key, *value);
+                if (!(*value >= 0.0 && *value <= 1.0)) t.fail(key, "must be between 0 and 1");
+            }
+            texture.dry_px = t.number_or("dry_px", texture.dry_px);
+            if (!(texture.dry_px > 0.0 && texture.dry_px <= 10000.0)) t.fail("dry_px", "must be above 0 and at most 10000");
+            p.texture = std::optional<BrushTexture>(texture);
+        }
     }
     if (r.has("cap")) {
         const std::string cap = r.string("cap");

@@ -39,6 +39,14 @@ struct CurvatureWidth {
     double scale = 0.5;
 };
 
+// The brush's character in vector output (core/strokes/brush_texture.h): each amount in [0, 1].
+struct BrushTexture {
+    double dry = 0.6;        // how far the tail of a free end breaks up as the brush runs dry
+    double dry_px = 40.0;    // length of that tail, px
+    double streaks = 0.5;    // how often bristle streaks open along the stroke
+    double pressure = 0.25;  // how much darker the ink is where the brush presses (wider)
+};
+
 // Defaults are tuned for a 1024 px image of one object: a thin line on the lit side that swells
 // to about four times its weight in the shadow, with brush-like pointed free ends.
 struct BrushStyle {
@@ -68,6 +76,8 @@ struct BrushStyle {
     // Weight of lines drawn as constant-width centerlines (hidden lines, --centerline); unset:
     // the writers' default (1.5 px).
     std::optional<double> line_width_px;
+    // The brush's dry breaks, streaks and pressure drawn as vector shapes; unset: flat ink.
+    std::optional<BrushTexture> texture;
 };
 
 }  // namespace inkline::core

@@ -37,6 +37,7 @@ void BrushPatch::apply_to(BrushStyle& r_style) const {
     if (curvature_width) r_style.curvature_width = curvature_width;
     set_if(dash_px, r_style.dash_px);
     set_if(cap, r_style.cap);
+    set_if(texture, r_style.texture);
 }
 
 bool matches(const StyleSelector& select, const StrokeTraits& traits) {

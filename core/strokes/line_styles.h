@@ -48,6 +48,7 @@ struct BrushPatch {
     std::optional<CurvatureWidth> curvature_width;
     std::optional<std::vector<double>> dash_px;
     std::optional<LineCap> cap;
+    std::optional<std::optional<BrushTexture>> texture;  // set: the texture, or none (false)
 
     void apply_to(BrushStyle& r_style) const;
 };

@@ -11,6 +11,7 @@
 #include "core/internal/parallel.h"
 #include "core/strokes/bridge_gaps.h"
 #include "core/strokes/brush.h"
+#include "core/strokes/brush_texture.h"
 #include "core/strokes/occluded_gaps.h"
 #include "core/strokes/pure_strokes.h"
 #include "core/strokes/rejoin_strokes.h"
@@ -264,6 +265,13 @@ Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint
         stroke.outline = style.dash_px.empty() ? build_outline(path.points_px, brush.width, path.closed, outline)
                                                : dashed_outline(path.points_px, brush.width, stroke.centerline_u,
                                                                 path.closed, path.length_px, style.dash_px, outline);
+        if (style.texture && style.dash_px.empty()) {
+            for (TextureHole& hole : texture_gaps(path.points_px, stroke.centerline_u, brush.width, path.closed,
+                                                  g.ends[1], id, *style.texture, stroke.outline)) {
+                stroke.outline.push_back(std::move(hole.ring));
+            }
+            stroke.darkening = pressure_darkening(brush.width, style);
+        }
     }
     stroke.deviation_px = path.deviation_px;
     stroke.removed_px = removed_extent_px(pick(g.points_px, drawn), path);

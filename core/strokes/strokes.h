@@ -44,8 +44,12 @@ struct Stroke {
     std::vector<double> centerline_u;
     std::vector<double> centerline_width;  // px
     // One ring, or outer and inner for a loop (nonzero fill); a dashed stroke has one ring per
-    // dash or dot.
+    // dash or dot. With brush.texture, holes follow: rings the other way round.
     std::vector<Ring> outline;
+
+    // With brush.texture: how much darker the ink is drawn for the brush's pressure, in [0, 1]
+    // (core/strokes/brush_texture.h); 0 otherwise.
+    double darkening = 0.0;
 
     double deviation_px = 0.0;  // largest distance of the drawn centerline from the exact points
     double removed_px = 0.0;    // largest distance of an exact point from the drawn centerline

@@ -79,7 +79,7 @@ void paint_drawing(cairo_t* cr, const Drawing& d) {
         for (const Shape& s : d.shapes) {
             if (layer_of(s) != layer) continue;
             const InkStyle ink = ink_of(d, s);
-            const Rgb rgb = parse_color(ink.color, "color");
+            const Rgb rgb = parse_color(color_of(d, s), "color");
             cairo_set_source_rgba(cr, rgb.r, rgb.g, rgb.b, shape_opacity(d, s, opacity));
             trace_path(cr, s);
             if (s.filled) {

@@ -209,5 +209,44 @@ TEST_F(Styles, SvgRendersTheSameInRsvgAndInkscape) {
     }
 }
 
+// brush.texture on the bundled sample: the SVG, rasterised by rsvg-convert, covers what the GL
+// preview's textured tip covers, and the files stay within five times the flat ones' size.
+TEST_F(Styles, TexturedSvgMatchesTheGlPreviewAndStaysSmall) {
+    const std::string sample = std::string(INKLINE_SAMPLES) + "/torus/scene.json";
+    nlohmann::json scene = nlohmann::json::parse(test::read_text(sample));
+    scene["mesh"] = std::string(INKLINE_SAMPLES) + "/torus/torus.obj";
+    scene["brush"] = {{"texture", true}};
+    test::write_text(dir / "textured.json", scene.dump());
+    const auto flat = test::run_inkline("render " + sample + " -q --frames 1:6 --svg " + (dir / "flat/%04d.svg").string());
+    ASSERT_EQ(flat.code, 0) << flat.output;
+    const auto r = test::run_inkline("render " + (dir / "textured.json").string() + " -q --frames 1:6 --svg " +
+                                     (dir / "tex/%04d.svg").string() + " --preview " + (dir / "tex/p%04d.png").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    uintmax_t flat_bytes = 0, textured_bytes = 0;
+    for (int f = 1; f <= 6; ++f) {
+        char name[16];
+        std::snprintf(name, sizeof name, "%04d", f);
+        flat_bytes += fs::file_size(dir / "flat" / (std::string(name) + ".svg"));
+        textured_bytes += fs::file_size(dir / "tex" / (std::string(name) + ".svg"));
+        const fs::path svg = dir / "tex" / (std::string(name) + ".svg"), png = dir / "tex" / (std::string(name) + ".png");
+        ASSERT_EQ(test::run_shell("rsvg-convert -o " + png.string() + " " + svg.string()).code, 0);
+        const std::vector<uint8_t> vector_ink = test::png_file_coverage(png, test::Ink::kAlpha);
+        const std::vector<uint8_t> preview_ink =
+            test::png_file_coverage(dir / "tex" / ("p" + std::string(name) + ".png"), test::Ink::kAlpha);
+        EXPECT_GT(std::count(vector_ink.begin(), vector_ink.end(), uint8_t(1)), 5000);
+        const double iou = test::iou(vector_ink, preview_ink);
+        std::printf("frame %d: ink IoU of the textured SVG with the GL preview %.4f\n", f, iou);
+        EXPECT_GE(iou, 0.9) << "frame " << f;
+        // The texture is there: holes in the ink, written as rings after each outline.
+        if (f == 1) {
+            EXPECT_NE(test::read_text(svg).find(" Z M"), std::string::npos);
+        }
+    }
+    const double ratio = double(textured_bytes) / double(flat_bytes);
+    std::printf("textured SVG %.2fx the flat SVG's size\n", ratio);
+    EXPECT_LE(ratio, 5.0);
+    EXPECT_GT(ratio, 1.2) << "the texture adds shapes";
+}
+
 }  // namespace
 }  // namespace inkline

@@ -403,6 +403,18 @@ TEST(LineStyles, SceneStylesParseAndBadRulesNameTheirKey) {
     EXPECT_NE(error(R"([{"curvature_width": {"radius_px": 0}}])").find("key 'styles[0].curvature_width.radius_px'"),
               std::string::npos);
     EXPECT_NE(error(R"([{"opacity": 2}])").find("key 'styles[0].opacity'"), std::string::npos);
+    EXPECT_NE(error(R"([{"texture": {"dry": 2}}])").find("key 'styles[0].texture.dry'"), std::string::npos);
+    EXPECT_NE(error(R"([{"texture": {"grain": 1}}])").find("key 'styles[0].texture.grain': unknown key"), std::string::npos);
+    const core::Scene t = core::parse_scene(
+        head + R"("brush": {"texture": {"dry": 0.2, "dry_px": 30}}, "styles": [{"texture": false}, {"texture": true}]})",
+        "dir/scene.json");
+    ASSERT_TRUE(t.brush.texture);
+    EXPECT_EQ(t.brush.texture->dry, 0.2);
+    EXPECT_EQ(t.brush.texture->dry_px, 30.0);
+    EXPECT_EQ(t.brush.texture->streaks, core::BrushTexture{}.streaks);
+    ASSERT_TRUE(t.styles[0].set.texture);
+    EXPECT_FALSE(*t.styles[0].set.texture) << "false turns the texture off";
+    EXPECT_TRUE(*t.styles[1].set.texture);
     // The scene's brush takes the new keys too.
     const core::Scene b = core::parse_scene(head + R"("brush": {"dash_px": [6, 3], "cap": "butt"}})", "dir/scene.json");
     EXPECT_EQ(b.brush.dash_px, (std::vector<double>{6.0, 3.0}));
