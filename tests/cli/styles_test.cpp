@@ -248,5 +248,22 @@ TEST_F(Styles, TexturedSvgMatchesTheGlPreviewAndStaysSmall) {
     EXPECT_GT(ratio, 1.2) << "the texture adds shapes";
 }
 
+// The three looks of docs/guide.md render, every rule of theirs draws something, and the SVG is
+// well-formed.
+TEST_F(Styles, TheGuidesLooksRender) {
+    for (const char* look : {"pen-and-ink", "technical", "brush"}) {
+        const std::string scene = std::string(INKLINE_SAMPLES) + "/looks/" + look + ".json";
+        const fs::path svg = dir / (std::string(look) + ".svg");
+        const auto r = test::run_inkline("render " + scene + " -q --svg " + svg.string());
+        ASSERT_EQ(r.code, 0) << look << ": " << r.output;
+        EXPECT_EQ(test::run_shell("xmllint --noout " + svg.string()).code, 0) << look;
+        const std::string text = test::read_text(svg);
+        for (const auto& rule : nlohmann::json::parse(test::read_text(scene))["styles"]) {
+            EXPECT_NE(text.find("data-style=\"" + rule["name"].get<std::string>() + "\""), std::string::npos)
+                << look << ": " << rule["name"];
+        }
+    }
+}
+
 }  // namespace
 }  // namespace inkline
