@@ -2,6 +2,7 @@
 #include "gl/brush_tip.h"
 
 #include "core/error.h"
+#include "core/random.h"
 
 #include <png.h>
 
@@ -32,22 +33,6 @@ constexpr int kLanes = 26;    // bands across the stroke that dry out independen
 // No streak takes more than this much ink, so the body stays above one half everywhere and the
 // ink coverage (alpha > 1/2) of a stroke is its outline.
 constexpr double kMinBodyAlpha = 0.62;
-
-// SplitMix64: a fixed, portable sequence (the std distributions differ between libraries).
-class Random {
-  public:
-    explicit Random(uint64_t seed) : state_(seed) {}
-    double uniform(double lo, double hi) { return lo + (hi - lo) * double(next() >> 11) * 0x1.0p-53; }
-
-  private:
-    uint64_t next() {
-        uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
-    uint64_t state_;
-};
 
 double smoothstep(double e0, double e1, double x) {
     const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
@@ -87,7 +72,7 @@ BrushTip default_brush_tip() {
     tip.edge_margin = kEdgeMargin;
     tip.alpha.resize(size_t(kTipWidth) * kTipHeight);
 
-    Random random(0x1b2d3f4e5a697887ull);
+    core::SplitMix64 random(0x1b2d3f4e5a697887ull);
     std::array<Streak, kStreaks> streaks;
     for (Streak& s : streaks) {
         s.y = random.uniform(kEdgeMargin, 1.0 - kEdgeMargin);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "core/strokes/brush_texture.h"
 
+#include "core/random.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -27,31 +29,13 @@ constexpr double kNoiseKnotPx = 6.0;
 // folds: no hole is cut there.
 constexpr double kMinBendRadiusWidths = 0.75;
 
-// splitmix64: a stateless hash, so the same (stroke, lane, knot) gives the same value anywhere.
-uint64_t mix(uint64_t x) {
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
-
-double unit(uint64_t h) { return double(h >> 11) * 0x1.0p-53; }
-
-class Seeded {
-  public:
-    explicit Seeded(uint64_t seed) : state_(seed) {}
-    double uniform(double lo, double hi) { return lo + (hi - lo) * unit(state_ = mix(state_)); }
-
-  private:
-    uint64_t state_;
-};
-
 // Smooth value noise in [0, 1] along u, anchored to u: the same u gives the same value.
 double value_noise(uint64_t seed, double u) {
     const double x = u / kNoiseKnotPx;
     const double k = std::floor(x);
     const double f = x - k;
-    const double a = unit(mix(seed ^ uint64_t(int64_t(k)))), b = unit(mix(seed ^ uint64_t(int64_t(k) + 1)));
+    const double a = SplitMix64::unit(SplitMix64::hash(seed ^ uint64_t(int64_t(k))));
+    const double b = SplitMix64::unit(SplitMix64::hash(seed ^ uint64_t(int64_t(k) + 1)));
     const double s = f * f * (3.0 - 2.0 * f);
     return a + (b - a) * s;
 }
@@ -89,8 +73,8 @@ std::vector<TextureHole> texture_gaps(std::span<const glm::dvec2> c, std::span<c
     }
     if (!closed) open.front() = open.back() = 0;
 
-    const uint64_t seed = mix(0x5eedb7a5ull ^ (uint64_t(stroke_id) << 8));
-    Seeded random(seed);
+    const uint64_t seed = SplitMix64::hash(0x5eedb7a5ull ^ (uint64_t(stroke_id) << 8));
+    SplitMix64 random(seed);
     std::vector<uint8_t> gap(n);
     std::vector<double> v0(n), v1(n);
     // Each run of samples marked in `gap` becomes one hole.
@@ -121,7 +105,7 @@ std::vector<TextureHole> texture_gaps(std::span<const glm::dvec2> c, std::span<c
             const double centre = 0.5 * (edges[size_t(l)] + edges[size_t(l) + 1]);
             const double to_border = 1.0 - std::abs(centre) / (0.5 - kEdgeInset);
             const double dry_at = random.uniform(0.25, 1.05) * (0.55 + 0.45 * to_border);
-            const uint64_t lane_seed = mix(seed + uint64_t(l) + 1);
+            const uint64_t lane_seed = SplitMix64::hash(seed + uint64_t(l) + 1);
             for (size_t i = 0; i < n; ++i) {
                 const double tail = std::clamp(1.0 - (u_end - u[i]) / texture.dry_px, 0.0, 1.0);
                 const double dryness = 1.1 * texture.dry * std::pow(tail, 1.6);
