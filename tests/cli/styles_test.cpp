@@ -258,7 +258,8 @@ TEST_F(Styles, TheGuidesLooksRender) {
         ASSERT_EQ(r.code, 0) << look << ": " << r.output;
         EXPECT_EQ(test::run_shell("xmllint --noout " + svg.string()).code, 0) << look;
         const std::string text = test::read_text(svg);
-        for (const auto& rule : nlohmann::json::parse(test::read_text(scene))["styles"]) {
+        const auto parsed = nlohmann::json::parse(test::read_text(scene));
+        for (const auto& rule : parsed.at("styles")) {
             EXPECT_NE(text.find("data-style=\"" + rule["name"].get<std::string>() + "\""), std::string::npos)
                 << look << ": " << rule["name"];
         }
