@@ -5,7 +5,6 @@
 #include "core/scene/frame_pattern.h"
 
 #include <cstdlib>
-#include <filesystem>
 #include <regex>
 
 namespace inkline::cli {
@@ -53,11 +52,6 @@ std::pair<int, int> parse_chunk(const std::string& text) {
     if (n < 1) throw InputError("--chunk '" + quote_value(text) + "': N must be at least 1");
     if (k < 1 || k > n) throw InputError("--chunk '" + quote_value(text) + "': K must be 1.." + std::to_string(n));
     return {k, n};
-}
-
-bool is_scene_file(const std::string& path) {
-    const std::string ext = std::filesystem::path(path).extension().string();
-    return ext == ".json" || ext == ".JSON";
 }
 
 }  // namespace inkline::cli

@@ -25,7 +25,4 @@ core::ImageSize parse_size(const std::string& text, int max_side);
 // (K, N), 1 <= K <= N. Throws InputError.
 std::pair<int, int> parse_chunk(const std::string& text);
 
-// A scene file (.json) rather than a mesh.
-bool is_scene_file(const std::string& path);
-
 }  // namespace inkline::cli

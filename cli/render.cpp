@@ -13,6 +13,7 @@
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/topology.h"
 #include "core/pipeline/frame_pipeline.h"
+#include "core/pipeline/shot.h"
 #include "core/pipeline/stopwatch.h"
 #include "core/scene/frame_pattern.h"
 #include "core/scene/gltf_shot.h"
@@ -43,53 +44,22 @@ std::vector<InputFile> run_inputs(const core::Scene& scene, int first, int last)
     return inputs;
 }
 
-// The scene as the arguments select it: a scene file, a bare mesh (a default turntable, made
-// once the mesh is read) or a bare glTF file, with the glTF read and the frames chosen.
-struct Shot {
-    core::Scene scene;
-    bool from_scene = false;
-    std::shared_ptr<const core::GltfShot> gltf;
-    FrameRange frames{1, 48};
-};
+// What the arguments ask to draw.
+core::ShotRequest shot_request(const RenderArgs& args) {
+    return {.input = args.input,
+            .max_image_side = args.max_image_side,
+            .max_faces = args.max_faces,
+            .gltf_scene = args.gltf_scene,
+            .animation = args.animation,
+            .camera = args.camera,
+            .fps = args.fps,
+            .names = {}};
+}
 
-Shot open_shot(const RenderArgs& args) {
-    Shot shot;
-    shot.from_scene = is_scene_file(args.input);
-    core::Scene& scene = shot.scene;
-    if (shot.from_scene) {
-        scene = core::load_scene(args.input, args.max_image_side);
-    } else {
-        scene.mesh.path = args.input;
-        scene.first_frame = 1;
-        scene.last_frame = 48;
-        if (core::is_gltf_path(args.input)) scene.gltf.emplace();
-    }
-    if (!scene.gltf) {
-        for (const auto& [given, option] : {std::pair(args.gltf_scene >= 0, "--gltf-scene"), std::pair(!args.animation.empty(), "--animation"),
-                                            std::pair(!args.camera.empty(), "--camera"), std::pair(args.fps > 0.0, "--fps")}) {
-            if (given) throw InputError(std::string(option) + ": applies only to glTF input (.gltf, .glb)");
-        }
-    } else {
-        core::GltfSettings& g = *scene.gltf;
-        if (args.gltf_scene >= 0) g.scene = args.gltf_scene;
-        if (!args.animation.empty()) g.animation = args.animation;
-        if (!args.camera.empty()) g.camera = args.camera;
-        if (args.fps > 0.0) scene.fps = args.fps;
-        shot.gltf = std::make_shared<core::GltfShot>(
-            scene.mesh.path, core::GltfOptions{g.scene, g.animation, g.camera, scene.fps, args.max_faces});
-        // The file's frames unless the scene gives them: its animation, else one still frame
-        // through its camera, else the 48-frame turntable of a bare mesh.
-        if (!scene.given.frames) {
-            if (const auto range = shot.gltf->frame_range()) {
-                std::tie(scene.first_frame, scene.last_frame) = *range;
-            } else if (shot.gltf->camera() || scene.given.camera) {
-                scene.first_frame = scene.last_frame = 1;
-            }
-        }
-    }
-    shot.frames = {scene.first_frame, scene.last_frame};
-    if (!args.frames.empty()) shot.frames = parse_frames(args.frames);
-    return shot;
+// The frames to draw: --frames, else the input's.
+FrameRange frames_of(const core::Shot& shot, const RenderArgs& args) {
+    if (!args.frames.empty()) return parse_frames(args.frames);
+    return {shot.first_frame, shot.last_frame};
 }
 
 // --contour: mesh or smooth; nothing when not given.
@@ -116,7 +86,7 @@ RenderPlan plan_render(const RenderArgs& args) {
     output::parse_path_format(args.path_format, "--path-format");
     parse_visibility_option(args.visibility);
     gl::parse_backend(args.gl_backend);
-    const FrameRange frames = open_shot(args).frames;
+    const FrameRange frames = frames_of(core::open_shot(shot_request(args)), args);
     const Outputs o = resolve_outputs(args, frames.count());
     return {frames.first, frames.last, o.json, o.svg, o.png, o.preview, o.pdf, o.pdf_per_frame};
 }
@@ -126,10 +96,10 @@ int run_render(const RenderArgs& args) {
     const core::TrackerMode tracker = core::parse_tracker_mode(args.tracker, "--tracker");
     const std::optional<core::VisibilityMode> asked_visibility = parse_visibility_option(args.visibility);
     // Scene: a file, a glTF shot, or a default turntable around a bare mesh (made once the mesh is read).
-    Shot shot = open_shot(args);
-    core::Scene& scene = shot.scene;
-    const bool from_scene = shot.from_scene || shot.gltf;
-    const FrameRange frames = shot.frames;
+    const core::ShotRequest request = shot_request(args);
+    core::Shot shot = core::open_shot(request);
+    const core::Scene& scene = shot.scene;
+    const FrameRange frames = frames_of(shot, args);
     const std::optional<core::ImageSize> size =
         args.size.empty() ? std::nullopt : std::optional(parse_size(args.size, args.max_image_side));
     const Outputs outputs = resolve_outputs(args, frames.count());
@@ -144,35 +114,12 @@ int run_render(const RenderArgs& args) {
         }
         rendered = {c.first, c.last};
     }
-    if (shot.gltf) {
-        if (size) scene.image = *size;
-        core::apply_gltf_camera(*shot.gltf, scene, frames.first, frames.last, scene.given.image || size.has_value());
-    }
-    core::check_cameras(scene, frames.first, frames.last);
+    core::settle_cameras(shot, frames.first, frames.last, size);
     check_outputs(outputs, rendered.first, rendered.last, run_inputs(scene, frames.first, frames.last));
-
-    std::optional<core::MeshFrames> mesh_frames;
-    if (shot.gltf) {
-        mesh_frames.emplace(shot.gltf, scene.mesh.path);
-    } else {
-        mesh_frames.emplace(scene.mesh, frames.first, core::MeshLimits{args.max_faces});
-    }
-    core::MeshFrames& meshes = *mesh_frames;
-    const size_t faces = meshes.at(frames.first).triangles.size();
-    if (faces > args.max_faces) {
-        throw InputError(meshes.path_of(frames.first).string() + ": " + std::to_string(faces) +
-                         " faces exceed the limit of " + std::to_string(args.max_faces) + " (raise it with --max-faces)");
-    }
-    if (!from_scene) {
-        const int first = scene.first_frame, last = scene.last_frame;
-        scene = core::default_turntable_scene(args.input, core::bounds_of(meshes.at(frames.first).positions));
-        scene.first_frame = first;
-        scene.last_frame = last;
-    }
     // The options override the scene, the default turntable's included.
-    if (size) scene.image = *size;
-    if (args.hidden) scene.lines.hidden = true;
-    if (const std::optional<core::ContourMode> contour = parse_contour_option(args.contour)) scene.lines.contour = *contour;
+    const std::unique_ptr<core::MeshFrames> mesh_frames =
+        core::load_meshes(shot, request, frames.first, {.size = size, .hidden = args.hidden, .contour = parse_contour_option(args.contour)});
+    core::MeshFrames& meshes = *mesh_frames;
 
     // The frame pipeline on the chosen occlusion test; the context outlives both users.
     const VisibilityChoice visibility = choose_visibility(asked_visibility, args.gl_backend);
