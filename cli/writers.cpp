@@ -6,52 +6,26 @@
 #include "core/scene/frame_pattern.h"
 #include "export/atomic_file.h"
 #include "export/json.h"
+#include "export/pdf.h"
 #include "export/png.h"
 #include "export/svg.h"
 
 #include <cstdio>
-#include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <optional>
 
-#include <sys/stat.h>
 #include <unistd.h>
 
 namespace inkline::cli {
-namespace {
-
 namespace fs = std::filesystem;
-
-// SOURCE_DATE_EPOCH when set (the reproducible-builds convention), else the input file's
-// modification time: the same input gives byte-identical PDFs, whichever chunk wrote them.
-std::string reproducible_date(const std::string& input) {
-    std::time_t when = 0;
-    if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch && *epoch) {
-        when = std::time_t(std::strtoll(epoch, nullptr, 10));
-    } else {
-        struct stat info {};
-        if (::stat(input.c_str(), &info) != 0) return "";
-        when = info.st_mtime;
-    }
-    std::tm utc{};
-    gmtime_r(&when, &utc);
-    char text[32];
-    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
-    return text;
-}
-
-}  // namespace
 
 Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Scene& scene)
     : outputs_(outputs), centerline_(args.centerline) {
     const fs::path& mesh_name = scene.mesh.path;
-    style_.color = output::hex_color(scene.brush.color);
-    style_.opacity = scene.brush.opacity;
+    style_ = output::brush_draw_style(scene.brush);
     style_.background = args.background.empty() ? std::nullopt : std::optional(args.background);
     if (style_.background) output::parse_color(*style_.background, "--background");
     style_.path_format = output::parse_path_format(args.path_format, "--path-format");
-    style_.bezier_tolerance_px = scene.brush.max_deviation_px;
     if (args.layers == "object") {
         svg_options_.layers = output::SvgLayers::kObject;
     } else if (args.layers == "style") {
@@ -65,7 +39,7 @@ Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Sce
     if (!(args.dpi > 0.0 && args.dpi <= 10000.0)) throw InputError("--dpi: must be between 0 and 10000");
     if (!(args.margin_mm >= 0.0 && args.margin_mm < 1000.0)) throw InputError("--margin: must be 0..1000 mm");
     pdf_options_.title = fs::path(mesh_name).stem().string();
-    pdf_options_.creation_date = reproducible_date(args.input);
+    pdf_options_.creation_date = output::reproducible_creation_date(args.input);
     // What Cairo cannot draw is refused before any file is written.
     if (!outputs_.png.empty() || !outputs_.preview.empty()) {
         output::check_png_size(scene.image.width, scene.image.height);

@@ -130,6 +130,14 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
 
 std::string hex_color(const glm::dvec3& rgb) { return core::color_hex(rgb); }
 
+DrawStyle brush_draw_style(const core::BrushStyle& brush) {
+    DrawStyle style;
+    style.color = hex_color(brush.color);
+    style.opacity = brush.opacity;
+    style.bezier_tolerance_px = brush.max_deviation_px;
+    return style;
+}
+
 const char* layer_name(Layer layer) {
     switch (layer) {
         case Layer::kSilhouette: return core::line_kind_name(core::LineKind::kSilhouette);

@@ -41,6 +41,10 @@ struct DrawStyle {
     double bezier_tolerance_px = 0.5;       // the curves stay this close to the polygons
 };
 
+// The writers' style for a scene's brush: its colour and opacity, Bézier curves within its
+// max_deviation_px.
+DrawStyle brush_draw_style(const core::BrushStyle& brush);
+
 // How a style inks its shapes (core::StrokeStyle as the writers use it).
 struct InkStyle {
     std::string name;       // the style's (its last rule's) name; empty: the scene's brush

@@ -11,7 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <regex>
+
+#include <sys/stat.h>
 
 namespace inkline::output {
 namespace {
@@ -82,6 +86,22 @@ void check_pdf_page(const PdfOptions& o, int width, int height) {
         throw InputError("--margin " + number(o.margin_mm) + " mm leaves no room for the image on a " +
                          number(l.page->width_mm) + "x" + number(l.page->height_mm) + " mm page");
     }
+}
+
+std::string reproducible_creation_date(const std::filesystem::path& input) {
+    std::time_t when = 0;
+    if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch && *epoch) {
+        when = std::time_t(std::strtoll(epoch, nullptr, 10));
+    } else {
+        struct stat info {};
+        if (::stat(input.c_str(), &info) != 0) return "";
+        when = info.st_mtime;
+    }
+    std::tm utc{};
+    gmtime_r(&when, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+    return text;
 }
 
 PageSize parse_page_size(const std::string& text) {

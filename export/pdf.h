@@ -4,6 +4,7 @@
 
 #include "export/drawing.h"
 
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,6 +29,11 @@ struct PdfOptions {
     // clock. A fixed date makes the file depend on its input alone.
     std::string creation_date;
 };
+
+// The creation date of a reproducible PDF: SOURCE_DATE_EPOCH when set (the reproducible-builds
+// convention), else `input`'s modification time; empty when neither can be had. The same input
+// gives byte-identical PDFs, whoever writes them.
+std::string reproducible_creation_date(const std::filesystem::path& input);
 
 // PDF pages are 3 to 14400 pt (1/72 in) a side: PDF's own limits (ISO 32000-1, annex C), which
 // every reader honours; 14400 pt is 5080 mm.

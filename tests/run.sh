@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 bash .ci/setup
 jobs=$(nproc)
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DINKLINE_WERROR=ON >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DINKLINE_WERROR=ON -DINKLINE_BUILD_PYTHON=ON >/dev/null
 cmake --build build -j "$jobs"
 ctest --test-dir build -j "$jobs" --output-on-failure
 

@@ -293,4 +293,44 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits
     return out;
 }
 
+Mesh mesh_from_arrays(std::span<const double> coordinates, std::span<const int64_t> indices,
+                      const std::string& coordinates_name, const std::string& indices_name, const MeshLimits& limits) {
+    if (coordinates.size() % 3 != 0) throw InputError(coordinates_name + ": expected rows of 3 coordinates (x, y, z)");
+    if (indices.size() % 3 != 0) throw InputError(indices_name + ": expected rows of 3 vertex indices (triangles)");
+    if (coordinates.empty()) throw InputError(coordinates_name + ": no vertices");
+    if (indices.empty()) throw InputError(indices_name + ": no triangles");
+    const size_t vertices = coordinates.size() / 3, triangles = indices.size() / 3;
+    if (vertices > std::numeric_limits<uint32_t>::max()) {
+        throw InputError(coordinates_name + ": " + std::to_string(vertices) + " vertices exceed the limit of 2^32 - 1");
+    }
+    if (triangles > limits.max_faces) {
+        throw InputError(indices_name + ": " + std::to_string(triangles) + " triangles exceed the limit of " +
+                         std::to_string(limits.max_faces));
+    }
+    Mesh mesh;
+    mesh.positions.resize(vertices);
+    for (size_t v = 0; v < vertices; ++v) {
+        for (int k = 0; k < 3; ++k) {
+            const double c = coordinates[3 * v + size_t(k)];
+            if (!std::isfinite(c) || std::abs(c) > kMaxCoordinate) {
+                throw InputError(coordinates_name + "[" + std::to_string(v) + "]: coordinate " + std::to_string(c) +
+                                 (std::isfinite(c) ? " is beyond 1e18" : " is not finite"));
+            }
+            mesh.positions[v][k] = float(c);
+        }
+    }
+    mesh.triangles.resize(triangles);
+    for (size_t t = 0; t < triangles; ++t) {
+        for (int k = 0; k < 3; ++k) {
+            const int64_t i = indices[3 * t + size_t(k)];
+            if (i < 0 || uint64_t(i) >= vertices) {
+                throw InputError(indices_name + "[" + std::to_string(t) + "]: vertex index " + std::to_string(i) +
+                                 " out of range (" + std::to_string(vertices) + " vertices)");
+            }
+            mesh.triangles[t][k] = uint32_t(i);
+        }
+    }
+    return mesh;
+}
+
 }  // namespace inkline::core

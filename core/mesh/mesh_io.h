@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,15 @@ struct MeshLimits {
 // that disagree with the data, truncation), or more faces than `limits` allow. Nothing a
 // library prints reaches the user.
 LoadedMesh load_mesh(const std::filesystem::path& path, const MeshLimits& limits = {});
+
+// A mesh from flat arrays (the Python module's vertices and faces): `coordinates` holds x, y, z
+// of each vertex, `indices` three vertex indices per counter-clockwise triangle. Messages name
+// the arrays `coordinates_name` and `indices_name`, with the row at fault. Throws InputError for
+// a count that is not a multiple of 3, no vertex or no triangle, a coordinate not finite or beyond
+// kMaxCoordinate, an index out of range, or more triangles than `limits` allow.
+Mesh mesh_from_arrays(std::span<const double> coordinates, std::span<const int64_t> indices,
+                      const std::string& coordinates_name, const std::string& indices_name,
+                      const MeshLimits& limits = {});
 
 // The whole of an input file, with the checks load_mesh makes first: InputError naming the file
 // when it is missing, a folder or not a regular file, unreadable (and why), empty, or too large

@@ -42,6 +42,8 @@ void stl_target(const uint8_t* data, size_t size) { inkline::fuzz::mesh_format_t
 
 TEST(FuzzCorpus, GltfInputsLoadOrFailCleanly) { EXPECT_GT(replay("gltf", inkline::fuzz::gltf_target), 5u); }
 
+TEST(FuzzCorpus, MeshArraysBuildOrFailCleanly) { EXPECT_GT(replay("mesh_arrays", inkline::fuzz::mesh_arrays_target), 5u); }
+
 TEST(FuzzCorpus, ObjInputsLoadOrFailCleanly) { EXPECT_GT(replay("obj", obj_target), 5u); }
 TEST(FuzzCorpus, OffInputsLoadOrFailCleanly) { EXPECT_GT(replay("off", off_target), 5u); }
 TEST(FuzzCorpus, PlyInputsLoadOrFailCleanly) { EXPECT_GT(replay("ply", ply_target), 5u); }

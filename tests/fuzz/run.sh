@@ -3,14 +3,14 @@
 # bounded time per target. New inputs join tests/fuzz/corpus/<target>/ (merged: only inputs that
 # add coverage); a crash is saved there too (as crash-*), so tests/fuzz/replay_test.cpp keeps it
 # as a regression test.
-#   bash tests/fuzz/run.sh [seconds per target, default 600] [targets, default: scene mesh gltf obj off ply stl]
+#   bash tests/fuzz/run.sh [seconds per target, default 600] [targets, default: scene mesh gltf mesh_arrays obj off ply stl]
 # Targets: scene (the scene parser), mesh (any reader, picked by the first byte), and obj, off,
 # ply, stl (one reader each). FUZZ_JOBS=N runs N targets at once (default 1).
 # Needs clang-14 and libclang-rt-14-dev (Debian); it installs nothing itself.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:-600}
-targets=${2:-scene mesh gltf obj off ply stl}
+targets=${2:-scene mesh gltf mesh_arrays obj off ply stl}
 jobs=${FUZZ_JOBS:-1}
 
 if ! command -v clang++-14 >/dev/null; then

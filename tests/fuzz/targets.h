@@ -23,4 +23,9 @@ void mesh_format_target(const char* extension, const uint8_t* data, size_t size)
 // shot and evaluates its first and last frames and its camera.
 void gltf_target(const uint8_t* data, size_t size);
 
+// The Python module's in-code meshes: data[0] splits the rest into float64 coordinates and int64
+// indices (little-endian, as numpy holds them; a trailing part of a value is dropped), made into
+// a mesh with core::mesh_from_arrays and its topology report built.
+void mesh_arrays_target(const uint8_t* data, size_t size);
+
 }  // namespace inkline::fuzz

@@ -6,6 +6,7 @@
 # 3. run it on FRAME of SCENE, and `inkline render SCENE --frames FRAME:FRAME --json ...
 #    --visibility raycast` beside it;
 # 4. compare the two JSON files byte for byte, the stage timings (stats.ms) aside;
+# 5. with the Python module built, import it from the prefix alone and compare its frame too;
 # and `inkline --version` says project()'s VERSION.
 
 foreach(var INKLINE_SOURCE_DIR INKLINE_BUILD_DIR INKLINE_EXE VERSION CONSUMER_SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER SCENE FRAME)
@@ -135,6 +136,23 @@ if(NOT library STREQUAL cli)
 endif()
 string(LENGTH "${cli}" length)
 message(STATUS "frame ${FRAME}: the library's polylines JSON equals the program's (${length} bytes, stats.ms aside)")
+
+# 5. With the Python module built: the installed package imports from the prefix alone and draws
+#    the same frame.
+if(PYTHON)
+  set(site ${prefix}/${PYTHON_SITE})
+  if(NOT EXISTS ${site}/inkline/__init__.py)
+    message(FATAL_ERROR "the Python package is not in ${site}")
+  endif()
+  set(python_json ${WORK_DIR}/python.json)
+  run("python module" ${CMAKE_COMMAND} -E env PYTHONPATH=${site} PYTHONDONTWRITEBYTECODE=1
+      ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/python_consumer.py ${site} ${SCENE} ${FRAME} ${python_json})
+  read_without_timings(${python_json} python)
+  if(NOT python STREQUAL cli)
+    message(FATAL_ERROR "the installed Python module's frame differs from the program's")
+  endif()
+  message(STATUS "frame ${FRAME}: the installed Python module's polylines JSON equals the program's")
+endif()
 
 execute_process(COMMAND ${INKLINE_EXE} --version RESULT_VARIABLE rc OUTPUT_VARIABLE said ERROR_VARIABLE said)
 if(NOT rc EQUAL 0 OR NOT said STREQUAL "inkline ${VERSION}\n")
