@@ -188,8 +188,7 @@ class LineMatch:
 
 def _one_way(strokes_q, strokes_r, tol, step):
     pts, weights, owners = _samples(strokes_q, step)
-    # Distances beyond the limit are reported as the limit: far enough to say where lines differ.
-    d = _distances(pts, _vertices(strokes_r, step), tol, limit=max(20.0 * tol, 20.0))
+    d = _distances(pts, _vertices(strokes_r, step), tol)
     total = float(weights.sum())
     inside = float(weights[d <= tol].sum()) if total > 0 else 0.0
     far = np.flatnonzero(d > tol)
@@ -243,7 +242,7 @@ def _where(misses, limit=5) -> str:
     rows = []
     for x, y, d, ident, kind in misses[:limit]:
         what = f"stroke {ident}" + (f" ({kind})" if kind else "")
-        rows.append(f"    ({x:.2f}, {y:.2f}) px, {d:.2f} px away{' or more' if d >= 20.0 else ''}: {what}")
+        rows.append(f"    ({x:.2f}, {y:.2f}) px, {d:.2f} px away: {what}")
     if len(misses) > limit:
         rows.append(f"    ... and {len(misses) - limit} more points")
     return "\n".join(rows)

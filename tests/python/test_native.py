@@ -9,7 +9,7 @@ import time
 import numpy as np
 
 import inkline
-from conftest import icosphere
+from conftest import SOURCE, icosphere
 
 CAMERA = {"eye": [0.2, 0.3, 3.0], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 40}
 
@@ -50,3 +50,10 @@ def test_iterating_a_shot_renders_its_frames_in_order():
 def test_version_is_the_programs(inkline_exe):
     out = subprocess.run([inkline_exe, "--version"], capture_output=True, text=True).stdout
     assert inkline.__version__ in out
+
+
+def test_docs_show_the_worked_examples_as_they_are():
+    docs = (SOURCE / "docs" / "python.md").read_text()
+    for name in ("test_example_sphere_silhouette.py", "test_example_compare_renders.py"):
+        text = (SOURCE / "tests" / "python" / name).read_text()
+        assert "```python\n" + text + "```\n" in docs, f"docs/python.md does not show tests/python/{name} as it is"
