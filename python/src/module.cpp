@@ -261,6 +261,10 @@ class Shot {
             throw InputError("vertices: expected an array of shape (V, 3) or (F, V, 3)");
         }
         const size_t frame_count = size_t(vertices.shape(0)), per_frame = size_t(vertices.shape(1)) * 3;
+        if (long(frame_count) != long(shot_.last_frame) - shot_.first_frame + 1) {
+            throw InputError("vertices: " + std::to_string(frame_count) + " frames of positions for frames " +
+                             std::to_string(shot_.first_frame) + ".." + std::to_string(shot_.last_frame) + " (one set per frame)");
+        }
         std::vector<std::vector<glm::vec3>> frames(frame_count);
         core::Mesh rest;
         for (size_t f = 0; f < frame_count; ++f) {
@@ -279,6 +283,11 @@ class Shot {
     const std::vector<std::string>& warnings() const { return warnings_; }
 
     std::shared_ptr<Frame> render(int frame) {
+        // Cameras and meshes were checked for these frames only.
+        if (frame < first_ || frame > last_) {
+            throw InputError("frame " + std::to_string(frame) + ": outside the shot's frames " + std::to_string(first_) + ".." +
+                             std::to_string(last_) + " (open it with frames=(first, last))");
+        }
         auto out = std::make_shared<Frame>();
         {
             py::gil_scoped_release release;

@@ -84,9 +84,9 @@ void mesh_arrays_target(const uint8_t* data, size_t size) {
     if (size == 0) return;
     const size_t split = std::min(size - 1, size_t(data[0]) * 8);
     std::vector<double> coordinates(split / 8);
-    std::memcpy(coordinates.data(), data + 1, coordinates.size() * 8);
+    if (!coordinates.empty()) std::memcpy(coordinates.data(), data + 1, coordinates.size() * 8);
     std::vector<int64_t> indices((size - 1 - split) / 8);
-    std::memcpy(indices.data(), data + 1 + split, indices.size() * 8);
+    if (!indices.empty()) std::memcpy(indices.data(), data + 1 + split, indices.size() * 8);
     try {
         const core::Mesh mesh = core::mesh_from_arrays(coordinates, indices, "vertices", "faces", {.max_faces = 100'000});
         core::describe_mesh(mesh, core::build_edge_table(mesh));

@@ -92,7 +92,8 @@ def test_open_arguments(kwargs, message):
     (np.stack([np.eye(3), np.full((3, 3), np.nan)]), [[0, 1, 2]], "vertices[1][0]: coordinate nan"),
 ])
 def test_arrays(vertices, faces, message):
-    raises(message, lambda: inkline.scene(vertices, faces, camera=CAMERA))
+    frames = (1, len(vertices)) if isinstance(vertices, np.ndarray) and vertices.ndim == 3 else (1, 1)
+    raises(message, lambda: inkline.scene(vertices, faces, camera=CAMERA, frames=frames))
 
 
 @pytest.mark.parametrize("kwargs, message", [
@@ -113,8 +114,11 @@ def test_deforming_arrays_have_their_frames_only():
     shot = inkline.scene(np.stack([SPHERE[0]] * 2), SPHERE[1], camera=CAMERA, frames=(1, 2))
     shot.render(1)
     shot.render(2)
-    raises("vertices: no positions for frame 3 (frames 1..2)", lambda: shot.render(3))
+    raises("frame 3: outside the shot's frames 1..2", lambda: shot.render(3))
+    raises("frame 0: outside the shot's frames 1..2", lambda: shot.render(0))
     raises("frame: expected an integer", lambda: shot.render("3"))
+    raises("vertices: 2 frames of positions for frames 1..3 (one set per frame)",
+           lambda: inkline.scene(np.stack([SPHERE[0]] * 2), SPHERE[1], camera=CAMERA, frames=(1, 3)))
 
 
 def test_unwritable_outputs_leave_old_files_and_no_temporaries(tmp_path):
