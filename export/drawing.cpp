@@ -58,7 +58,7 @@ InkStyle base_ink(const DrawStyle& style) {
 }
 
 Drawing centerline_drawing(const core::FrameLines& frame, const DrawStyle& style) {
-    Drawing d{frame.frame, frame.image, frame.camera, style, {}, {base_ink(style)}};
+    Drawing d{frame.frame, frame.image, frame.camera, style, {}, {base_ink(style)}, true};
     d.shapes.reserve(frame.polylines.size());
     for (const core::Polyline& line : frame.polylines) {
         d.shapes.push_back(stroked_shape(line.id, line.kind, line.visible, line.closed, line.points_px));
@@ -76,6 +76,18 @@ PathFormat parse_path_format(const std::string& text, const char* key) {
     }
     throw InputError(std::string(key) + " '" + quote_value(text) + "': expected polygon or bezier");
 }
+
+namespace {
+
+// The shape carries its stroke's drawing order.
+void set_order(const core::Stroke& stroke, Shape& r_shape) {
+    r_shape.group = stroke.group;
+    r_shape.level = stroke.level;
+    r_shape.parent = stroke.parent;
+    r_shape.order = stroke.order;
+}
+
+}  // namespace
 
 Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& strokes, const DrawStyle& style,
                       bool centerline) {
@@ -111,6 +123,7 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
             s.object_index = g.object;
             s.style = stroke.style;
             s.darkening = stroke.darkening;
+            set_order(stroke, s);
             d.shapes.push_back(std::move(s));
             continue;
         }
@@ -124,6 +137,7 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
         s.style = stroke.style;
         const std::vector<double>& u = on_centerline ? stroke.centerline_u : stroke.u;
         s.u_start = u.empty() ? 0.0 : u.front();
+        set_order(stroke, s);
     }
     return d;
 }

@@ -73,6 +73,11 @@ struct Shape {
     uint32_t style = 0;         // index into Drawing::styles
     double u_start = 0.0;       // u at the first point of a stroked centerline: where its dashes start
     double darkening = 0.0;     // the ink drawn this much darker (a textured brush's pressure), in [0, 1]
+    // The stroke's drawing order (core::Stroke): group, level, parent (-1 at level 0), order.
+    uint32_t group = 0;
+    uint32_t level = 0;
+    int64_t parent = -1;
+    uint32_t order = 0;
 };
 
 struct Drawing {
@@ -83,6 +88,8 @@ struct Drawing {
     std::vector<Shape> shapes;
     // The styles of the shapes; styles[0] is DrawStyle's ink (no rule matched).
     std::vector<InkStyle> styles;
+    // The shapes are strokes with a drawing order (group, level, parent, order): brush_drawing's.
+    bool drawing_order = false;
 };
 
 // The ink of a shape (DrawStyle's when the drawing lists no styles).

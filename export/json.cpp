@@ -99,6 +99,11 @@ json brush_strokes(const core::FrameLines& frame, const core::FrameStrokes& fram
             }
             strokes.back()["hidden_segments"] = std::move(bridged);
         }
+        json& out = strokes.back();
+        out["group"] = s.group;
+        out["level"] = s.level;
+        out["parent"] = s.parent >= 0 ? json(s.parent) : json(nullptr);
+        out["order"] = s.order;
         add_object(frame, g.object, strokes.back());
         if (s.style != 0 && s.style < frame_strokes.styles.size()) {
             strokes.back()["style"] = frame_strokes.styles[s.style].name;

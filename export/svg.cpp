@@ -231,6 +231,11 @@ void kind_layers(Writer& w, const Drawing& d, const std::string& indent, const s
             w << indent << "  <path id=\"stroke-" << long(s.stroke_id) << "\"";
             if (!s.object.empty()) w << " data-object=\"" << xml_escaped(s.object) << "\"";
             if (!ink.name.empty()) w << " data-style=\"" << xml_escaped(ink.name) << "\"";
+            if (d.drawing_order) {
+                w << " data-group=\"" << long(s.group) << "\" data-level=\"" << long(s.level) << "\"";
+                if (s.parent >= 0) w << " data-parent=\"" << long(s.parent) << "\"";
+                w << " data-order=\"" << long(s.order) << "\"";
+            }
             w << " d=\"";
             path_data(w, s);
             w << "\"";

@@ -161,6 +161,7 @@ FrameResult FramePipeline::run(int frame) {
             stroke.faces = faces_crossed(mesh, table, points, g.edges);
         }
     }
+    drawing_order_.assign(out.strokes.strokes);
     out.mesh = &mesh;
     out.world_from_object = world_from_object;
     const double strokes_ms = step("strokes");

@@ -4,7 +4,7 @@
 //
 //   MeshFrames::at -> camera_at -> SilhouetteTracker::update (or extract_feature_edges)
 //   -> chain_feature_edges -> OcclusionSource::prepare -> split_by_visibility
-//   -> set_aside_occluded (without lines.hidden) -> build_strokes
+//   -> set_aside_occluded (without lines.hidden) -> build_strokes -> DrawingOrder::assign
 //
 // Writers (export/) take the result: output::polylines_json(result.lines, &result.strokes),
 // output::brush_drawing(result.lines, result.strokes, ...).
@@ -17,6 +17,7 @@
 #include "core/mesh/mesh_frames.h"
 #include "core/pipeline/frame_lines.h"
 #include "core/scene/scene.h"
+#include "core/strokes/drawing_order.h"
 #include "core/strokes/strokes.h"
 #include "core/visibility/occlusion_source.h"
 
@@ -95,6 +96,7 @@ class FramePipeline {
     // With smooth contours on a mesh that does not change, its boundary and crease edges.
     std::optional<std::vector<FeatureEdge>> still_edges_;
     StrokeCoherence coherence_;
+    DrawingOrder drawing_order_;
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;
     bool trace_intersections_ = false;

@@ -51,6 +51,15 @@ struct Stroke {
     // (core/strokes/brush_texture.h); 0 otherwise.
     double darkening = 0.0;
 
+    // Drawing order (core/strokes/drawing_order.h; set by DrawingOrder::assign, which the frame
+    // pipeline runs): the group (the id of its main stroke), the level in the group's hierarchy
+    // (0: the main stroke), the stroke it hangs from (-1 at level 0), the place in the frame's
+    // drawing order.
+    uint32_t group = 0;
+    uint32_t level = 0;
+    int64_t parent = -1;
+    uint32_t order = 0;
+
     double deviation_px = 0.0;  // largest distance of the drawn centerline from the exact points
     double removed_px = 0.0;    // largest distance of an exact point from the drawn centerline
 

@@ -55,6 +55,12 @@ class Stroke:
     hidden_segments: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
     object: Optional[str] = None
     style: Optional[str] = None
+    # Drawing order (docs/strokes.md): the group (its main stroke's id), the level in the group's
+    # hierarchy (0: the main stroke), the stroke it hangs from (None at level 0), its place.
+    group: int = 0
+    level: int = 0
+    parent: Optional[int] = None
+    order: int = 0
 
     @property
     def length_px(self) -> float:
@@ -323,5 +329,6 @@ def _stroke_from_json(s: dict) -> Stroke:
         width=f64("width", 0) if "width" in s else np.zeros(n),
         outline=[np.asarray(r, np.float64).reshape(-1, 2) for r in s.get("outline", [])],
         hidden_segments=np.asarray(s.get("hidden_segments", []), np.int64),
-        object=s.get("object"), style=s.get("style"))
+        object=s.get("object"), style=s.get("style"), group=int(s.get("group", 0)), level=int(s.get("level", 0)),
+        parent=None if s.get("parent") is None else int(s["parent"]), order=int(s.get("order", 0)))
 

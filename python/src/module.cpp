@@ -177,6 +177,10 @@ py::list strokes_of(const Frame& frame) {
         }
         d["hidden_segments"] = array_of(hidden);
         d["object"] = g.object >= 0 && size_t(g.object) < objects.size() ? py::object(py::str(objects[size_t(g.object)].name)) : py::none();
+        d["group"] = s.group;
+        d["level"] = s.level;
+        d["parent"] = s.parent >= 0 ? py::object(py::int_(s.parent)) : py::none();
+        d["order"] = s.order;
         d["style"] = s.style != 0 && s.style < fs.styles.size() ? py::object(py::str(fs.styles[s.style].name)) : py::none();
         out.append(d);
     }

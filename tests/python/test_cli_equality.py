@@ -43,6 +43,8 @@ def assert_frame_is_cli(frame, cli_json_path):
         assert [formatted(r, 1e4) for r in mine.outline] == [json.dumps(r) for r in theirs["outline"]]
         assert mine.hidden_segments.tolist() == theirs.get("hidden_segments", [])
         assert mine.style == theirs.get("style") and mine.object == theirs.get("object")
+        assert (mine.group, mine.level, mine.parent, mine.order) == \
+            (theirs["group"], theirs["level"], theirs["parent"], theirs["order"])
     # Read back, the program's file gives the same strokes to the JSON's precision.
     back = inkline.read_json(cli_json_path)
     for mine, theirs in zip(frame.strokes, back.strokes):

@@ -1,0 +1,241 @@
+// SPDX-License-Identifier: MIT
+#include "core/strokes/drawing_order.h"
+
+#include "core/internal/point_grid.h"
+#include "core/internal/union_find.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <limits>
+#include <tuple>
+#include <utility>
+
+namespace inkline::core {
+namespace {
+
+// Distance from p to the segment ab, px.
+double segment_distance(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b) {
+    const glm::dvec2 ab = b - a;
+    const double len2 = glm::dot(ab, ab);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    return glm::length(a + t * ab - p);
+}
+
+}  // namespace
+
+std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> strokes, double touch_px) {
+    // Segments by their boxes, grown by touch_px: an end within touch_px of a segment lies in a
+    // cell the segment's grown box touches.
+    struct Segment {
+        uint32_t stroke, index;
+        bool operator<(const Segment& o) const { return std::tie(stroke, index) < std::tie(o.stroke, o.index); }
+    };
+    internal::PointGrid<Segment> grid(std::max(8.0, 4.0 * touch_px));
+    for (uint32_t s = 0; s < strokes.size(); ++s) {
+        const std::vector<glm::dvec2>& p = strokes[s].geometry.points_px;
+        for (uint32_t i = 0; i + 1 < p.size(); ++i) {
+            grid.add_box(glm::min(p[i], p[i + 1]) - touch_px, glm::max(p[i], p[i + 1]) + touch_px, {s, i});
+        }
+        if (p.size() == 1) grid.add_box(p[0] - touch_px, p[0] + touch_px, {s, 0});
+    }
+    grid.sort();
+    std::vector<std::vector<uint32_t>> touches(strokes.size());
+    for (uint32_t s = 0; s < strokes.size(); ++s) {
+        const std::vector<glm::dvec2>& p = strokes[s].geometry.points_px;
+        if (p.empty()) continue;
+        for (const glm::dvec2& end : {p.front(), p.back()}) {
+            grid.any_in_box(end, end, [&](const Segment& seg) {
+                if (seg.stroke == s) return false;
+                const std::vector<glm::dvec2>& q = strokes[seg.stroke].geometry.points_px;
+                const glm::dvec2& b = q.size() > 1 ? q[seg.index + 1] : q[seg.index];
+                if (segment_distance(end, q[seg.index], b) <= touch_px) {
+                    touches[s].push_back(seg.stroke);
+                    touches[seg.stroke].push_back(s);
+                }
+                return false;
+            });
+        }
+    }
+    for (std::vector<uint32_t>& t : touches) {
+        std::sort(t.begin(), t.end());
+        t.erase(std::unique(t.begin(), t.end()), t.end());
+    }
+    return touches;
+}
+
+void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
+    const size_t n = r_strokes.size();
+    const std::vector<std::vector<uint32_t>> touches = touching_strokes(r_strokes, options_.touch_px);
+    std::vector<double> length(n);
+    for (size_t i = 0; i < n; ++i) length[i] = r_strokes[i].geometry.length_px();
+    constexpr uint32_t kNew = std::numeric_limits<uint32_t>::max();
+    auto last_order = [&](size_t i) {
+        const auto it = last_order_.find(r_strokes[i].id);
+        return it == last_order_.end() ? kNew : it->second;
+    };
+    // Persisting strokes in last frame's order, then the others longest first.
+    auto earlier = [&](size_t a, size_t b) {
+        return std::make_tuple(last_order(a), -length[a], r_strokes[a].id) <
+               std::make_tuple(last_order(b), -length[b], r_strokes[b].id);
+    };
+
+    // Groups: connected sets of touching strokes, members ascending.
+    internal::UnionFind<uint32_t> sets(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        for (const uint32_t j : touches[i]) sets.unite(i, j);
+    }
+    std::vector<std::vector<uint32_t>> groups;
+    std::vector<uint32_t> group_of_root(n, kNew);
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t root = sets.find(i);
+        if (group_of_root[root] == kNew) {
+            group_of_root[root] = uint32_t(groups.size());
+            groups.emplace_back();
+        }
+        groups[group_of_root[root]].push_back(i);
+    }
+
+    // The main stroke of each group.
+    auto longer = [&](uint32_t a, uint32_t b) {
+        return length[a] > length[b] || (length[a] == length[b] && r_strokes[a].id < r_strokes[b].id);
+    };
+    std::vector<uint32_t> mains;
+    for (const std::vector<uint32_t>& g : groups) {
+        const uint32_t longest = *std::min_element(g.begin(), g.end(), longer);
+        uint32_t main = longest;
+        for (const uint32_t i : g) {
+            const auto it = last_main_.find(r_strokes[i].id);
+            const bool kept = it != last_main_.end() && it->second && length[i] >= options_.keep_main_share * length[longest];
+            if (kept && (main == longest || longer(i, main))) main = i;
+        }
+        mains.push_back(main);
+    }
+    std::vector<uint32_t> group_order(groups.size());
+    for (uint32_t g = 0; g < groups.size(); ++g) group_order[g] = g;
+    std::sort(group_order.begin(), group_order.end(), [&](uint32_t a, uint32_t b) { return earlier(mains[a], mains[b]); });
+
+    // Levels: each stroke keeps last frame's level where a stroke it touches is one level up
+    // (last frame's parent first), taken level by level from the main strokes down; the others
+    // hang from the nearest stroke already placed, breadth first.
+    constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
+    std::vector<uint32_t> level(n, kUnset), parent(n, kUnset);
+    for (const uint32_t m : mains) level[m] = 0;
+    auto last_level = [&](uint32_t i) {
+        const auto it = last_level_.find(r_strokes[i].id);
+        return it == last_level_.end() ? kUnset : it->second;
+    };
+    std::vector<uint32_t> keeping;
+    for (uint32_t i = 0; i < n; ++i) {
+        if (level[i] == kUnset && last_level(i) != kUnset && last_level(i) > 0) keeping.push_back(i);
+    }
+    std::sort(keeping.begin(), keeping.end(), [&](uint32_t a, uint32_t b) {
+        return std::make_tuple(last_level(a), last_order(a), r_strokes[a].id) < std::make_tuple(last_level(b), last_order(b), r_strokes[b].id);
+    });
+    for (const uint32_t t : keeping) {
+        const uint32_t want = last_level(t);
+        const auto lp = last_parent_.find(r_strokes[t].id);
+        uint32_t best = kUnset;
+        for (const uint32_t x : touches[t]) {
+            if (level[x] != want - 1) continue;
+            if (lp != last_parent_.end() && r_strokes[x].id == lp->second) {
+                best = x;
+                break;
+            }
+            if (best == kUnset || earlier(x, best)) best = x;
+        }
+        if (best != kUnset) {
+            level[t] = want;
+            parent[t] = best;
+        }
+    }
+    // The rest, nearest first from what is placed (a queue by level, then drawing order).
+    {
+        auto later = [&](uint32_t a, uint32_t b) {
+            return level[a] != level[b] ? level[a] > level[b] : earlier(b, a);
+        };
+        std::vector<uint32_t> heap;
+        for (uint32_t i = 0; i < n; ++i) {
+            if (level[i] != kUnset) heap.push_back(i);
+        }
+        std::make_heap(heap.begin(), heap.end(), later);
+        while (!heap.empty()) {
+            std::pop_heap(heap.begin(), heap.end(), later);
+            const uint32_t s_index = heap.back();
+            heap.pop_back();
+            for (const uint32_t t : touches[s_index]) {
+                if (level[t] != kUnset) continue;
+                level[t] = level[s_index] + 1;
+                parent[t] = s_index;
+                heap.push_back(t);
+                std::push_heap(heap.begin(), heap.end(), later);
+            }
+        }
+    }
+
+    // The order a fresh frame would have: group after group, level after level, each level by
+    // its parents' order, then as `earlier` says.
+    std::vector<uint32_t> fresh(n, kUnset);
+    {
+        std::vector<std::vector<uint32_t>> by_level;
+        uint32_t next = 0;
+        for (const uint32_t g : group_order) {
+            by_level.clear();
+            for (const uint32_t i : groups[g]) {
+                if (by_level.size() <= level[i]) by_level.resize(level[i] + 1);
+                by_level[level[i]].push_back(i);
+            }
+            for (std::vector<uint32_t>& members : by_level) {
+                std::sort(members.begin(), members.end(), [&](uint32_t a, uint32_t b) {
+                    const uint32_t pa = parent[a] == kUnset ? 0 : fresh[parent[a]];
+                    const uint32_t pb = parent[b] == kUnset ? 0 : fresh[parent[b]];
+                    return pa != pb ? pa < pb : earlier(a, b);
+                });
+                for (const uint32_t i : members) fresh[i] = next++;
+            }
+        }
+    }
+    // The order: parents before their strokes; among the strokes whose parents are drawn, those
+    // of last frame in last frame's order, the new ones at their place in the fresh order.
+    std::vector<std::vector<uint32_t>> children(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        if (parent[i] != kUnset) children[parent[i]].push_back(i);
+    }
+    auto key = [&](uint32_t i) {
+        const uint32_t last = last_order(i);
+        return std::make_tuple(last != kNew ? double(last) : double(fresh[i]) - 0.5, r_strokes[i].id);
+    };
+    auto after = [&](uint32_t a, uint32_t b) { return key(a) > key(b); };
+    std::vector<uint32_t> ready(mains.begin(), mains.end());
+    std::make_heap(ready.begin(), ready.end(), after);
+    uint32_t next = 0;
+    while (!ready.empty()) {
+        std::pop_heap(ready.begin(), ready.end(), after);
+        const uint32_t i = ready.back();
+        ready.pop_back();
+        r_strokes[i].order = next++;
+        for (const uint32_t c : children[i]) {
+            ready.push_back(c);
+            std::push_heap(ready.begin(), ready.end(), after);
+        }
+    }
+    for (uint32_t g = 0; g < groups.size(); ++g) {
+        for (const uint32_t i : groups[g]) {
+            Stroke& st = r_strokes[i];
+            st.group = r_strokes[mains[g]].id;
+            st.level = level[i];
+            st.parent = parent[i] == kUnset ? -1 : int64_t(r_strokes[parent[i]].id);
+        }
+    }
+
+    last_order_.clear();
+    last_main_.clear();
+    last_parent_.clear();
+    for (size_t i = 0; i < n; ++i) {
+        last_order_[r_strokes[i].id] = r_strokes[i].order;
+        last_main_[r_strokes[i].id] = r_strokes[i].level == 0;
+        if (r_strokes[i].parent >= 0) last_parent_[r_strokes[i].id] = uint32_t(r_strokes[i].parent);
+    }
+}
+
+}  // namespace inkline::core

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// The order a person would draw a frame's strokes in (seed 002's grouping and hierarchical
+// linking): strokes connected through junctions form a group; each group has a main stroke
+// (level 0), its level-1 strokes touch the main stroke, level-2 strokes touch a level-1 stroke,
+// and so on; a frame is drawn group after group, each level after the one before. The groups,
+// levels and order stay as they were last frame where the strokes persist.
+#pragma once
+
+#include "core/strokes/strokes.h"
+
+#include <cstdint>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+namespace inkline::core {
+
+struct DrawingOrderOptions {
+    // Two strokes touch where an end of one lies this close to the other (image px): strokes
+    // that meet at a junction share the point, visible and hidden parts of a line meet end to end.
+    double touch_px = 0.5;
+    // Last frame's main stroke of a group stays main while it is at least this share of the
+    // group's longest stroke; below it the longest stroke takes over.
+    double keep_main_share = 0.9;
+};
+
+// Which strokes touch which: for each stroke, the indices of the others it touches, ascending.
+std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> strokes, double touch_px);
+
+class DrawingOrder {
+  public:
+    explicit DrawingOrder(DrawingOrderOptions options = {}) : options_(options) {}
+
+    // Sets every stroke's group, level, parent and order (a permutation of 0 .. n-1), and
+    // remembers them for the next frame:
+    // - group: the strokes it is connected with through touching strokes, named by the id of
+    //   the group's main stroke;
+    // - main stroke (level 0): the group's longest (exact length; the lower id on a tie), unless
+    //   last frame's main stroke is in the group and at least keep_main_share of the longest;
+    // - a tree per group from the main stroke, each stroke hanging from one it touches (its
+    //   parent, at the level above): last frame's parent while the two still touch in one group,
+    //   else the stroke that reaches it first, breadth first from the main stroke;
+    // - order: groups one after another, each level after level; strokes that were drawn last
+    //   frame keep their order among themselves (groups by their main stroke), then the others
+    //   longest first (lower id on a tie).
+    void assign(std::vector<Stroke>& r_strokes);
+
+  private:
+    DrawingOrderOptions options_;
+    std::unordered_map<uint32_t, uint32_t> last_order_;  // stroke id -> its order last frame
+    std::unordered_map<uint32_t, bool> last_main_;        // stroke id -> was it a main stroke
+    std::unordered_map<uint32_t, uint32_t> last_level_;   // stroke id -> its level
+    std::unordered_map<uint32_t, uint32_t> last_parent_;  // stroke id -> its parent's id
+};
+
+}  // namespace inkline::core
