@@ -103,13 +103,14 @@ void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
     std::vector<uint32_t> mains;
     for (const std::vector<uint32_t>& g : groups) {
         const uint32_t longest = *std::min_element(g.begin(), g.end(), longer);
-        uint32_t main = longest;
+        // The longest of last frame's main strokes that are long enough still, else the longest.
+        uint32_t kept = kNew;
         for (const uint32_t i : g) {
             const auto it = last_main_.find(r_strokes[i].id);
-            const bool kept = it != last_main_.end() && it->second && length[i] >= options_.keep_main_share * length[longest];
-            if (kept && (main == longest || longer(i, main))) main = i;
+            if (it == last_main_.end() || !it->second || length[i] < options_.keep_main_share * length[longest]) continue;
+            if (kept == kNew || longer(i, kept)) kept = i;
         }
-        mains.push_back(main);
+        mains.push_back(kept == kNew ? longest : kept);
     }
     std::vector<uint32_t> group_order(groups.size());
     for (uint32_t g = 0; g < groups.size(); ++g) group_order[g] = g;

@@ -121,6 +121,16 @@ TEST(DrawingOrder, TheMainStrokeStaysWhileItIsNearlyTheLongest) {
     order.assign(strokes);
     EXPECT_EQ(strokes[1].level, 0u) << "the longest takes over";
     EXPECT_EQ(strokes[0].parent, 2);
+    // Two groups that were apart merge: the longer of their main strokes stays main.
+    core::DrawingOrder merging;
+    strokes = {stroke(1, {{0, 0}, {100, 0}}), stroke(2, {{105, 0}, {200, 0}})};
+    merging.assign(strokes);
+    ASSERT_EQ(strokes[1].level, 0u);
+    strokes = {stroke(2, {{105, 0}, {200, 0}}), stroke(1, {{0, 0}, {100, 0}}), stroke(3, {{100, 0}, {105, 0}})};
+    merging.assign(strokes);
+    EXPECT_EQ(strokes[1].level, 0u) << "stroke 1, the longer of the two main strokes";
+    EXPECT_EQ(strokes[2].level, 1u);
+    EXPECT_EQ(strokes[0].level, 2u);
     // A new frame order: a fresh DrawingOrder takes the longest at once.
     core::DrawingOrder fresh;
     strokes = frame(105.0);
