@@ -41,11 +41,18 @@ std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> stro
     }
     grid.sort();
     std::vector<std::vector<uint32_t>> touches(strokes.size());
+    // An end looks at no more than kCrowded segments around it: where more crowd (thousands of
+    // strokes meeting at one point), the ends that share the point join through the hub below.
+    constexpr size_t kCrowded = 64;
+    std::vector<std::tuple<double, double, uint32_t>> ends;  // (x, y, stroke) of every end
     for (uint32_t s = 0; s < strokes.size(); ++s) {
         const std::vector<glm::dvec2>& p = strokes[s].geometry.points_px;
         if (p.empty()) continue;
         for (const glm::dvec2& end : {p.front(), p.back()}) {
+            ends.emplace_back(end.x, end.y, s);
+            size_t seen = 0;
             grid.any_in_box(end, end, [&](const Segment& seg) {
+                if (++seen > kCrowded) return true;
                 if (seg.stroke == s) return false;
                 const std::vector<glm::dvec2>& q = strokes[seg.stroke].geometry.points_px;
                 const glm::dvec2& b = q.size() > 1 ? q[seg.index + 1] : q[seg.index];
@@ -56,6 +63,25 @@ std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> stro
                 return false;
             });
         }
+    }
+    // Strokes whose ends share a point touch: each joins the point's first stroke (all of them
+    // one another when few), so a junction of k strokes costs k, not k squared.
+    std::sort(ends.begin(), ends.end());
+    for (size_t a = 0; a < ends.size();) {
+        size_t b = a;
+        std::vector<uint32_t> hub;
+        for (; b < ends.size() && std::get<0>(ends[b]) == std::get<0>(ends[a]) && std::get<1>(ends[b]) == std::get<1>(ends[a]); ++b) {
+            hub.push_back(std::get<2>(ends[b]));
+        }
+        hub.erase(std::unique(hub.begin(), hub.end()), hub.end());
+        const size_t partners = hub.size() <= kCrowded ? hub.size() : 1;
+        for (size_t i = 0; i < partners; ++i) {
+            for (size_t j = i + 1; j < hub.size(); ++j) {
+                touches[hub[i]].push_back(hub[j]);
+                touches[hub[j]].push_back(hub[i]);
+            }
+        }
+        a = b;
     }
     for (std::vector<uint32_t>& t : touches) {
         std::sort(t.begin(), t.end());

@@ -25,6 +25,9 @@ struct DrawingOrderOptions {
 };
 
 // Which strokes touch which: for each stroke, the indices of the others it touches, ascending.
+// An end is checked against at most 64 segments around it; strokes whose ends share a point
+// exactly always touch (where more than 64 do, each is listed with the first of them only), so
+// a junction of thousands of strokes costs time linear in them. Every listed pair touches.
 std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> strokes, double touch_px);
 
 class DrawingOrder {
