@@ -83,10 +83,14 @@ std::unique_ptr<MeshFrames> load_meshes(Shot& shot, const ShotRequest& request, 
         scene.first_frame = first_frame;
         scene.last_frame = last_frame;
     }
-    if (overrides.size) scene.image = *overrides.size;
-    if (overrides.hidden) scene.lines.hidden = true;
-    if (overrides.contour) scene.lines.contour = *overrides.contour;
+    apply_overrides(scene, overrides);
     return meshes;
+}
+
+void apply_overrides(Scene& r_scene, const ShotOverrides& overrides) {
+    if (overrides.size) r_scene.image = *overrides.size;
+    if (overrides.hidden) r_scene.lines.hidden = true;
+    if (overrides.contour) r_scene.lines.contour = *overrides.contour;
 }
 
 }  // namespace inkline::core

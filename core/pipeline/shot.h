@@ -67,6 +67,9 @@ struct ShotOverrides {
     std::optional<ContourMode> contour;
 };
 
+// Sets what `overrides` gives over the scene.
+void apply_overrides(Scene& r_scene, const ShotOverrides& overrides);
+
 // The meshes of the shot from frame `first` on; a bare mesh's default turntable is made around
 // the mesh read, and `overrides` applied to the scene. Throws InputError (a mesh that cannot be
 // read, or of more than request.max_faces faces).

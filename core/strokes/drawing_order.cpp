@@ -132,8 +132,8 @@ void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
         // The longest of last frame's main strokes that are long enough still, else the longest.
         uint32_t kept = kNew;
         for (const uint32_t i : g) {
-            const auto it = last_main_.find(r_strokes[i].id);
-            if (it == last_main_.end() || !it->second || length[i] < options_.keep_main_share * length[longest]) continue;
+            const auto it = last_level_.find(r_strokes[i].id);
+            if (it == last_level_.end() || it->second != 0 || length[i] < options_.keep_main_share * length[longest]) continue;
             if (kept == kNew || longer(i, kept)) kept = i;
         }
         mains.push_back(kept == kNew ? longest : kept);
@@ -256,12 +256,12 @@ void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
     }
 
     last_order_.clear();
-    last_main_.clear();
+    last_level_.clear();
     last_parent_.clear();
-    for (size_t i = 0; i < n; ++i) {
-        last_order_[r_strokes[i].id] = r_strokes[i].order;
-        last_main_[r_strokes[i].id] = r_strokes[i].level == 0;
-        if (r_strokes[i].parent >= 0) last_parent_[r_strokes[i].id] = uint32_t(r_strokes[i].parent);
+    for (const Stroke& st : r_strokes) {
+        last_order_[st.id] = st.order;
+        last_level_[st.id] = st.level;
+        if (st.parent >= 0) last_parent_[st.id] = uint32_t(st.parent);
     }
 }
 

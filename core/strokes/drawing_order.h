@@ -51,8 +51,7 @@ class DrawingOrder {
   private:
     DrawingOrderOptions options_;
     std::unordered_map<uint32_t, uint32_t> last_order_;  // stroke id -> its order last frame
-    std::unordered_map<uint32_t, bool> last_main_;        // stroke id -> was it a main stroke
-    std::unordered_map<uint32_t, uint32_t> last_level_;   // stroke id -> its level
+    std::unordered_map<uint32_t, uint32_t> last_level_;   // stroke id -> its level (0: a main stroke)
     std::unordered_map<uint32_t, uint32_t> last_parent_;  // stroke id -> its parent's id
 };
 

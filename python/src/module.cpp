@@ -122,7 +122,6 @@ struct Frame {
     output::DrawStyle style;
     std::string title;          // the PDF's: the mesh file's stem
     std::string creation_date;  // the PDF's (reproducible)
-    std::vector<std::string> warnings;
 
     output::Drawing drawing(const std::string& path_format, bool centerline, const std::optional<std::string>& background) const {
         output::DrawStyle s = style;
@@ -301,7 +300,6 @@ class Shot {
         out->style = style_;
         out->title = title_;
         out->creation_date = creation_date_;
-        out->warnings = out->result.warnings;
         out->result.mesh = nullptr;  // valid only until the next run
         return out;
     }
@@ -322,10 +320,7 @@ class Shot {
         core::settle_cameras(shot_, first_, last_, size);
         const core::ShotOverrides overrides{.size = size, .hidden = args.hidden, .contour = contour_of(args.contour)};
         if (meshes) {
-            core::Scene& scene = shot_.scene;
-            if (overrides.size) scene.image = *overrides.size;
-            if (overrides.hidden) scene.lines.hidden = true;
-            if (overrides.contour) scene.lines.contour = *overrides.contour;
+            core::apply_overrides(shot_.scene, overrides);
             meshes_ = std::move(meshes);
         } else {
             meshes_ = core::load_meshes(shot_, request_, first_, overrides);
@@ -375,7 +370,7 @@ PYBIND11_MODULE(_inkline, m) {
         .def_property_readonly("number", [](const Frame& f) { return f.result.lines.frame; })
         .def_property_readonly("image", [](const Frame& f) { return py::make_tuple(f.result.lines.image.width, f.result.lines.image.height); })
         .def_property_readonly("camera", [](const Frame& f) { return camera_dict(f.result.lines.camera); })
-        .def_property_readonly("warnings", [](const Frame& f) { return f.warnings; })
+        .def_property_readonly("warnings", [](const Frame& f) { return f.result.warnings; })
         .def("strokes", &strokes_of)
         .def("json", [](const Frame& f) {
             py::gil_scoped_release release;
