@@ -147,6 +147,7 @@ int run_farm(const FarmArgs& args, const RenderArgs& render_in) {
     render.input = absolute(args.scene);
     render.out_dir = absolute(args.out_dir);
     RenderPlan plan = plan_render(render);
+    if (plan.write_on) throw InputError("--write-on: a write-on cannot be split into chunks; render it with inkline render");
     if (!plan.pdf.empty() && !plan.pdf_per_frame) {
         throw InputError("--pdf '" + plan.pdf + "': a farm renders per-frame PDFs (a pattern such as pdf/frame_%04d.pdf); "
                          "--assemble-pdf names the multi-page result");

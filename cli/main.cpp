@@ -4,6 +4,7 @@
 #include "cli/farm.h"
 #include "cli/render.h"
 #include "core/error.h"
+#include "core/scene/scene.h"
 #include "core/version.h"
 #include "export/atomic_file.h"
 #include "gl/context.h"
@@ -30,6 +31,12 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
         ->capture_default_str();
     cmd->add_option("--pdf", r.pdf_path,
                            "PDF: a file gets one page per frame; a pattern with %04d one file per frame");
+    cmd->add_option("--write-on", r.write_on,
+                    "draw each frame stroke by stroke in drawing order over SECONDS: the outputs become a frame "
+                    "sequence at --fps (default: the scene's write_on)")
+        ->check(CLI::Range(1e-6, inkline::core::kMaxWriteOnSeconds));
+    cmd->add_option("--animated-svg", r.animated_svg,
+                    "with a write-on: an animated SVG (SMIL) of each frame's write-on, e.g. out/write_on_%04d.svg");
     cmd->add_option("--page", r.page, "PDF page size: A4, A3, Letter or WxHmm (default: the image at --dpi)");
     cmd->add_option("--margin", r.margin_mm, "PDF margin in mm with --page")->capture_default_str();
     cmd->add_option("--dpi", r.dpi, "PDF pixels per inch without --page")->capture_default_str();
@@ -49,7 +56,9 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
         ->check(CLI::Range(0, 1 << 30));
     cmd->add_option("--animation", r.animation, "glTF input: play only this animation, by name or index (default: all together)");
     cmd->add_option("--camera", r.camera, "glTF input: look through this camera, by its or its node's name (default: the first)");
-    cmd->add_option("--fps", r.fps, "glTF input: frame F is animation time F / fps (default: 24, or the scene's fps)")
+    cmd->add_option("--fps", r.fps,
+                    "glTF input: frame F is animation time F / fps; a write-on's frames per second (default: 24, or "
+                    "the scene's fps)")
         ->check(CLI::Range(1e-6, 1e6));
     cmd->add_option("--layers", r.layers, "SVG layers: kind, object or style (a layer per object or per style with its kind layers inside)")
         ->capture_default_str();

@@ -23,6 +23,7 @@ struct OutputPattern {
     const char* option;
     const std::string* pattern;
     bool per_frame;
+    int last;  // the last frame it is written for
 };
 
 // Output names with their folder resolved through links, so that "a/x.svg" and "b/../a/x.svg"
@@ -63,8 +64,9 @@ void check_name_length(const std::string& name) {
 
 }  // namespace
 
-Outputs resolve_outputs(const RenderArgs& args, int frame_count) {
-    Outputs out{args.json_pattern, args.svg_pattern, args.png_pattern, args.preview_pattern, args.pdf_path, false};
+Outputs resolve_outputs(const RenderArgs& args, int frame_count, int written_count) {
+    Outputs out{args.json_pattern, args.svg_pattern, args.png_pattern, args.preview_pattern, args.pdf_path, false,
+                args.animated_svg};
     out.pdf_per_frame = !out.pdf.empty() && core::has_frame_field(out.pdf);
     const bool any_explicit =
         !out.json.empty() || !out.svg.empty() || !out.png.empty() || !out.preview.empty() || !out.pdf.empty();
@@ -73,16 +75,17 @@ Outputs resolve_outputs(const RenderArgs& args, int frame_count) {
         if (out.json.empty()) out.json = (dir / "json" / "frame_%04d.json").string();
         if (out.svg.empty()) out.svg = (dir / "svg" / "frame_%04d.svg").string();
     }
-    for (const std::string* pattern : {&out.json, &out.svg, &out.png, &out.preview}) {
-        if (!pattern->empty() && frame_count > 1 && !core::has_frame_field(*pattern)) {
+    for (const std::string* pattern : {&out.json, &out.svg, &out.png, &out.preview, &out.animated_svg}) {
+        const int count = pattern == &out.animated_svg ? frame_count : written_count;
+        if (!pattern->empty() && count > 1 && !core::has_frame_field(*pattern)) {
             throw InputError("output pattern '" + quote_value(*pattern) + "' has no frame field such as %04d but " +
-                             std::to_string(frame_count) + " frames are rendered");
+                             std::to_string(count) + " frames are " + (count == frame_count ? "rendered" : "written"));
         }
     }
     return out;
 }
 
-void check_outputs(const Outputs& outputs, int first, int last, const std::vector<InputFile>& inputs) {
+void check_outputs(const Outputs& outputs, int first, int last, int written_last, const std::vector<InputFile>& inputs) {
     struct Known {
         output::FileIdentity id;
         const InputFile* input;
@@ -93,9 +96,12 @@ void check_outputs(const Outputs& outputs, int first, int last, const std::vecto
     }
 
     const std::vector<OutputPattern> patterns = {
-        {"--json", &outputs.json, true},   {"--svg", &outputs.svg, true},
-        {"--png", &outputs.png, true},     {"--preview", &outputs.preview, true},
-        {"--pdf", &outputs.pdf, outputs.pdf_per_frame},
+        {"--json", &outputs.json, true, written_last},
+        {"--svg", &outputs.svg, true, written_last},
+        {"--png", &outputs.png, true, written_last},
+        {"--preview", &outputs.preview, true, written_last},
+        {"--pdf", &outputs.pdf, outputs.pdf_per_frame, written_last},
+        {"--animated-svg", &outputs.animated_svg, true, last},
     };
     // Every output name as a hash of its canonical form, with where it came from; equal hashes
     // are compared by name afterwards.
@@ -109,7 +115,7 @@ void check_outputs(const Outputs& outputs, int first, int last, const std::vecto
     for (uint32_t p = 0; p < patterns.size(); ++p) {
         const OutputPattern& out = patterns[p];
         if (out.pattern->empty()) continue;
-        const int begin = out.per_frame ? first : last, end = last;
+        const int begin = out.per_frame ? first : out.last, end = out.last;
         for (int frame = begin; frame <= end; ++frame) {
             // The name as the writer will reach it, once missing folders are made.
             const std::string given = out.per_frame ? core::format_frame(*out.pattern, frame) : *out.pattern;

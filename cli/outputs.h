@@ -20,11 +20,13 @@ struct Outputs {
     std::string preview;
     std::string pdf;
     bool pdf_per_frame = false;
+    std::string animated_svg;  // one per frame drawn, not per frame written
 };
 
 // Explicit patterns as given; -o DIR fills in JSON and SVG; no output at all means -o out.
-// Throws InputError when several frames are rendered and a pattern has no frame field.
-Outputs resolve_outputs(const RenderArgs& args, int frame_count);
+// frame_count frames are drawn and written_count written (more with a write-on). Throws
+// InputError when several frames are written and a pattern has no frame field.
+Outputs resolve_outputs(const RenderArgs& args, int frame_count, int written_count);
 
 // A file the run reads, named by its role in messages ("mesh", "scene", "brush tip").
 struct InputFile {
@@ -32,9 +34,10 @@ struct InputFile {
     std::filesystem::path path;
 };
 
-// Refuses the run before it writes anything when, for a frame in [first, last], an output is one
-// of `inputs` (the same file, through any link), two outputs name the same file, or an output
-// exists and has no write permission. Throws InputError (OutputError for a read-only output).
-void check_outputs(const Outputs& outputs, int first, int last, const std::vector<InputFile>& inputs);
+// Refuses the run before it writes anything when, for a frame in [first, last] (per-frame outputs
+// up to written_last, animated SVGs up to last), an output is one of `inputs` (the same file,
+// through any link), two outputs name the same file, or an output exists and has no write
+// permission. Throws InputError (OutputError for a read-only output).
+void check_outputs(const Outputs& outputs, int first, int last, int written_last, const std::vector<InputFile>& inputs);
 
 }  // namespace inkline::cli

@@ -18,11 +18,13 @@
 #include "core/scene/frame_pattern.h"
 #include "core/scene/gltf_shot.h"
 #include "core/scene/scene.h"
+#include "core/strokes/write_on.h"
 #include "export/drawing.h"
 #include "gl/context.h"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -53,6 +55,7 @@ core::ShotRequest shot_request(const RenderArgs& args) {
             .animation = args.animation,
             .camera = args.camera,
             .fps = args.fps,
+            .write_on = args.write_on,
             .names = {}};
 }
 
@@ -67,6 +70,33 @@ std::optional<core::ContourMode> parse_contour_option(const std::string& text) {
     if (text.empty()) return std::nullopt;
     if (const std::optional<core::ContourMode> mode = core::contour_mode_from_name(text)) return mode;
     throw InputError("--contour '" + quote_value(text) + "': expected mesh or smooth");
+}
+
+// The frames a run writes: the frames it draws, and with a write-on those of the drawing of frame
+// F shown at time (F - first) / fps, the last frame's held until the write-on is done.
+struct WriteOnPlan {
+    double seconds = 0.0;  // 0: no write-on
+    double fps = 24.0;
+    int first = 1;
+    int written_last = 1;
+    double time_at(int frame) const { return (frame - first) / fps; }
+};
+
+WriteOnPlan plan_write_on(const core::Scene& scene, const FrameRange& frames, const RenderArgs& args) {
+    WriteOnPlan plan{scene.write_on_s, scene.fps, frames.first, frames.last};
+    if (plan.seconds == 0.0) {
+        if (!args.animated_svg.empty()) throw InputError("--animated-svg: needs a write-on (--write-on or the scene's write_on)");
+        return plan;
+    }
+    if (!args.chunk.empty()) throw InputError("--chunk: a write-on cannot be split into chunks");
+    const double steps = std::ceil(plan.seconds * plan.fps - 1e-9);
+    const double done = double(frames.first) + steps;
+    if (done > double(core::kMaxFrame)) {
+        throw InputError("--write-on: " + quote_value(std::to_string(plan.seconds)) + " s at " + std::to_string(plan.fps) +
+                         " fps runs past frame " + std::to_string(core::kMaxFrame));
+    }
+    plan.written_last = std::max(frames.last, int(done));
+    return plan;
 }
 
 }  // namespace
@@ -86,9 +116,11 @@ RenderPlan plan_render(const RenderArgs& args) {
     output::parse_path_format(args.path_format, "--path-format");
     parse_visibility_option(args.visibility);
     gl::parse_backend(args.gl_backend);
-    const FrameRange frames = frames_of(core::open_shot(shot_request(args)), args);
-    const Outputs o = resolve_outputs(args, frames.count());
-    return {frames.first, frames.last, o.json, o.svg, o.png, o.preview, o.pdf, o.pdf_per_frame};
+    const core::Shot shot = core::open_shot(shot_request(args));
+    const FrameRange frames = frames_of(shot, args);
+    const WriteOnPlan write_on = plan_write_on(shot.scene, frames, args);
+    const Outputs o = resolve_outputs(args, frames.count(), write_on.written_last - frames.first + 1);
+    return {frames.first, write_on.written_last, o.json, o.svg, o.png, o.preview, o.pdf, o.pdf_per_frame, write_on.seconds > 0.0};
 }
 
 int run_render(const RenderArgs& args) {
@@ -102,7 +134,8 @@ int run_render(const RenderArgs& args) {
     const FrameRange frames = frames_of(shot, args);
     const std::optional<core::ImageSize> size =
         args.size.empty() ? std::nullopt : std::optional(parse_size(args.size, args.max_image_side));
-    const Outputs outputs = resolve_outputs(args, frames.count());
+    const WriteOnPlan write_on = plan_write_on(scene, frames, args);
+    const Outputs outputs = resolve_outputs(args, frames.count(), write_on.written_last - frames.first + 1);
     // A chunk renders its frames after replaying the earlier ones without output: stroke ids,
     // propagated u and loop starts depend on every earlier frame.
     FrameRange rendered = frames;
@@ -115,7 +148,8 @@ int run_render(const RenderArgs& args) {
         rendered = {c.first, c.last};
     }
     core::settle_cameras(shot, frames.first, frames.last, size);
-    check_outputs(outputs, rendered.first, rendered.last, run_inputs(scene, frames.first, frames.last));
+    check_outputs(outputs, rendered.first, rendered.last, std::max(rendered.last, write_on.written_last),
+                  run_inputs(scene, frames.first, frames.last));
     // The options override the scene, the default turntable's included.
     const std::unique_ptr<core::MeshFrames> mesh_frames =
         core::load_meshes(shot, request, frames.first, {.size = size, .hidden = args.hidden, .contour = parse_contour_option(args.contour)});
@@ -139,6 +173,36 @@ int run_render(const RenderArgs& args) {
     for (const std::string& w : meshes.warnings()) warn(w);
     Writers writers(outputs, args, scene);
     Progress progress(std::max(rendered.count(), 0), !args.quiet && !args.verbose);
+    // Writes a drawn frame's files: once, or with a write-on as the frames that show it.
+    const auto write = [&](core::FrameResult& result) {
+        size_t written = 0;
+        if (write_on.seconds == 0.0) {
+            written += writers.write(result);
+            if (preview) {
+                preview->write(result, outputs.preview);
+                ++written;
+            }
+            return written;
+        }
+        const core::WriteOnSchedule schedule = core::schedule_write_on(result.strokes, write_on.seconds);
+        written += writers.write_animated_svg(result, schedule);
+        const int frame = result.lines.frame, until = frame == frames.last ? write_on.written_last : frame;
+        for (int shown_frame = frame; shown_frame <= until; ++shown_frame) {
+            core::FrameResult shown;
+            shown.lines = result.lines;
+            shown.lines.frame = shown_frame;
+            shown.strokes = core::strokes_at(result.strokes, schedule, write_on.time_at(shown_frame));
+            shown.strokes.frame = shown_frame;
+            shown.mesh = result.mesh;
+            shown.world_from_object = result.world_from_object;
+            written += writers.write(shown);
+            if (preview) {
+                preview->write(shown, outputs.preview);
+                ++written;
+            }
+        }
+        return written;
+    };
 
     const auto start = std::chrono::steady_clock::now();
     size_t strokes = 0, files = 0, failed = 0;
@@ -167,11 +231,7 @@ int run_render(const RenderArgs& args) {
             continue;
         }
         for (const std::string& w : result.warnings) warn(w);
-        files += writers.write(result);
-        if (preview) {
-            preview->write(result, outputs.preview);
-            ++files;
-        }
+        files += write(result);
         strokes += result.strokes.strokes.size();
         progress.frame_done();
         if (args.verbose) {

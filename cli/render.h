@@ -16,6 +16,8 @@ struct RenderArgs {
     std::string png_pattern;
     std::string preview_pattern;          // GL preview PNG per frame (textured brush strokes)
     std::string preview_underlay = "none";  // none | flat | toon: the mesh under the preview's strokes
+    double write_on = 0.0;        // s: each frame drawn stroke by stroke; 0: the scene's write_on (none by default)
+    std::string animated_svg;     // with a write-on: an animated SVG per frame
     std::string pdf_path;     // a pattern with a frame field: one file per frame; else one page per frame
     std::string page;         // A4, A3, Letter, WxHmm; empty: the image size at dpi
     double margin_mm = 10.0;
@@ -57,9 +59,10 @@ ChunkRange chunk_range(int first, int last, int k, int n);
 // What a render would write: its frame range and output patterns (reads the scene's frames).
 struct RenderPlan {
     int first = 1;
-    int last = 1;
+    int last = 1;  // the last frame written (a write-on may write frames past the shot's)
     std::string json, svg, png, preview, pdf;  // patterns; pdf may be a single file
     bool pdf_per_frame = false;
+    bool write_on = false;  // each frame written on (cannot be split into chunks)
 };
 RenderPlan plan_render(const RenderArgs& args);
 

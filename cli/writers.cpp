@@ -80,6 +80,17 @@ size_t Writers::write(core::FrameResult& drawn) {
     return files;
 }
 
+size_t Writers::write_animated_svg(const core::FrameResult& drawn, const core::WriteOnSchedule& schedule) {
+    if (outputs_.animated_svg.empty()) return 0;
+    const output::Drawing drawing = output::brush_drawing(drawn.lines, drawn.strokes, style_, centerline_);
+    const output::WriteOnAnimation animation = output::write_on_animation(drawn.strokes, schedule);
+    output::SvgOptions options = svg_options_;
+    options.write_on = &animation;
+    output::write_file_atomically(core::format_frame(outputs_.animated_svg, drawn.lines.frame),
+                                  output::svg_document(drawing, options));
+    return 1;
+}
+
 size_t Writers::finish(bool complete, const std::function<void(const std::string&)>& warn) {
     if (!pdf_ || pdf_->pages() == 0) return 0;
     std::unique_ptr<output::PdfDocument> doc = std::move(pdf_);

@@ -7,6 +7,7 @@
 #include "cli/render.h"
 #include "core/pipeline/frame_pipeline.h"
 #include "core/scene/scene.h"
+#include "core/strokes/write_on.h"
 #include "export/drawing.h"
 #include "export/pdf.h"
 #include "export/svg.h"
@@ -29,6 +30,10 @@ class Writers {
     // Writes the frame's files; adds the "svg", "png" and "pdf" times to its stats.ms. Returns
     // the number of files written.
     size_t write(core::FrameResult& drawn);
+
+    // Writes the frame's animated SVG of its write-on (--animated-svg), if asked. Returns the
+    // number of files written.
+    size_t write_animated_svg(const core::FrameResult& drawn, const core::WriteOnSchedule& schedule);
 
     // Writes the multi-page PDF with the pages so far, also after a failure, so no drawn frame
     // is lost; but a run that failed never replaces a PDF already there, which may hold more of

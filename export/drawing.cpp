@@ -142,6 +142,25 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
     return d;
 }
 
+WriteOnAnimation write_on_animation(const core::FrameStrokes& strokes, const core::WriteOnSchedule& schedule) {
+    WriteOnAnimation animation;
+    animation.seconds = schedule.seconds;
+    for (const core::WriteOnSchedule::Entry& e : schedule.entries) {
+        const core::Stroke& s = strokes.strokes[e.stroke];
+        WriteOnPath path;
+        path.stroke_id = s.id;
+        path.begin_s = e.start_s;
+        path.duration_s = schedule.end_s(e) - e.start_s;
+        path.centerline = s.centerline_px;
+        path.closed = s.geometry.closed;
+        path.length_px = e.length_px;
+        for (const double w : s.centerline_width) path.width_px = std::max(path.width_px, w);
+        if (s.style < strokes.styles.size()) path.taper_px = strokes.styles[s.style].brush.taper_px;
+        animation.paths.push_back(std::move(path));
+    }
+    return animation;
+}
+
 std::string hex_color(const glm::dvec3& rgb) { return core::color_hex(rgb); }
 
 DrawStyle brush_draw_style(const core::BrushStyle& brush) {

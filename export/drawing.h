@@ -6,6 +6,7 @@
 #include "core/pipeline/frame_lines.h"
 #include "core/strokes/bezier_fit.h"
 #include "core/strokes/strokes.h"
+#include "core/strokes/write_on.h"
 
 #include <glm/vec2.hpp>
 
@@ -79,6 +80,25 @@ struct Shape {
     int64_t parent = -1;
     uint32_t order = 0;
 };
+
+// How an animated SVG writes on one stroke (core/strokes/write_on.h): its drawn centerline is
+// revealed from its start, at the schedule's speed.
+struct WriteOnPath {
+    uint32_t stroke_id = 0;
+    double begin_s = 0.0;                 // when its tip sets off
+    double duration_s = 0.0;              // how long it takes
+    std::vector<glm::dvec2> centerline;   // px; a loop's last sample does not repeat its first
+    bool closed = false;
+    double length_px = 0.0;               // the centerline's length, a loop's closing segment included
+    double width_px = 0.0;                // its widest
+    double taper_px = 0.0;                // its brush's taper: the moving tip thins over it
+};
+struct WriteOnAnimation {
+    double seconds = 0.0;  // the drawing is complete from then on
+    std::vector<WriteOnPath> paths;  // one per timed stroke; a stroke without one appears at `seconds`
+};
+// The animation of a frame's write-on.
+WriteOnAnimation write_on_animation(const core::FrameStrokes& strokes, const core::WriteOnSchedule& schedule);
 
 struct Drawing {
     int frame = 0;

@@ -73,9 +73,13 @@ json polyline_strokes(const core::FrameLines& frame) {
     return strokes;
 }
 
+// Seconds and pixels of a write-on, to the microsecond and the thousandth of a pixel.
+double write_on_number(double v, double scale) { return std::round(v * scale) / scale; }
+
 json brush_strokes(const core::FrameLines& frame, const core::FrameStrokes& frame_strokes) {
     json strokes = json::array();
-    for (const core::Stroke& s : frame_strokes.strokes) {
+    for (size_t k = 0; k < frame_strokes.strokes.size(); ++k) {
+        const core::Stroke& s = frame_strokes.strokes[k];
         const core::StrokeGeometry& g = s.geometry;
         json outline = json::array();
         for (const core::Ring& ring : s.outline) outline.push_back(points_json(ring));
@@ -94,8 +98,8 @@ json brush_strokes(const core::FrameLines& frame, const core::FrameStrokes& fram
                            {"outline", std::move(outline)}});
         if (!g.bridged.empty()) {
             json bridged = json::array();
-            for (size_t k = 0; k < g.bridged.size(); ++k) {
-                if (g.bridged[k]) bridged.push_back(k);
+            for (size_t b = 0; b < g.bridged.size(); ++b) {
+                if (g.bridged[b]) bridged.push_back(b);
             }
             strokes.back()["hidden_segments"] = std::move(bridged);
         }
@@ -107,6 +111,14 @@ json brush_strokes(const core::FrameLines& frame, const core::FrameStrokes& fram
         add_object(frame, g.object, strokes.back());
         if (s.style != 0 && s.style < frame_strokes.styles.size()) {
             strokes.back()["style"] = frame_strokes.styles[s.style].name;
+        }
+        if (frame_strokes.write_on && k < frame_strokes.write_on->strokes.size()) {
+            const core::WriteOnFrame::StrokeProgress& p = frame_strokes.write_on->strokes[k];
+            const bool timed = p.start_s >= 0.0;
+            strokes.back()["write_on"] = {{"start", timed ? json(write_on_number(p.start_s, 1e6)) : json(nullptr)},
+                                          {"end", timed ? json(write_on_number(p.end_s, 1e6)) : json(nullptr)},
+                                          {"drawn_px", write_on_number(p.drawn_px, 1e3)},
+                                          {"length_px", write_on_number(p.length_px, 1e3)}};
         }
     }
     return strokes;
@@ -141,7 +153,7 @@ std::string polylines_json(const core::FrameLines& frame, const core::FrameStrok
                              t.visible_length_px > 0.0 ? std::round(1e4 * t.inherited_length_px / t.visible_length_px) / 1e4 : 1.0},
                             {"max_deviation_px", std::round(t.max_deviation_px * 1e4) / 1e4}};
     }
-    const json doc = {
+    json doc = {
         {"format", "inkline.polylines"},
         {"version", 1},
         {"frame", frame.frame},
@@ -156,6 +168,12 @@ std::string polylines_json(const core::FrameLines& frame, const core::FrameStrok
         {"light", light_json(frame.light)},
         {"strokes", std::move(strokes)},
         {"stats", std::move(stats)}};
+    if (frame_strokes && frame_strokes->write_on) {
+        const core::WriteOnFrame& w = *frame_strokes->write_on;
+        doc["write_on"] = {{"time", write_on_number(w.time_s, 1e6)},
+                           {"seconds", w.seconds},
+                           {"speed_px_per_s", write_on_number(w.speed_px_s, 1e3)}};
+    }
     return doc.dump() + "\n";
 }
 

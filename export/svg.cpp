@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <unordered_map>
 #include <vector>
 
 namespace inkline::output {
@@ -206,11 +207,121 @@ const char* cap_name(core::LineCap cap) {
     return "round";
 }
 
+// The write-on of an animated SVG (SvgOptions::write_on): a mask per timed stroke whose white
+// centerline, dashed with one dash as long as the path, is revealed by moving the dash along it;
+// the centerline runs on past both ends to cover their caps.
+class WriteOn {
+  public:
+    WriteOn(const Drawing& d, const WriteOnAnimation* animation) : animation_(animation) {
+        if (!animation_) return;
+        for (const Shape& s : d.shapes) {
+            const double width = s.filled ? 0.0 : line_width_of(d, s);
+            auto [it, added] = widest_.emplace(s.stroke_id, width);
+            if (!added) it->second = std::max(it->second, width);
+        }
+        for (size_t k = 0; k < animation_->paths.size(); ++k) path_of_[animation_->paths[k].stroke_id] = k;
+    }
+
+    // <defs> with the masks of the drawing's timed strokes.
+    void masks(Writer& w, const Drawing& d) const {
+        if (!animation_) return;
+        w << "  <defs>\n";
+        for (const WriteOnPath& p : animation_->paths) {
+            const auto shape = widest_.find(p.stroke_id);
+            if (shape == widest_.end() || p.centerline.size() < 2) continue;
+            const double width = std::max(p.width_px, shape->second) + 2.0;
+            const double run = 0.5 * width;  // past each end, for its cap
+            std::vector<glm::dvec2> c = p.centerline;
+            if (p.closed) c.push_back(c.front());
+            const glm::dvec2 start = c.front() - run * direction(c, true);
+            if (!p.closed) c.push_back(c.back() + run * direction(c, false));
+            const double total = p.length_px + (p.closed ? run : 2.0 * run);
+            const long id = long(p.stroke_id);
+            w << "    <path id=\"write-on-path-" << id << "\" d=\"M";
+            w.number(start.x) << " ";
+            w.number(start.y);
+            for (const glm::dvec2& q : c) {
+                w << " L";
+                w.number(q.x) << " ";
+                w.number(q.y);
+            }
+            w << "\" pathLength=\"";
+            w.number(total) << "\"/>\n    <mask id=\"write-on-" << id << "\" maskUnits=\"userSpaceOnUse\" x=\"0\" y=\"0\" width=\""
+                            << long(d.image.width) << "\" height=\"" << long(d.image.height) << "\">\n";
+            // The tip thins over the taper as the frames draw it: the mask runs behind it in
+            // three widths, each lagging the one narrower.
+            const double lag_share[3] = {0.6, 0.25, 0.0}, width_share[3] = {1.0, 0.65, 0.25};
+            for (int k = 0; k < 3; ++k) {
+                const double lag = std::min(lag_share[k] * p.taper_px, p.length_px);
+                tip_mask(w, p, id, total, run, lag, std::max(0.5, width_share[k] * width));
+            }
+            w << "    </mask>\n";
+        }
+        w << "  </defs>\n";
+    }
+
+    // The end of a shape's <path> element: its mask when timed, else hidden until the drawing
+    // is done; "/>" without a write-on.
+    std::string end_of(Writer& w, uint32_t stroke_id) const {
+        if (!animation_) return "/>\n";
+        if (path_of_.count(stroke_id)) {
+            w << " mask=\"url(#write-on-" << long(stroke_id) << ")\"";
+            return "/>\n";
+        }
+        Writer at(3);
+        at.number(animation_->seconds);
+        return "><set attributeName=\"visibility\" to=\"hidden\" dur=\"" + at.take() + "s\"/></path>\n";
+    }
+
+  private:
+    // One white stroke of a write-on mask along the stroke's path, `lag` px behind the tip: hidden
+    // until the stroke starts, then its start's cap, then running on with the tip, whole once the
+    // stroke is done.
+    static void tip_mask(Writer& w, const WriteOnPath& p, long id, double total, double run, double lag, double width) {
+        const double end_s = p.begin_s + p.duration_s;
+        const double span = end_s > 0.0 ? end_s : 1e-3;
+        const double begin = p.begin_s / span;
+        const double moving = p.duration_s > 0.0 ? std::min(1.0, (p.begin_s + p.duration_s * lag / p.length_px) / span) : begin;
+        const double done = std::max(moving, 1.0 - 1e-4);
+        w << "      <use href=\"#write-on-path-" << id << "\" fill=\"none\" stroke=\"#fff\" stroke-width=\"";
+        w.number(width) << "\" stroke-linecap=\"butt\" stroke-linejoin=\"round\" stroke-dasharray=\"";
+        w.number(total) << " ";
+        w.number(total + 1.0) << "\"><animate attributeName=\"stroke-dashoffset\" dur=\"";
+        w.number(span) << "s\" values=\"";
+        for (const double offset : {total, total, total - run, total - run, total - run - (p.length_px - lag)}) {
+            w.number(offset) << ";";
+        }
+        w << "0\" keyTimes=\"0";
+        for (const double at : {begin, begin, moving, done}) {
+            w << ";";
+            w.number(at);
+        }
+        w << ";1\" fill=\"freeze\"/></use>\n";
+    }
+
+    // Unit direction of a polyline at its start (leaving it) or end (arriving), from the nearest
+    // distinct point.
+    static glm::dvec2 direction(const std::vector<glm::dvec2>& c, bool at_start) {
+        const size_t n = c.size();
+        for (size_t k = 1; k < n; ++k) {
+            const glm::dvec2 d = at_start ? c[k] - c[0] : c[n - 1] - c[n - 1 - k];
+            const double len = glm::length(d);
+            if (len > 0.0) return d / len;
+        }
+        return {1.0, 0.0};
+    }
+
+    const WriteOnAnimation* animation_;
+    std::unordered_map<uint32_t, double> widest_;  // stroke id -> widest stroked centerline of its shapes (0: filled)
+    std::unordered_map<uint32_t, size_t> path_of_;  // stroke id -> its path in the animation
+};
+
 // The kind layers (silhouette, boundary, crease, hidden) of the selected shapes, each line
 // indented by `indent`, their ids prefixed with `prefix`; inside an object's layer, an empty kind
 // layer is left out.
 template <typename Selected>
-void kind_layers(Writer& w, const Drawing& d, const std::string& indent, const std::string& prefix, Selected selected) {
+void kind_layers(Writer& w, const Drawing& d, const WriteOn& write_on, const std::string& indent, const std::string& prefix,
+                 Selected selected) {
     for (const Layer layer : kAllLayers) {
         const bool hidden = layer == Layer::kHidden;
         bool any = false;
@@ -243,8 +354,9 @@ void kind_layers(Writer& w, const Drawing& d, const std::string& indent, const s
                 w << " opacity=\"";
                 w.number(own) << "\"";
             }
+            const std::string end = write_on.end_of(w, s.stroke_id);
             if (s.filled) {
-                w << " fill=\"" << color_of(d, s) << "\" stroke=\"none\"/>\n";
+                w << " fill=\"" << color_of(d, s) << "\" stroke=\"none\"" << end;
                 continue;
             }
             w << " fill=\"none\" stroke=\"" << ink.color << "\" stroke-width=\"";
@@ -261,14 +373,14 @@ void kind_layers(Writer& w, const Drawing& d, const std::string& indent, const s
                     w.number(offset) << "\"";
                 }
             }
-            w << "/>\n";
+            w << end;
         }
         w << indent << "</g>\n";
     }
 }
 
 // One layer per object, in object order, with its kind layers inside.
-void object_layers(Writer& w, const Drawing& d) {
+void object_layers(Writer& w, const Drawing& d, const WriteOn& write_on) {
     std::vector<int32_t> objects;
     for (const Shape& s : d.shapes) objects.push_back(s.object_index);
     std::sort(objects.begin(), objects.end());
@@ -280,14 +392,14 @@ void object_layers(Writer& w, const Drawing& d) {
         w << "  <g id=\"" << id << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
         if (o >= 0) w << " data-object=\"" << name << "\"";
         w << ">\n";
-        kind_layers(w, d, "    ", id + "-", [&](const Shape& s) { return s.object_index == o; });
+        kind_layers(w, d, write_on, "    ", id + "-", [&](const Shape& s) { return s.object_index == o; });
         w << "  </g>\n";
     }
 }
 
 // One layer per style name, in the order of the rules ("unstyled" first, for the strokes no rule
 // matched), with its kind layers inside.
-void style_layers(Writer& w, const Drawing& d) {
+void style_layers(Writer& w, const Drawing& d, const WriteOn& write_on) {
     std::vector<std::pair<int32_t, std::string>> names;  // (rule, name)
     for (const Shape& s : d.shapes) {
         const InkStyle ink = ink_of(d, s);
@@ -301,7 +413,7 @@ void style_layers(Writer& w, const Drawing& d) {
         w << "  <g id=\"" << id << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << label << "\"";
         if (!name.empty()) w << " data-style=\"" << label << "\"";
         w << ">\n";
-        kind_layers(w, d, "    ", id + "-", [&](const Shape& s) { return ink_of(d, s).name == name; });
+        kind_layers(w, d, write_on, "    ", id + "-", [&](const Shape& s) { return ink_of(d, s).name == name; });
         w << "  </g>\n";
     }
 }
@@ -317,17 +429,19 @@ std::string svg_document(const Drawing& d, const SvgOptions& options) {
       << " xmlns:inkline=\"https://inkline.invalid/ns/1\""
       << " width=\"" << width << "\" height=\"" << height << "\" viewBox=\"0 0 " << width << " " << height << "\">\n";
     metadata(w, d);
+    const WriteOn write_on(d, options.write_on);
+    write_on.masks(w, d);
     if (d.style.background) {
         w << "  <rect id=\"background\" width=\"" << width << "\" height=\"" << height << "\" fill=\""
           << *d.style.background << "\"/>\n";
     }
     const bool any_object = std::any_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return s.object_index >= 0; });
     if (options.layers == SvgLayers::kObject && any_object) {
-        object_layers(w, d);
+        object_layers(w, d, write_on);
     } else if (options.layers == SvgLayers::kStyle) {
-        style_layers(w, d);
+        style_layers(w, d, write_on);
     } else {
-        kind_layers(w, d, "  ", "", [](const Shape&) { return true; });
+        kind_layers(w, d, write_on, "  ", "", [](const Shape&) { return true; });
     }
     w << "</svg>\n";
     return w.take();

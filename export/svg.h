@@ -18,6 +18,10 @@ enum class SvgLayers : uint8_t { kKind, kObject, kStyle };
 struct SvgOptions {
     int decimals = 2;  // coordinate precision
     SvgLayers layers = SvgLayers::kKind;
+    // Set: the drawing is written on as the animation says (SMIL): each timed stroke behind a
+    // mask that its drawn centerline reveals from its start, the others hidden until the end.
+    // Viewers without SMIL show the finished drawing.
+    const WriteOnAnimation* write_on = nullptr;
 };
 
 std::string svg_document(const Drawing& drawing, const SvgOptions& options);

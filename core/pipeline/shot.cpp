@@ -26,11 +26,20 @@ Shot open_shot(const ShotRequest& request) {
         scene.last_frame = 48;
         if (is_gltf_path(request.input)) scene.gltf.emplace();
     }
+    const ShotRequest::Names& n = request.names;
+    if (request.write_on != 0.0) {
+        if (!(request.write_on > 0.0 && request.write_on <= kMaxWriteOnSeconds))
+            throw InputError(std::string(n.write_on) + ": must be above 0 and at most " + std::to_string(int(kMaxWriteOnSeconds)) + " seconds");
+        scene.write_on_s = request.write_on;
+    }
     if (!scene.gltf) {
-        const ShotRequest::Names& n = request.names;
         for (const auto& [given, option] : {std::pair(request.gltf_scene >= 0, n.gltf_scene), std::pair(!request.animation.empty(), n.animation),
-                                            std::pair(!request.camera.empty(), n.camera), std::pair(request.fps > 0.0, n.fps)}) {
+                                            std::pair(!request.camera.empty(), n.camera)}) {
             if (given) throw InputError(std::string(option) + ": applies only to glTF input (.gltf, .glb)");
+        }
+        if (request.fps > 0.0) {
+            if (scene.write_on_s == 0.0) throw InputError(std::string(n.fps) + ": applies only to glTF input (.gltf, .glb) or with a write-on");
+            scene.fps = request.fps;
         }
     } else {
         GltfSettings& g = *scene.gltf;

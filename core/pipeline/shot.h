@@ -26,17 +26,21 @@ struct ShotRequest {
     std::filesystem::path input;       // scene (.json), mesh (.obj .off .ply .stl) or glTF (.gltf .glb)
     int max_image_side = kMaxImageSide;  // px; larger scene images are refused
     size_t max_faces = 50'000'000;       // larger meshes are refused while they are read
-    // glTF input only (a bare glTF file, or a scene whose mesh is one): InputError otherwise,
-    // naming the option as `names` gives it.
+    // glTF input only (a bare glTF file, or a scene whose mesh is one; fps also with a write-on):
+    // InputError otherwise, naming the option as `names` gives it.
     int gltf_scene = -1;    // the file's scene to draw; -1: its default scene
     std::string animation;  // the one animation to play (name or index); empty: all
     std::string camera;     // the camera to look through (its or its node's name); empty: the first
     double fps = 0.0;       // frame F is animation time F / fps; 0: the scene's (24 by default)
+    // Write-on (s): overrides the scene's write_on; 0: the scene's. fps applies with a write-on on
+    // any input.
+    double write_on = 0.0;
     struct Names {
         const char* gltf_scene = "--gltf-scene";
         const char* animation = "--animation";
         const char* camera = "--camera";
         const char* fps = "--fps";
+        const char* write_on = "--write-on";
         const char* max_faces = "--max-faces";
     } names;
 };

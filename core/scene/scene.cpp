@@ -590,8 +590,8 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
                          quote_value(prefix_end == std::string::npos ? what : what.substr(prefix_end + 2), kMaxQuotedPathChars));
     }
     const Reader r(name, root, "");
-    r.allow_only({"version", "mesh", "gltf", "fps", "frames", "image", "camera", "object", "objects", "light", "lines",
-                  "brush", "styles"});
+    r.allow_only({"version", "mesh", "gltf", "fps", "write_on", "frames", "image", "camera", "object", "objects", "light",
+                  "lines", "brush", "styles"});
 
     Scene scene;
     scene.file = scene_file;
@@ -616,6 +616,11 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
     if (r.has("fps")) {
         scene.fps = r.number("fps");
         if (!(scene.fps > 0.0 && scene.fps <= 1e6)) r.fail("fps", "must be above 0 and at most 1e6");
+    }
+    if (r.has("write_on")) {
+        scene.write_on_s = r.number("write_on");
+        if (!(scene.write_on_s > 0.0 && scene.write_on_s <= kMaxWriteOnSeconds))
+            r.fail("write_on", "must be above 0 and at most " + std::to_string(int(kMaxWriteOnSeconds)) + " seconds");
     }
     scene.given = {r.has("frames"), r.has("image"), r.has("camera")};
 

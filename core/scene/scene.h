@@ -62,11 +62,15 @@ struct ObjectRule {
     std::optional<bool> silhouette, boundary, crease, intersection;  // override the scene's lines.*
 };
 
+// The longest write-on (s): a day.
+inline constexpr double kMaxWriteOnSeconds = 86400.0;
+
 struct Scene {
     std::filesystem::path file;  // where it was read from; empty for a built-in scene
     MeshSource mesh;
     std::optional<GltfSettings> gltf;  // set when mesh.path is a .gltf or .glb file
-    double fps = 24.0;                 // frame F of an animated glTF is its time F / fps
+    double fps = 24.0;                 // frame F of an animated glTF is its time F / fps; write-on frames per second
+    double write_on_s = 0.0;           // write-on: each frame drawn stroke by stroke in this time; 0: none
     // Which of frames, image and camera the scene file set; a glTF file sets the others.
     struct Given {
         bool frames = false, image = false, camera = false;

@@ -12,36 +12,23 @@
 #include <utility>
 
 namespace inkline::core {
-namespace {
 
-// Distance from p to the segment ab, px.
-double segment_distance(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b) {
-    const glm::dvec2 ab = b - a;
-    const double len2 = glm::dot(ab, ab);
-    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-    return glm::length(a + t * ab - p);
-}
-
-}  // namespace
-
-std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> strokes, double touch_px) {
-    // Segments by their boxes, grown by touch_px: an end within touch_px of a segment lies in a
-    // cell the segment's grown box touches.
-    struct Segment {
+std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> strokes, double junction_px) {
+    // Points by their boxes, grown by junction_px: an end within junction_px of a point lies in
+    // a cell the point's box touches. Cells of 1 px hold few points, so an end seldom reaches
+    // kCrowded before it reaches the points it shares.
+    struct Point {
         uint32_t stroke, index;
-        bool operator<(const Segment& o) const { return std::tie(stroke, index) < std::tie(o.stroke, o.index); }
+        bool operator<(const Point& o) const { return std::tie(stroke, index) < std::tie(o.stroke, o.index); }
     };
-    internal::PointGrid<Segment> grid(std::max(8.0, 4.0 * touch_px));
+    internal::PointGrid<Point> grid(std::max(1.0, 4.0 * junction_px));
     for (uint32_t s = 0; s < strokes.size(); ++s) {
         const std::vector<glm::dvec2>& p = strokes[s].geometry.points_px;
-        for (uint32_t i = 0; i + 1 < p.size(); ++i) {
-            grid.add_box(glm::min(p[i], p[i + 1]) - touch_px, glm::max(p[i], p[i + 1]) + touch_px, {s, i});
-        }
-        if (p.size() == 1) grid.add_box(p[0] - touch_px, p[0] + touch_px, {s, 0});
+        for (uint32_t i = 0; i < p.size(); ++i) grid.add_box(p[i] - junction_px, p[i] + junction_px, {s, i});
     }
     grid.sort();
     std::vector<std::vector<uint32_t>> touches(strokes.size());
-    // An end looks at no more than kCrowded segments around it: where more crowd (thousands of
+    // An end looks at no more than kCrowded points around it: where more crowd (thousands of
     // strokes meeting at one point), the ends that share the point join through the hub below.
     constexpr size_t kCrowded = 64;
     std::vector<std::tuple<double, double, uint32_t>> ends;  // (x, y, stroke) of every end
@@ -51,14 +38,12 @@ std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> stro
         for (const glm::dvec2& end : {p.front(), p.back()}) {
             ends.emplace_back(end.x, end.y, s);
             size_t seen = 0;
-            grid.any_in_box(end, end, [&](const Segment& seg) {
+            grid.any_in_box(end, end, [&](const Point& q) {
                 if (++seen > kCrowded) return true;
-                if (seg.stroke == s) return false;
-                const std::vector<glm::dvec2>& q = strokes[seg.stroke].geometry.points_px;
-                const glm::dvec2& b = q.size() > 1 ? q[seg.index + 1] : q[seg.index];
-                if (segment_distance(end, q[seg.index], b) <= touch_px) {
-                    touches[s].push_back(seg.stroke);
-                    touches[seg.stroke].push_back(s);
+                if (q.stroke == s) return false;
+                if (glm::distance(end, strokes[q.stroke].geometry.points_px[q.index]) <= junction_px) {
+                    touches[s].push_back(q.stroke);
+                    touches[q.stroke].push_back(s);
                 }
                 return false;
             });
@@ -92,7 +77,7 @@ std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> stro
 
 void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
     const size_t n = r_strokes.size();
-    const std::vector<std::vector<uint32_t>> touches = touching_strokes(r_strokes, options_.touch_px);
+    const std::vector<std::vector<uint32_t>> touches = touching_strokes(r_strokes, options_.junction_px);
     std::vector<double> length(n);
     for (size_t i = 0; i < n; ++i) length[i] = r_strokes[i].geometry.length_px();
     constexpr uint32_t kNew = std::numeric_limits<uint32_t>::max();

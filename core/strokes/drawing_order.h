@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The order a person would draw a frame's strokes in (seed 002's grouping and hierarchical
-// linking): strokes connected through junctions form a group; each group has a main stroke
-// (level 0), its level-1 strokes touch the main stroke, level-2 strokes touch a level-1 stroke,
-// and so on; a frame is drawn group after group, each level after the one before. The groups,
-// levels and order stay as they were last frame where the strokes persist.
+// linking): strokes connected through junctions (points they share) form a group; each group
+// has a main stroke (level 0), its level-1 strokes touch the main stroke, level-2 strokes touch
+// a level-1 stroke, and so on; a frame is drawn group after group, each level after the one
+// before. The groups, levels and order stay as they were last frame where the strokes persist.
 #pragma once
 
 #include "core/strokes/strokes.h"
@@ -16,19 +16,25 @@
 namespace inkline::core {
 
 struct DrawingOrderOptions {
-    // Two strokes touch where an end of one lies this close to the other (image px): strokes
-    // that meet at a junction share the point, visible and hidden parts of a line meet end to end.
-    double touch_px = 0.5;
+    // Two strokes touch where an end of one is a point of the other (an end or a corner of its
+    // exact polyline) to within this (image px), as seed 002 groups edges that share a vertex:
+    // strokes that meet at a junction share the point, visible and hidden parts of a line meet
+    // end to end. A line that ends on another's side where it passes behind it (an occlusion
+    // T-junction) does not touch it: on a scanned mesh those come and go every frame, and groups
+    // joined through them split and merge (docs/strokes.md). Rounding only: both strokes take a
+    // shared point from the same mesh point.
+    double junction_px = 1e-3;
     // Last frame's main stroke of a group stays main while it is at least this share of the
     // group's longest stroke; below it the longest stroke takes over.
     double keep_main_share = 0.9;
 };
 
-// Which strokes touch which: for each stroke, the indices of the others it touches, ascending.
-// An end is checked against at most 64 segments around it; strokes whose ends share a point
-// exactly always touch (where more than 64 do, each is listed with the first of them only), so
-// a junction of thousands of strokes costs time linear in them. Every listed pair touches.
-std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> strokes, double touch_px);
+// Which strokes touch which (an end of one within junction_px of a point of the other): for
+// each stroke, the indices of the others it touches, ascending. An end is checked against at
+// most 64 points around it; strokes whose ends share a point exactly always touch (where more
+// than 64 do, each is listed with the first of them only), so a junction of thousands of strokes
+// costs time linear in them. Every listed pair touches.
+std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> strokes, double junction_px);
 
 class DrawingOrder {
   public:

@@ -260,18 +260,10 @@ Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint
 
     stroke.drawn = path.length_px >= style.min_length_px && path.points_px.size() >= 2;
     if (stroke.drawn) {
-        OutlineOptions outline;
-        outline.cap = style.cap;
-        stroke.outline = style.dash_px.empty() ? build_outline(path.points_px, brush.width, path.closed, outline)
-                                               : dashed_outline(path.points_px, brush.width, stroke.centerline_u,
-                                                                path.closed, path.length_px, style.dash_px, outline);
-        if (style.texture && style.dash_px.empty()) {
-            for (TextureHole& hole : texture_gaps(path.points_px, stroke.centerline_u, brush.width, path.closed,
-                                                  g.ends[1], id, *style.texture, stroke.outline)) {
-                stroke.outline.push_back(std::move(hole.ring));
-            }
-            stroke.darkening = pressure_darkening(brush.width, style);
-        }
+        StrokeInk ink = stroke_ink(path.points_px, brush.width, stroke.centerline_u, path.closed, path.length_px,
+                                   g.ends[1], id, style);
+        stroke.outline = std::move(ink.outline);
+        stroke.darkening = ink.darkening;
     }
     stroke.deviation_px = path.deviation_px;
     stroke.removed_px = removed_extent_px(pick(g.points_px, drawn), path);
@@ -306,6 +298,26 @@ StrokeTrace trace_of(const Stroke& stroke, bool start_anchored) {
 }
 
 }  // namespace
+
+StrokeInk stroke_ink(std::span<const glm::dvec2> centerline, std::span<const double> width, std::span<const double> u,
+                     bool closed, double length_px, StrokeEnd last_end, uint32_t id, const BrushStyle& style) {
+    StrokeInk ink;
+    OutlineOptions outline;
+    outline.cap = style.cap;
+    if (style.dash_px.empty()) {
+        ink.outline = build_outline(centerline, width, closed, outline);
+    } else {
+        ink.outline = dashed_outline({centerline.begin(), centerline.end()}, {width.begin(), width.end()},
+                                     {u.begin(), u.end()}, closed, length_px, style.dash_px, outline);
+    }
+    if (style.texture && style.dash_px.empty()) {
+        for (TextureHole& hole : texture_gaps(centerline, u, width, closed, last_end, id, *style.texture, ink.outline)) {
+            ink.outline.push_back(std::move(hole.ring));
+        }
+        ink.darkening = pressure_darkening(width, style);
+    }
+    return ink;
+}
 
 FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
                            const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence,

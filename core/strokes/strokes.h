@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -82,6 +83,20 @@ struct StrokeStats {
     double max_removed_px = 0.0;       // over drawn strokes: back-tracking removed
 };
 
+// How far the write-on of a frame has come (core/strokes/write_on.h).
+struct WriteOnFrame {
+    double time_s = 0.0;  // time since the drawing began
+    double seconds = 0.0;
+    double speed_px_s = 0.0;
+    struct StrokeProgress {
+        double start_s = -1.0;  // when its tip set off; -1: not timed (appears when the drawing is done)
+        double end_s = -1.0;    // when it is finished
+        double drawn_px = 0.0;  // length drawn along its drawn centerline
+        double length_px = 0.0;  // that centerline's length
+    };
+    std::vector<StrokeProgress> strokes;  // one per stroke, as FrameStrokes::strokes
+};
+
 struct FrameStrokes {
     int frame = 0;
     std::vector<Stroke> strokes;
@@ -89,7 +104,20 @@ struct FrameStrokes {
     // matched.
     std::vector<StrokeStyle> styles;
     StrokeStats stats;
+    // Set on the drawing of a write-on at a time (strokes_at); unset otherwise.
+    std::optional<WriteOnFrame> write_on;
 };
+
+// The ink of a drawn centerline (samples c with their width and u; a loop's last sample does not
+// repeat its first, length_px includes its closing segment): its outline, in dashes when
+// style.dash_px has a pattern, with the texture's holes cut and its darkening when style.texture
+// is set (seeded by the stroke's id; last_end is the end the centerline runs to).
+struct StrokeInk {
+    std::vector<Ring> outline;
+    double darkening = 0.0;
+};
+StrokeInk stroke_ink(std::span<const glm::dvec2> centerline, std::span<const double> width, std::span<const double> u,
+                     bool closed, double length_px, StrokeEnd last_end, uint32_t id, const BrushStyle& style);
 
 // Builds one frame's brush strokes from its polylines (frame.polylines) and light (frame.light).
 // mesh and table are the frame's mesh and edge table, projection its camera and object motion.

@@ -26,15 +26,10 @@ core::Stroke stroke(uint32_t id, std::vector<glm::dvec2> points) {
     return s;
 }
 
-// Touching as the test sees it, by brute force: an end of one within 0.5 px of a segment of the other.
+// Touching as the test sees it, by brute force: an end of one within 1e-3 px of a point of the other.
 bool touch(const core::Stroke& a, const core::Stroke& b) {
     auto near = [](const glm::dvec2& p, const std::vector<glm::dvec2>& line) {
-        for (size_t i = 0; i + 1 < line.size(); ++i) {
-            const glm::dvec2 ab = line[i + 1] - line[i];
-            const double t = std::clamp(glm::dot(p - line[i], ab) / std::max(glm::dot(ab, ab), 1e-300), 0.0, 1.0);
-            if (glm::length(line[i] + t * ab - p) <= 0.5) return true;
-        }
-        return line.size() == 1 && glm::length(line[0] - p) <= 0.5;
+        return std::any_of(line.begin(), line.end(), [&](const glm::dvec2& q) { return glm::distance(p, q) <= 1e-3; });
     };
     const auto& p = a.geometry.points_px;
     const auto& q = b.geometry.points_px;
@@ -138,6 +133,66 @@ TEST(DrawingOrder, TheMainStrokeStaysWhileItIsNearlyTheLongest) {
     EXPECT_EQ(strokes[1].level, 0u);
 }
 
+TEST(DrawingOrder, StrokesTouchAtAPointTheyShareNotWhereOneEndsOnAnothersSide) {
+    // B ends on A's side between its points, as a line that passes behind A does; C ends on A's
+    // corner, as a line that meets A at a junction does; D meets C end to end.
+    std::vector<core::Stroke> strokes = {
+        stroke(1, {{0, 0}, {100, 0}, {200, 0}}),  // A
+        stroke(2, {{50, 0}, {50, 40}}),           // B
+        stroke(3, {{100, 0}, {100, 40}}),         // C
+        stroke(4, {{100, 40}, {130, 70}}),        // D
+    };
+    const std::vector<std::vector<uint32_t>> touches = core::touching_strokes(strokes, 1e-3);
+    EXPECT_EQ(touches[0], (std::vector<uint32_t>{2}));
+    EXPECT_TRUE(touches[1].empty());
+    EXPECT_EQ(touches[2], (std::vector<uint32_t>{0, 3}));
+    core::DrawingOrder order;
+    order.assign(strokes);
+    expect_hierarchy(strokes, true);
+    EXPECT_EQ(strokes[1].group, 2u) << "B stands alone";
+    EXPECT_EQ(strokes[1].level, 0u);
+    EXPECT_EQ(strokes[2].group, 1u);
+    EXPECT_EQ(strokes[2].level, 1u);
+    EXPECT_EQ(strokes[3].level, 2u);
+}
+
+TEST(DrawingOrder, AMergeAndASplitLeaveTheMainStrokesTreeAsItWas) {
+    // A tree of three (A, B from A's end, C from B's end) and a short stroke D apart; D's end
+    // reaches C's end, then draws back.
+    const std::vector<core::Stroke> tree = {
+        stroke(1, {{0, 0}, {100, 0}}),   // A
+        stroke(2, {{100, 0}, {100, 50}}),  // B
+        stroke(3, {{100, 50}, {60, 50}}),  // C
+    };
+    auto frame = [&](glm::dvec2 d_end) {
+        std::vector<core::Stroke> strokes = tree;
+        strokes.push_back(stroke(4, {{30, 80}, d_end}));  // D
+        return strokes;
+    };
+    core::DrawingOrder order;
+    std::vector<core::Stroke> strokes = frame({50, 60});
+    order.assign(strokes);
+    ASSERT_EQ(strokes[3].level, 0u);
+    const std::vector<core::Stroke> before = strokes;
+    strokes = frame({60, 50});
+    order.assign(strokes);
+    expect_hierarchy(strokes, false);
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(strokes[i].level, before[i].level) << "stroke " << strokes[i].id;
+        EXPECT_EQ(strokes[i].parent, before[i].parent) << "stroke " << strokes[i].id;
+    }
+    EXPECT_EQ(strokes[3].group, 1u);
+    EXPECT_EQ(strokes[3].level, 3u);
+    EXPECT_EQ(strokes[3].parent, 3);
+    strokes = frame({50, 60});
+    order.assign(strokes);
+    expect_hierarchy(strokes, false);
+    for (size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(strokes[i].level, before[i].level) << "stroke " << strokes[i].id;
+        EXPECT_EQ(strokes[i].order, before[i].order) << "stroke " << strokes[i].id;
+    }
+}
+
 // Over a turntable, the share of strokes that keep their ids whose level, and whose place among
 // those strokes, are the same as last frame.
 struct Steadiness {
@@ -188,12 +243,14 @@ TEST(DrawingOrder, LevelsAndOrderHoldOverATorusTurntableAtThreeDegreesAFrame) {
 }
 
 TEST(DrawingOrder, TheHierarchyHoldsOnEveryFrameOfABumpySphereTurntable) {
-    // The rules on every frame; how steady levels and order are on bumpy meshes is measured in
-    // docs/strokes.md (well short of the torus's).
+    // The rules on every frame; steadiness below the torus's where strokes grow and shrink
+    // past junctions (docs/strokes.md measures scanned meshes). Measured: 95.5% and 98.2%.
     const core::Mesh mesh = test::bumpy_sphere(test::icosphere(4), {.count = 30, .height_max = 0.1});
     const Steadiness s = turntable_steadiness(mesh, 30, 3.0);
     std::printf("bumpy sphere: %zu kept strokes, same level %.4f, same place %.4f\n", s.kept, s.level, s.order);
     EXPECT_GT(s.kept, 100u);
+    EXPECT_GE(s.level, 0.9);
+    EXPECT_GE(s.order, 0.95);
 }
 
 }  // namespace
