@@ -10,7 +10,7 @@
 namespace inkline::core {
 namespace {
 
-// The writers draw it: a visible stroke with an outline (or drawn, as a centerline), or a hidden one.
+// The writers draw it: a visible stroke that is drawn, or a hidden one.
 bool written(const Stroke& stroke) { return stroke.geometry.visible ? stroke.drawn : true; }
 
 // Arc length of each sample of a drawn centerline; a loop's closing segment comes last.

@@ -31,7 +31,7 @@ struct WriteOnSchedule {
 };
 
 // Times every stroke the writers draw that has a drawn centerline of some length: visible strokes
-// with an outline (or drawn, when drawn as centerlines) and hidden strokes, in their `order`.
+// that are drawn (Stroke::drawn) and hidden strokes, in their `order`.
 // A stroke without such a centerline has no entry: it appears whole when the drawing is done.
 // seconds must be above 0.
 WriteOnSchedule schedule_write_on(const FrameStrokes& strokes, double seconds);
