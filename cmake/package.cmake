@@ -15,8 +15,8 @@ foreach(component gl export)
   endif()
 endforeach()
 # A static library carries its private link libraries to whatever links it: the config then
-# finds them too (OpenMesh, CGAL, Embree, EGL, OSMesa, GL, libpng, Cairo). Shared libraries need
-# only the public ones (GLM, Threads).
+# finds them too (OpenMesh, CGAL, Embree, libpng, Cairo; gl opens EGL and OSMesa at run time).
+# Shared libraries need only the public ones (GLM, Threads).
 get_target_property(core_type inkline_core TYPE)
 if(core_type STREQUAL "STATIC_LIBRARY")
   set(INKLINE_PACKAGE_STATIC ON)

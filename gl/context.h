@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Headless OpenGL contexts: EGL (surfaceless or device platform) first, OSMesa as fallback.
 // No window system is needed; on a CPU-only machine Mesa's llvmpipe provides the renderer.
+// libEGL.so.1 and libOSMesa.so.8 are opened (dlopen) only when a context is made: a process that
+// makes none maps no Mesa driver or LLVM.
 #pragma once
 
 #include <memory>
@@ -42,7 +44,8 @@ class Context {
 // context is a software renderer, and no context need be made to find that out.
 bool gpu_device_present();
 
-// Creates a context; kAuto tries EGL, then OSMesa. Throws ContextError naming what was tried.
+// Creates a context; kAuto tries EGL, then OSMesa. Throws ContextError naming what was tried,
+// and the library when one cannot be opened.
 std::unique_ptr<Context> create_context(Backend backend);
 
 }  // namespace inkline::gl
