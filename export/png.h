@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// PNG of one frame through Cairo: antialiased, transparent unless the style has a background.
-// Also encodes RGBA pixels rendered elsewhere (the GL preview) as PNG.
+// PNG of one frame drawn by Cairo: antialiased, transparent unless the style has a background.
+// Also encodes RGBA pixels rendered elsewhere (the GL preview) as PNG. Encoded with libpng at a
+// fast setting; the files decode to exactly the pixels Cairo's own PNG encoder wrote.
 #pragma once
 
 #include "export/drawing.h"
