@@ -148,6 +148,24 @@ TEST_F(HostileOutputs, FolderOutputIsRefused) {
     EXPECT_EQ(changed_by(before), Names{});
 }
 
+// A PNG is made on a second thread while the next frame is drawn: frame 2's failure still stops
+// the run with its one line before anything of frame 3 is written, and frame 1 stays whole.
+TEST_F(HostileOutputs, FolderInTheWayOfASecondFramesPngStopsTheRunBeforeTheThird) {
+    test::write_text(dir / "three.json", R"({"mesh": "torus.obj", "frames": [1, 3],
+        "image": {"width": 64, "height": 64},
+        "camera": {"eye": [0.0, 2.6, 4.6], "target": [0.0, 0.0, 0.0], "fov_y_deg": 40}})");
+    fs::create_directories(dir / "f0002.png");
+    const test::RunResult r = test::run_inkline("render " + at("three.json") + " --visibility exact -q --png " + at("f%04d.png") +
+                                                " --svg " + at("f%04d.svg"));
+    test::expect_one_line_error(r, 3, "f0002.png: is a folder; not replaced");
+    EXPECT_TRUE(fs::is_regular_file(dir / "f0001.png"));
+    EXPECT_GT(fs::file_size(dir / "f0001.png"), 100u);
+    EXPECT_TRUE(fs::is_regular_file(dir / "f0001.svg"));
+    EXPECT_TRUE(fs::is_directory(dir / "f0002.png"));
+    EXPECT_FALSE(fs::exists(dir / "f0003.png"));
+    EXPECT_FALSE(fs::exists(dir / "f0003.svg"));
+}
+
 // --- Class 3b: temporaries -----------------------------------------------------------------------
 
 TEST_F(HostileOutputs, LinkPlantedAtTheOldPredictableTemporaryNameIsNotFollowed) {
