@@ -54,4 +54,9 @@ std::pair<int, int> parse_chunk(const std::string& text) {
     return {k, n};
 }
 
+core::ToneMode parse_tone(const std::string& text) {
+    if (const std::optional<core::ToneMode> mode = core::tone_mode_from_name(text)) return *mode;
+    throw InputError("--tone '" + quote_value(text) + "': expected stipple, hatch, crosshatch or none");
+}
+
 }  // namespace inkline::cli

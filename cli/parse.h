@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
-// The render options that are more than a word: frame ranges, image sizes, chunks, the input kind.
+// The render options that are more than a word: frame ranges, image sizes, chunks, the input
+// kind, the tone mode.
 #pragma once
 
 #include "core/scene/camera.h"
+#include "core/tone/tone_options.h"
 
 #include <string>
 #include <utility>
@@ -24,5 +26,8 @@ core::ImageSize parse_size(const std::string& text, int max_side);
 // "K/N" or "slurm" (SLURM_ARRAY_TASK_ID within SLURM_ARRAY_TASK_MIN..SLURM_ARRAY_TASK_MAX) ->
 // (K, N), 1 <= K <= N. Throws InputError.
 std::pair<int, int> parse_chunk(const std::string& text);
+
+// "stipple" or "none" -> the tone mode --tone asks for. Throws InputError.
+core::ToneMode parse_tone(const std::string& text);
 
 }  // namespace inkline::cli

@@ -36,6 +36,7 @@ Preview::Preview(const gl::Context* shared, const RenderArgs& args, const core::
     }
     const gl::BrushTip tip = scene.brush.tip.empty() ? gl::default_brush_tip() : gl::load_brush_tip(scene.brush.tip);
     renderer_ = std::make_unique<gl::PreviewRenderer>(*context, scene.brush, tip, options);
+    tone_ = scene.tone;
     renderer_->prepare(scene.image);
 }
 
@@ -43,8 +44,11 @@ Preview::~Preview() = default;
 
 void Preview::write(core::FrameResult& drawn, const std::string& pattern) {
     core::Stopwatch clock;
-    const gl::PreviewImage image =
-        renderer_->render(drawn.lines, drawn.strokes, {.mesh = drawn.mesh, .world_from_object = drawn.world_from_object});
+    const gl::PreviewTone tone{.tone = drawn.tone.mode == core::ToneMode::kNone ? nullptr : &drawn.tone,
+                               .color = tone_.color,
+                               .opacity = tone_.opacity};
+    const gl::PreviewImage image = renderer_->render(
+        drawn.lines, drawn.strokes, {.mesh = drawn.mesh, .world_from_object = drawn.world_from_object}, tone);
     output::write_file_atomically(core::format_frame(pattern, drawn.lines.frame),
                                   output::png_from_rgba(image.width, image.height, image.rgba));
     drawn.lines.stats.ms.emplace_back("preview", clock.lap_ms());

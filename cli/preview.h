@@ -31,6 +31,7 @@ class Preview {
   private:
     std::unique_ptr<gl::Context> own_context_;  // declared first: outlives the renderer
     std::unique_ptr<gl::PreviewRenderer> renderer_;
+    core::ToneOptions tone_;  // the scene's: the colour and opacity of the frames' tone
 };
 
 }  // namespace inkline::cli

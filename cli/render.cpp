@@ -116,6 +116,7 @@ RenderPlan plan_render(const RenderArgs& args) {
     output::parse_path_format(args.path_format, "--path-format");
     parse_visibility_option(args.visibility);
     gl::parse_backend(args.gl_backend);
+    if (!args.tone.empty()) parse_tone(args.tone);
     const core::Shot shot = core::open_shot(shot_request(args));
     const FrameRange frames = frames_of(shot, args);
     const WriteOnPlan write_on = plan_write_on(shot.scene, frames, args);
@@ -127,9 +128,12 @@ int run_render(const RenderArgs& args) {
     // The modes, parsed once.
     const core::TrackerMode tracker = core::parse_tracker_mode(args.tracker, "--tracker");
     const std::optional<core::VisibilityMode> asked_visibility = parse_visibility_option(args.visibility);
+    const std::optional<core::ToneMode> tone = args.tone.empty() ? std::nullopt : std::optional(parse_tone(args.tone));
     // Scene: a file, a glTF shot, or a default turntable around a bare mesh (made once the mesh is read).
     const core::ShotRequest request = shot_request(args);
     core::Shot shot = core::open_shot(request);
+    // --tone overrides the scene's tone mode; without a "tone" block, stipple takes its defaults.
+    if (tone) shot.scene.tone.mode = *tone;
     const core::Scene& scene = shot.scene;
     const FrameRange frames = frames_of(shot, args);
     const std::optional<core::ImageSize> size =
@@ -193,6 +197,7 @@ int run_render(const RenderArgs& args) {
             shown.lines.frame = shown_frame;
             shown.strokes = core::strokes_at(result.strokes, schedule, write_on.time_at(shown_frame));
             shown.strokes.frame = shown_frame;
+            shown.tone = result.tone;  // the tone is there from the start, under the strokes being drawn
             shown.mesh = result.mesh;
             shown.world_from_object = result.world_from_object;
             written += writers.write(shown);

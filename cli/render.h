@@ -32,6 +32,7 @@ struct RenderArgs {
     std::string path_format = "polygon";  // polygon | bezier: how SVG, PDF and PNG write outlines
     std::string layers = "kind";          // SVG layers: kind, or object (each with kind layers inside)
     bool hidden = false;
+    std::string tone;         // stipple | none: overrides the scene's tone mode; empty: the scene's
     int gltf_scene = -1;      // glTF input: the file's scene; -1: the scene JSON's or the file's default
     std::string animation;    // glTF input: one animation by name or index; empty: all
     std::string camera;       // glTF input: a camera by name; empty: the first

@@ -77,7 +77,7 @@ class Writers::PngThread {
 };
 
 Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Scene& scene)
-    : outputs_(outputs), centerline_(args.centerline) {
+    : outputs_(outputs), centerline_(args.centerline), tone_(scene.tone) {
     const fs::path& mesh_name = scene.mesh.path;
     style_ = output::brush_draw_style(scene.brush);
     style_.background = args.background.empty() ? std::nullopt : std::optional(args.background);
@@ -120,13 +120,18 @@ size_t Writers::write_pending_png() {
     return 1;
 }
 
+output::Drawing Writers::drawing_of(const core::FrameResult& drawn) const {
+    output::Drawing drawing = output::brush_drawing(drawn.lines, drawn.strokes, style_, centerline_);
+    drawing.tone = output::tone_layer(drawn.tone, tone_);
+    return drawing;
+}
+
 size_t Writers::write(core::FrameResult& drawn) {
     core::FrameLines& frame = drawn.lines;
     size_t files = 0;
     core::Stopwatch clock;
     // Shared with the PNG thread, which only reads it.
-    const auto drawing =
-        std::make_shared<const output::Drawing>(output::brush_drawing(frame, drawn.strokes, style_, centerline_));
+    const auto drawing = std::make_shared<const output::Drawing>(drawing_of(drawn));
     double svg_ms = clock.lap_ms(), png_ms = 0.0;
     if (!outputs_.png.empty()) {
         // The previous frame's PNG first: its file, or its error, comes before this frame's files.
@@ -158,7 +163,7 @@ size_t Writers::write(core::FrameResult& drawn) {
     frame.stats.ms.emplace_back("pdf", clock.lap_ms());
     if (!outputs_.json.empty()) {
         output::write_file_atomically(core::format_frame(outputs_.json, frame.frame),
-                                      output::polylines_json(frame, &drawn.strokes));
+                                      output::polylines_json(frame, &drawn.strokes, &drawn.tone));
         ++files;
     }
     return files;
@@ -166,7 +171,7 @@ size_t Writers::write(core::FrameResult& drawn) {
 
 size_t Writers::write_animated_svg(const core::FrameResult& drawn, const core::WriteOnSchedule& schedule) {
     if (outputs_.animated_svg.empty()) return 0;
-    const output::Drawing drawing = output::brush_drawing(drawn.lines, drawn.strokes, style_, centerline_);
+    const output::Drawing drawing = drawing_of(drawn);
     const output::WriteOnAnimation animation = output::write_on_animation(drawn.strokes, schedule);
     output::SvgOptions options = svg_options_;
     options.write_on = &animation;

@@ -54,11 +54,14 @@ class Writers {
     class PngThread;
     // Waits for the PNG being made and writes it; returns the number of files written.
     size_t write_pending_png();
+    // What SVG, PNG and PDF draw of a frame: its strokes over its tone.
+    output::Drawing drawing_of(const core::FrameResult& drawn) const;
 
     const Outputs& outputs_;
     bool centerline_;
     output::SvgOptions svg_options_;
     output::DrawStyle style_;
+    core::ToneOptions tone_;  // the scene's, --tone applied
     output::PdfOptions pdf_options_;
     std::unique_ptr<output::PdfDocument> pdf_;
     std::unique_ptr<PngThread> png_;  // the PNG being made, at most one

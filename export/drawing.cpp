@@ -163,6 +163,18 @@ WriteOnAnimation write_on_animation(const core::FrameStrokes& strokes, const cor
 
 std::string hex_color(const glm::dvec3& rgb) { return core::color_hex(rgb); }
 
+ToneLayer tone_layer(const core::FrameTone& tone, const core::ToneOptions& options) {
+    ToneLayer layer;
+    layer.mode = tone.mode;
+    layer.color = hex_color(options.color);
+    layer.opacity = options.opacity;
+    layer.dots.reserve(tone.dots.size());
+    for (const core::Dot& dot : tone.dots) layer.dots.push_back({dot.sample, dot.point_px, dot.radius_px});
+    layer.hatches.reserve(tone.hatches.size());
+    for (const core::Hatch& hatch : tone.hatches) layer.hatches.push_back({hatch.family, hatch.plane, hatch.outline});
+    return layer;
+}
+
 DrawStyle brush_draw_style(const core::BrushStyle& brush) {
     DrawStyle style;
     style.color = hex_color(brush.color);

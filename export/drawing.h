@@ -7,6 +7,7 @@
 #include "core/strokes/bezier_fit.h"
 #include "core/strokes/strokes.h"
 #include "core/strokes/write_on.h"
+#include "core/tone/tone.h"
 
 #include <glm/vec2.hpp>
 
@@ -100,6 +101,32 @@ struct WriteOnAnimation {
 // The animation of a frame's write-on.
 WriteOnAnimation write_on_animation(const core::FrameStrokes& strokes, const core::WriteOnSchedule& schedule);
 
+// A dot of tone (core::Dot as the writers draw it): a filled circle.
+struct ToneDot {
+    uint32_t sample = 0;  // the surface sample it stands for (written as data-sample)
+    glm::dvec2 center_px{0.0};
+    double radius_px = 0.0;
+};
+
+// A hatch of tone (core::Hatch as the writers draw it): its filled outline.
+struct ToneHatch {
+    uint32_t family = 0;  // written as data-family
+    uint64_t plane = 0;   // written as data-plane
+    std::vector<std::vector<glm::dvec2>> rings;  // px, filled together (nonzero)
+};
+
+// The frame's tone, drawn under the lines as one layer ("tone") in one colour and opacity.
+struct ToneLayer {
+    core::ToneMode mode = core::ToneMode::kNone;  // kNone: no tone layer at all
+    std::string color = "#000000";                // "#rrggbb"
+    double opacity = 1.0;                         // of the whole layer: overlapping marks do not add up
+    std::vector<ToneDot> dots;
+    std::vector<ToneHatch> hatches;
+};
+
+// The tone layer of a frame's tone, in `options`' colour and opacity.
+ToneLayer tone_layer(const core::FrameTone& tone, const core::ToneOptions& options);
+
 struct Drawing {
     int frame = 0;
     core::ImageSize image;
@@ -110,6 +137,8 @@ struct Drawing {
     std::vector<InkStyle> styles;
     // The shapes are strokes with a drawing order (group, level, parent, order): brush_drawing's.
     bool drawing_order = false;
+    // Drawn first, under every line; none unless set (tone_layer).
+    ToneLayer tone = {};
 };
 
 // The ink of a shape (DrawStyle's when the drawing lists no styles).
@@ -137,7 +166,8 @@ Drawing brush_drawing(const core::FrameLines& frame, const core::FrameStrokes& s
 // "#rrggbb" of an sRGB colour with components in [0, 1] (core::color_hex).
 std::string hex_color(const glm::dvec3& rgb);
 
-// The layers of a drawing: one per line kind, then the hidden lines.
+// The line layers of a drawing: one per line kind, then the hidden lines (above the tone layer,
+// when there is one).
 enum class Layer : uint8_t { kSilhouette, kBoundary, kCrease, kIntersection, kHidden };
 // In drawing order.
 inline constexpr std::array<Layer, 5> kAllLayers = {Layer::kSilhouette, Layer::kBoundary, Layer::kCrease,

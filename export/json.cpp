@@ -124,9 +124,61 @@ json brush_strokes(const core::FrameLines& frame, const core::FrameStrokes& fram
     return strokes;
 }
 
+// The tone's dots: where on the surface (sample, face, barycentric coordinates, world point), where
+// in the image, how large, and the tone asked for there. Its hatches: family, plane and level,
+// and per point where in the image, the world point, the mesh edge it lies on and the width.
+json tone_json(const core::FrameTone& tone) {
+    json dots = json::array();
+    for (const core::Dot& d : tone.dots) {
+        dots.push_back({{"sample", d.sample},
+                        {"face", d.face},
+                        {"barycentric", vec3(d.barycentric)},
+                        {"point", json::array({round_px(d.point_px.x), round_px(d.point_px.y)})},
+                        {"world", vec3(d.point_world)},
+                        {"radius", round_px(d.radius_px)},
+                        {"tone", std::round(d.tone * 1e4) / 1e4}});
+    }
+    json hatches = json::array();
+    for (const core::Hatch& h : tone.hatches) {
+        json points = json::array(), world = json::array(), width = json::array();
+        for (size_t i = 0; i < h.points_px.size(); ++i) {
+            points.push_back(json::array({round_px(h.points_px[i].x), round_px(h.points_px[i].y)}));
+            world.push_back(vec3(h.points_world[i]));
+            width.push_back(round_px(h.width_px[i]));
+        }
+        hatches.push_back({{"family", h.family},
+                           {"plane", h.plane},
+                           {"level", h.level},
+                           {"points", std::move(points)},
+                           {"world", std::move(world)},
+                           {"edges", h.edges},
+                           {"width", std::move(width)}});
+    }
+    json out = {{"mode", core::tone_mode_name(tone.mode)}, {"dots", std::move(dots)}};
+    if (tone.mode == core::ToneMode::kHatch || tone.mode == core::ToneMode::kCrosshatch) {
+        out["hatches"] = std::move(hatches);
+        const core::HatchStats& s = tone.hatch_stats;
+        out["stats"] = {{"faces", s.faces},
+                        {"segments", s.segments},
+                        {"points", s.points},
+                        {"occluded", s.occluded},
+                        {"inked", s.inked}};
+    }
+    if (tone.mode == core::ToneMode::kStipple) {
+        const core::StippleStats& s = tone.stipple_stats;
+        out["stats"] = {{"samples", s.samples},
+                        {"considered", s.considered},
+                        {"wanted", s.wanted},
+                        {"inked", s.inked},
+                        {"occluded", s.occluded}};
+    }
+    return out;
+}
+
 }  // namespace
 
-std::string polylines_json(const core::FrameLines& frame, const core::FrameStrokes* frame_strokes) {
+std::string polylines_json(const core::FrameLines& frame, const core::FrameStrokes* frame_strokes,
+                           const core::FrameTone* tone) {
     json strokes = frame_strokes ? brush_strokes(frame, *frame_strokes) : polyline_strokes(frame);
     json ms = json::object();
     for (const auto& [stage, value] : frame.stats.ms) ms[stage] = std::round(value * 1000.0) / 1000.0;
@@ -174,6 +226,7 @@ std::string polylines_json(const core::FrameLines& frame, const core::FrameStrok
                            {"seconds", w.seconds},
                            {"speed_px_per_s", write_on_number(w.speed_px_s, 1e3)}};
     }
+    if (tone && tone->mode != core::ToneMode::kNone) doc["tone"] = tone_json(*tone);
     return doc.dump() + "\n";
 }
 

@@ -418,6 +418,41 @@ void style_layers(Writer& w, const Drawing& d, const WriteOn& write_on) {
     }
 }
 
+// The tone layer, under the lines: a circle per dot and a filled path per hatch, in the layer's
+// colour, the layer's opacity on the group (overlapping marks do not darken each other).
+void tone_group(Writer& w, const ToneLayer& tone) {
+    if (tone.mode == core::ToneMode::kNone) return;
+    w << "  <g id=\"tone\" inkscape:groupmode=\"layer\" inkscape:label=\"tone\" data-mode=\""
+      << core::tone_mode_name(tone.mode) << "\" fill=\"" << tone.color << "\"";
+    if (tone.opacity < 1.0) {
+        w << " opacity=\"";
+        w.number(tone.opacity) << "\"";
+    }
+    w << ">\n";
+    for (const ToneDot& dot : tone.dots) {
+        w << "    <circle data-sample=\"" << long(dot.sample) << "\" cx=\"";
+        w.number(dot.center_px.x) << "\" cy=\"";
+        w.number(dot.center_px.y) << "\" r=\"";
+        w.number(dot.radius_px) << "\"/>\n";
+    }
+    for (const ToneHatch& hatch : tone.hatches) {
+        w << "    <path data-family=\"" << long(hatch.family) << "\" data-plane=\"" << std::to_string(hatch.plane)
+          << "\" d=\"";
+        bool first = true;
+        for (const std::vector<glm::dvec2>& ring : hatch.rings) {
+            for (size_t i = 0; i < ring.size(); ++i) {
+                w << (i == 0 ? (first ? "M" : " M") : " L");
+                w.number(ring[i].x) << " ";
+                w.number(ring[i].y);
+                first = false;
+            }
+            if (!ring.empty()) w << " Z";
+        }
+        w << "\"/>\n";
+    }
+    w << "  </g>\n";
+}
+
 }  // namespace
 
 std::string svg_document(const Drawing& d, const SvgOptions& options) {
@@ -435,6 +470,7 @@ std::string svg_document(const Drawing& d, const SvgOptions& options) {
         w << "  <rect id=\"background\" width=\"" << width << "\" height=\"" << height << "\" fill=\""
           << *d.style.background << "\"/>\n";
     }
+    tone_group(w, d.tone);
     const bool any_object = std::any_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return s.object_index >= 0; });
     if (options.layers == SvgLayers::kObject && any_object) {
         object_layers(w, d, write_on);

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SVG of one frame for compositing: size and viewBox in pixels, one Inkscape layer per line kind
-// (and "hidden"), one path per stroke with a stable element id (stroke-<id>), frame and camera
-// in <metadata>.
+// (and "hidden"), one path per stroke with a stable element id (stroke-<id>), under them a
+// "tone" layer of dots when the frame has tone, frame and camera in <metadata>.
 #pragma once
 
 #include "export/drawing.h"

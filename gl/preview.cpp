@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -41,6 +42,56 @@ void main() {
     width = width_in;
 }
 )";
+
+// Tone: triangles in pixels, one flat ink.
+constexpr const char* kToneVertexShader = R"(#version 330 core
+layout(location = 0) in vec2 p_px;
+uniform vec2 image_size;
+void main() {
+    gl_Position = vec4(p_px / image_size * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+constexpr const char* kToneFragmentShader = R"(#version 330 core
+uniform vec3 ink;  // sRGB
+uniform float opacity;
+layout(location = 0) out vec4 colour;
+void main() {
+    colour = vec4(ink * opacity, opacity);  // premultiplied
+}
+)";
+
+// Sides of the polygon a dot is drawn as.
+constexpr int kDotSides = 16;
+
+// The triangles of a frame's tone: each dot a polygon round its centre, each hatch a quad per
+// segment, its corners offset across the line by half its width at each end.
+std::vector<glm::vec2> tone_triangles(const core::FrameTone& tone) {
+    std::vector<glm::vec2> out;
+    for (const core::Dot& dot : tone.dots) {
+        const glm::dvec2 c = dot.point_px;
+        for (int k = 0; k < kDotSides; ++k) {
+            const double a0 = 2.0 * glm::pi<double>() * k / kDotSides;
+            const double a1 = 2.0 * glm::pi<double>() * (k + 1) / kDotSides;
+            out.emplace_back(c);
+            out.emplace_back(c + dot.radius_px * glm::dvec2(std::cos(a0), std::sin(a0)));
+            out.emplace_back(c + dot.radius_px * glm::dvec2(std::cos(a1), std::sin(a1)));
+        }
+    }
+    for (const core::Hatch& hatch : tone.hatches) {
+        const std::vector<glm::dvec2>& p = hatch.points_px;
+        for (size_t i = 0; i + 1 < p.size(); ++i) {
+            const glm::dvec2 d = p[i + 1] - p[i];
+            const double length = glm::length(d);
+            if (!(length > 0.0)) continue;
+            const glm::dvec2 across = glm::dvec2(-d.y, d.x) / length;
+            const glm::dvec2 a0 = p[i] + 0.5 * hatch.width_px[i] * across, a1 = p[i] - 0.5 * hatch.width_px[i] * across;
+            const glm::dvec2 b0 = p[i + 1] + 0.5 * hatch.width_px[i + 1] * across;
+            const glm::dvec2 b1 = p[i + 1] - 0.5 * hatch.width_px[i + 1] * across;
+            for (const glm::dvec2& v : {a0, a1, b0, b0, a1, b1}) out.emplace_back(v);
+        }
+    }
+    return out;
+}
 
 // The tip image as alpha. Along the stroke: its head over the first head_px and its tail over
 // the last tail_px where those ends are free (S: the brush is set down and lifted there; a
@@ -202,7 +253,8 @@ struct PreviewRenderer::Impl {
     int samples = 1;
     GLint max_size = 0;
 
-    GLuint stroke_program = 0, surface_program = 0;
+    GLuint stroke_program = 0, surface_program = 0, tone_program = 0;
+    GLuint tone_vao = 0, tone_vertices = 0;
     GLuint stroke_vao = 0, stroke_vertices = 0, stroke_indices = 0;
     GLuint surface_vao = 0, surface_positions = 0, surface_normals = 0, surface_indices = 0;
     GLuint tip_texture = 0;
@@ -214,6 +266,9 @@ struct PreviewRenderer::Impl {
     struct StrokeUniforms {
         GLint image_size, tip, tip_length, zones, stroke_length, period, free_ends, ink, opacity, pressure;
     } su{};
+    struct ToneUniforms {
+        GLint image_size, ink, opacity;
+    } tu{};
     struct SurfaceUniforms {
         GLint clip_from_object, world_from_object, normal_world_from_object, eye_world, light, point_light, toon;
     } fu{};
@@ -225,17 +280,22 @@ struct PreviewRenderer::Impl {
         const GLuint renderbuffers[] = {msaa_color, msaa_depth_stencil, resolve_color};
         fn.DeleteRenderbuffers(3, renderbuffers);
         fn.DeleteTextures(1, &tip_texture);
-        const GLuint buffers[] = {stroke_vertices, stroke_indices, surface_positions, surface_normals, surface_indices};
-        fn.DeleteBuffers(5, buffers);
-        const GLuint arrays[] = {stroke_vao, surface_vao};
-        fn.DeleteVertexArrays(2, arrays);
+        const GLuint buffers[] = {stroke_vertices, stroke_indices, surface_positions,
+                                  surface_normals, surface_indices, tone_vertices};
+        fn.DeleteBuffers(6, buffers);
+        const GLuint arrays[] = {stroke_vao, surface_vao, tone_vao};
+        fn.DeleteVertexArrays(3, arrays);
         fn.DeleteProgram(stroke_program);
         fn.DeleteProgram(surface_program);
+        fn.DeleteProgram(tone_program);
     }
 
     void setup(const BrushTip& tip) {
         stroke_program = internal::link_program(fn, kStrokeVertexShader, kStrokeFragmentShader, "preview");
         surface_program = internal::link_program(fn, kSurfaceVertexShader, kSurfaceFragmentShader, "preview");
+        tone_program = internal::link_program(fn, kToneVertexShader, kToneFragmentShader, "preview");
+        tu = {fn.GetUniformLocation(tone_program, "image_size"), fn.GetUniformLocation(tone_program, "ink"),
+              fn.GetUniformLocation(tone_program, "opacity")};
         auto stroke_uniform = [&](const char* name) { return fn.GetUniformLocation(stroke_program, name); };
         su = {stroke_uniform("image_size"), stroke_uniform("tip"),           stroke_uniform("tip_length"),
               stroke_uniform("zones"),      stroke_uniform("stroke_length"), stroke_uniform("period"),
@@ -285,6 +345,14 @@ struct PreviewRenderer::Impl {
         fn.EnableVertexAttribArray(1);
         fn.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
         fn.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, surface_indices);
+
+        // Tone: one vec2 per vertex, triangles in order.
+        fn.GenVertexArrays(1, &tone_vao);
+        fn.GenBuffers(1, &tone_vertices);
+        fn.BindVertexArray(tone_vao);
+        fn.BindBuffer(GL_ARRAY_BUFFER, tone_vertices);
+        fn.EnableVertexAttribArray(0);
+        fn.VertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(glm::vec2), nullptr);
         fn.BindVertexArray(0);
 
         // The tip: one channel, mipmapped, so thin strokes average its streaks instead of
@@ -419,6 +487,33 @@ struct PreviewRenderer::Impl {
         fn.Disable(GL_DEPTH_TEST);
     }
 
+    // The tone's triangles, each sample inked once: the stencil marks what is inked.
+    void draw_tone(const PreviewTone& tone, core::ImageSize image) {
+        const std::vector<glm::vec2> triangles = tone_triangles(*tone.tone);
+        stats.tone_triangles = triangles.size() / 3;
+        if (triangles.empty()) return;
+        fn.UseProgram(tone_program);
+        fn.BindVertexArray(tone_vao);
+        fn.BindBuffer(GL_ARRAY_BUFFER, tone_vertices);
+        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(triangles.size() * sizeof(glm::vec2)), triangles.data(),
+                      GL_STREAM_DRAW);
+        fn.Uniform2f(tu.image_size, float(image.width), float(image.height));
+        fn.Uniform3f(tu.ink, float(tone.color.r), float(tone.color.g), float(tone.color.b));
+        fn.Uniform1f(tu.opacity, float(tone.opacity));
+        fn.Enable(GL_BLEND);
+        fn.BlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+        fn.Enable(GL_STENCIL_TEST);
+        fn.StencilMask(0xff);
+        fn.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+        fn.StencilFunc(GL_GREATER, 1, 0xff);
+        fn.DrawArrays(GL_TRIANGLES, 0, GLsizei(triangles.size()));
+        fn.Disable(GL_STENCIL_TEST);
+        fn.Disable(GL_BLEND);
+        // The strokes count their own stencil values from a clean slate.
+        fn.ClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+        check_gl(fn, "drawing the tone");
+    }
+
     void draw_strokes(const std::vector<StrokeDraw>& draws, core::ImageSize image) {
         fn.UseProgram(stroke_program);
         fn.BindVertexArray(stroke_vao);
@@ -519,7 +614,7 @@ void PreviewRenderer::prepare(core::ImageSize image) {
 }
 
 PreviewImage PreviewRenderer::render(const core::FrameLines& frame, const core::FrameStrokes& strokes,
-                                     const PreviewSurface& surface) {
+                                     const PreviewSurface& surface, const PreviewTone& tone) {
     Impl& m = *impl_;
     const internal::Functions& fn = m.fn;
     const core::ImageSize image = frame.image;
@@ -551,6 +646,8 @@ PreviewImage PreviewRenderer::render(const core::FrameLines& frame, const core::
     fn.StencilMask(0xff);
     fn.ClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
     if (underlay) m.draw_surface(frame, surface);
+    m.stats.tone_triangles = 0;
+    if (tone.tone) m.draw_tone(tone, image);
     m.draw_strokes(draws, image);
     // Resolve the samples into the single-sampled buffer that is read back.
     fn.BindFramebuffer(GL_READ_FRAMEBUFFER, m.msaa_fbo);

@@ -11,6 +11,7 @@
 #include "core/pipeline/frame_lines.h"
 #include "core/strokes/brush_style.h"
 #include "core/strokes/strokes.h"
+#include "core/tone/tone.h"
 #include "gl/brush_tip.h"
 #include "gl/context.h"
 
@@ -52,6 +53,14 @@ struct PreviewSurface {
     glm::dmat4 world_from_object{1.0};
 };
 
+// The tone drawn under the strokes (docs/tone.md): the frame's dots and hatches, each sample
+// of the image inked once however they overlap, as the vector outputs fill them.
+struct PreviewTone {
+    const core::FrameTone* tone = nullptr;  // not owned; alive during render(); none: no tone
+    glm::dvec3 color{0.0};                  // sRGB in [0, 1]
+    double opacity = 1.0;
+};
+
 // Straight-alpha RGBA pixels, sRGB, rows from the top: what png_from_rgba() takes.
 struct PreviewImage {
     int width = 0;
@@ -65,6 +74,7 @@ struct PreviewImage {
 struct PreviewStats {
     size_t strokes = 0;        // drawn
     size_t triangles = 0;      // strips and caps
+    size_t tone_triangles = 0; // dots and hatches
     int samples = 0;           // per pixel, as used
     double geometry_ms = 0.0;  // strips built and uploaded
     double render_ms = 0.0;    // clear, underlay, strokes, resolve, finish
@@ -92,7 +102,7 @@ class PreviewRenderer {
     // Strokes overlap like layers of ink; a stroke never darkens itself where it folds over.
     // Throws InputError when the image exceeds GL's framebuffer size limit.
     PreviewImage render(const core::FrameLines& frame, const core::FrameStrokes& strokes,
-                        const PreviewSurface& surface = {});
+                        const PreviewSurface& surface = {}, const PreviewTone& tone = {});
 
     const PreviewStats& last_render() const;
 

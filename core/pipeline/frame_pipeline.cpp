@@ -165,6 +165,36 @@ FrameResult FramePipeline::run(int frame) {
     out.mesh = &mesh;
     out.world_from_object = world_from_object;
     const double strokes_ms = step("strokes");
+
+    // Tone: dots on the visible surface, none under the strokes' ink.
+    double tone_ms = 0.0;
+    if (scene_.tone.mode != ToneMode::kNone) {
+        if (change != MeshChange::kNone || tone_normals_.size() != mesh.positions.size()) {
+            tone_normals_ = vertex_normals(mesh);
+        }
+        out.tone.mode = scene_.tone.mode;
+        if (tone_faces_.empty() && !meshes_.objects().empty()) {
+            std::vector<uint8_t> shaded;
+            for (const MeshObject& object : meshes_.objects()) shaded.push_back(object_draws_tone(scene_, object.name));
+            if (std::find(shaded.begin(), shaded.end(), 0) != shaded.end()) {
+                tone_faces_.reserve(meshes_.face_objects().size());
+                for (uint32_t object : meshes_.face_objects()) tone_faces_.push_back(shaded[object]);
+            }
+        }
+        const bool new_topology = change == MeshChange::kTopology;
+        if (scene_.tone.mode == ToneMode::kStipple) {
+            if (!stippler_) stippler_.emplace(scene_.tone);
+            out.tone.dots = stippler_->stipple(mesh, table, tone_normals_, projection, scene_.light, occlusion,
+                                               out.strokes.strokes, new_topology, tone_faces_);
+            out.tone.stipple_stats = stippler_->stats();
+        } else {
+            if (!hatcher_) hatcher_.emplace(scene_.tone);
+            out.tone.hatches = hatcher_->hatch(mesh, table, tone_normals_, projection, scene_.light, occlusion,
+                                               out.strokes.strokes, new_topology, tone_faces_);
+            out.tone.hatch_stats = hatcher_->stats();
+        }
+        tone_ms = step("tone");
+    }
     first_frame_ = false;
 
     FrameStats& stats = result.stats;
@@ -191,6 +221,7 @@ FrameResult FramePipeline::run(int frame) {
                 {"chain", chain_ms},
                 {"visibility", visibility_ms},
                 {"strokes", strokes_ms}};
+    if (scene_.tone.mode != ToneMode::kNone) stats.ms.emplace_back("tone", tone_ms);
     return out;
 }
 

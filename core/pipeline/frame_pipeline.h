@@ -5,6 +5,7 @@
 //   MeshFrames::at -> camera_at -> SilhouetteTracker::update (or extract_feature_edges)
 //   -> chain_feature_edges -> OcclusionSource::prepare -> split_by_visibility
 //   -> set_aside_occluded (without lines.hidden) -> build_strokes -> DrawingOrder::assign
+//   -> Stippler::stipple or Hatcher::hatch (with a scene "tone")
 //
 // Writers (export/) take the result: output::polylines_json(result.lines, &result.strokes),
 // output::brush_drawing(result.lines, result.strokes, ...).
@@ -19,6 +20,7 @@
 #include "core/scene/scene.h"
 #include "core/strokes/drawing_order.h"
 #include "core/strokes/strokes.h"
+#include "core/tone/tone.h"
 #include "core/visibility/occlusion_source.h"
 
 #include <glm/mat4x4.hpp>
@@ -55,6 +57,7 @@ struct PipelineOptions {
 struct FrameResult {
     FrameLines lines;      // camera, light, visible polylines (occluded ones too with lines.hidden), stats
     FrameStrokes strokes;  // brush strokes of lines
+    FrameTone tone;        // the tone's dots (mode kNone and none without a scene "tone")
     const Mesh* mesh = nullptr;  // the frame's mesh (object space), valid until the next run()
     glm::dmat4 world_from_object{1.0};
     // Drawable but odd input found drawing this frame (the camera inside the mesh's bounds,
@@ -97,6 +100,10 @@ class FramePipeline {
     std::optional<std::vector<FeatureEdge>> still_edges_;
     StrokeCoherence coherence_;
     DrawingOrder drawing_order_;
+    std::optional<Stippler> stippler_;  // with a scene "tone" of mode stipple
+    std::optional<Hatcher> hatcher_;    // ... of mode hatch or crosshatch
+    std::vector<glm::dvec3> tone_normals_;  // the mesh's vertex normals, for the tone
+    std::vector<uint8_t> tone_faces_;       // per face: 1 where its object is shaded; empty: all
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;
     bool trace_intersections_ = false;

@@ -40,6 +40,8 @@ class Projection {
     bool inside_image(const glm::dvec2& p_px) const;
 
     const glm::dvec3& eye_object() const { return eye_object_; }
+    const glm::dmat4& clip_from_object() const { return clip_from_object_; }
+    double near() const { return near_; }
     const glm::dmat4& world_from_object() const { return world_from_object_; }
     ImageSize image() const { return image_; }
 

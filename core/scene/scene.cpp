@@ -296,6 +296,48 @@ glm::dvec3 read_color(const Reader& r, const std::string& key) {
     return color;
 }
 
+// The scene's "tone" block (docs/tone.md).
+ToneOptions read_tone(const Reader& r) {
+    r.allow_only({"mode", "gamma", "levels", "min", "max", "dot_radius_px", "fade", "line_width_px", "direction",
+                  "cross_direction", "cross_from", "color", "opacity", "seed"});
+    ToneOptions t;
+    t.mode = ToneMode::kStipple;
+    if (r.has("mode")) {
+        const std::optional<ToneMode> mode = tone_mode_from_name(r.string("mode"));
+        if (!mode) r.fail("mode", "expected \"stipple\", \"hatch\", \"crosshatch\" or \"none\"");
+        t.mode = *mode;
+    }
+    t.gamma = r.number_or("gamma", t.gamma);
+    if (!(t.gamma > 0.0 && t.gamma <= 16.0)) r.fail("gamma", "must be above 0 and at most 16");
+    if (r.has("levels")) {
+        t.levels = r.integer("levels");
+        if (t.levels < 0 || t.levels > 256) r.fail("levels", "must be between 0 and 256");
+    }
+    t.min = r.number_or("min", t.min);
+    t.max = r.number_or("max", t.max);
+    if (!(t.min >= 0.0 && t.min <= 0.9)) r.fail("min", "must be between 0 and 0.9");
+    if (!(t.max >= 0.0 && t.max <= 0.9)) r.fail("max", "must be between 0 and 0.9");
+    t.dot_radius_px = r.number_or("dot_radius_px", t.dot_radius_px);
+    if (!(t.dot_radius_px >= 0.25 && t.dot_radius_px <= 64.0)) r.fail("dot_radius_px", "must be between 0.25 and 64");
+    t.fade = r.number_or("fade", t.fade);
+    if (!(t.fade >= 0.0 && t.fade <= 4.0)) r.fail("fade", "must be between 0 and 4");
+    t.line_width_px = r.number_or("line_width_px", t.line_width_px);
+    if (!(t.line_width_px >= 0.1 && t.line_width_px <= 64.0)) r.fail("line_width_px", "must be between 0.1 and 64");
+    if (r.has("direction")) t.direction = r.direction("direction");
+    if (r.has("cross_direction")) t.cross_direction = r.direction("cross_direction");
+    t.cross_from = r.number_or("cross_from", t.cross_from);
+    if (!(t.cross_from >= 0.0 && t.cross_from <= 0.9)) r.fail("cross_from", "must be between 0 and 0.9");
+    if (r.has("color")) t.color = read_color(r, "color");
+    t.opacity = r.number_or("opacity", t.opacity);
+    if (!(t.opacity >= 0.0 && t.opacity <= 1.0)) r.fail("opacity", "must be between 0 and 1");
+    if (r.has("seed")) {
+        const int seed = r.integer("seed");
+        if (seed < 0) r.fail("seed", "must be 0 or more");
+        t.seed = uint64_t(seed);
+    }
+    return t;
+}
+
 // The brush keys a style rule may set, as "brush" has them.
 constexpr std::initializer_list<const char*> kStyleBrushKeys = {
     "width_min_px", "width_max_px", "gamma", "invert", "taper_px", "max_width_ratio", "min_length_px", "color", "opacity",
@@ -533,9 +575,10 @@ std::vector<ObjectRule> read_object_rules(const Reader& r) {
     for (const auto& [pattern, value] : r.value().items()) {
         if (pattern.empty()) r.fail("", "an object pattern is empty");
         const Reader o = r.child(pattern);
-        o.allow_only({"lines"});
+        o.allow_only({"lines", "tone"});
         ObjectRule rule;
         rule.pattern = pattern;
+        if (o.has("tone")) rule.tone = o.boolean_or("tone", true);
         if (o.has("lines")) {
             if (o.at("lines").is_boolean()) {
                 rule.lines = o.boolean_or("lines", true);
@@ -575,6 +618,16 @@ std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std
     return kinds;
 }
 
+bool object_draws_tone(const Scene& scene, const std::string& object_name) {
+    bool lines = true, tone = true;
+    for (const ObjectRule& rule : scene.objects) {
+        if (::fnmatch(rule.pattern.c_str(), object_name.c_str(), 0) != 0) continue;
+        lines = rule.lines;
+        if (rule.tone) tone = *rule.tone;
+    }
+    return lines && tone;
+}
+
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file, int max_image_side) {
     const std::string name = scene_file.string();
     json root;
@@ -591,7 +644,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
     }
     const Reader r(name, root, "");
     r.allow_only({"version", "mesh", "gltf", "fps", "write_on", "frames", "image", "camera", "object", "objects", "light",
-                  "lines", "brush", "styles"});
+                  "lines", "brush", "styles", "tone"});
 
     Scene scene;
     scene.file = scene_file;
@@ -684,6 +737,7 @@ Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene
     if (r.has("brush")) scene.brush = read_brush(r.child("brush"), scene_file.parent_path());
     if (r.has("objects")) scene.objects = read_object_rules(r.child("objects"));
     if (r.has("styles")) scene.styles = read_styles(r.child("styles"));
+    if (r.has("tone")) scene.tone = read_tone(r.child("tone"));
     return scene;
 }
 

@@ -11,6 +11,7 @@
 #include "core/scene/camera.h"
 #include "core/strokes/brush_style.h"
 #include "core/strokes/line_styles.h"
+#include "core/tone/tone_options.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -60,6 +61,7 @@ struct ObjectRule {
     std::string pattern;  // fnmatch(3) glob over object names ("Ground", "Tree.*")
     bool lines = true;    // false: a holdout, which hides lines and draws none
     std::optional<bool> silhouette, boundary, crease, intersection;  // override the scene's lines.*
+    std::optional<bool> tone;  // false: no tone on the object (a holdout has none either)
 };
 
 // The longest write-on (s): a day.
@@ -88,10 +90,16 @@ struct Scene {
     std::vector<ObjectRule> objects;
     // Line styles (docs/styles.md), in the order they apply.
     std::vector<StyleRule> styles;
+    // Tone on the surface (docs/tone.md); mode kNone: none.
+    ToneOptions tone;
 };
 
 // Which kinds of line an object draws: the scene's lines.* with every matching rule applied.
 std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std::string& object_name);
+
+// Whether an object is shaded by the scene's tone: not a holdout, and no matching rule says
+// "tone": false (the last matching rule that says either way decides).
+bool object_draws_tone(const Scene& scene, const std::string& object_name);
 
 // Reads and validates a scene file; relative paths resolve against its folder.
 // Throws InputError naming the file and key.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <new>
+#include <numbers>
 
 namespace inkline::output::internal {
 namespace {
@@ -22,6 +23,34 @@ void trace_path(cairo_t* cr, const Shape& shape) {
         for (size_t i = 0; i < path.size(); ++i) (i == 0 ? cairo_move_to : cairo_line_to)(cr, path[i].x, path[i].y);
         if (shape.filled || shape.closed) cairo_close_path(cr);
     }
+}
+
+// The tone's dots and hatches, filled together with the nonzero rule (the dots are all turned
+// the same way, so it fills their union) and composited as one group, as the SVG's tone layer is.
+void paint_tone(cairo_t* cr, const ToneLayer& tone) {
+    if (tone.mode == core::ToneMode::kNone || (tone.dots.empty() && tone.hatches.empty())) return;
+    const Rgb rgb = parse_color(tone.color, "tone color");
+    cairo_push_group(cr);
+    cairo_set_source_rgb(cr, rgb.r, rgb.g, rgb.b);
+    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+    cairo_new_path(cr);
+    for (const ToneDot& dot : tone.dots) {
+        if (!(dot.radius_px > 0.0)) continue;
+        cairo_new_sub_path(cr);
+        cairo_arc(cr, dot.center_px.x, dot.center_px.y, dot.radius_px, 0.0, 2.0 * std::numbers::pi);
+    }
+    cairo_fill(cr);
+    // Each hatch on its own, so that a hatch whose ring turns the other way round than its
+    // neighbour's does not cancel it where they overlap.
+    for (const ToneHatch& hatch : tone.hatches) {
+        for (const std::vector<glm::dvec2>& ring : hatch.rings) {
+            for (size_t i = 0; i < ring.size(); ++i) (i == 0 ? cairo_move_to : cairo_line_to)(cr, ring[i].x, ring[i].y);
+            cairo_close_path(cr);
+        }
+        cairo_fill(cr);
+    }
+    cairo_pop_group_to_source(cr);
+    cairo_paint_with_alpha(cr, tone.opacity);
 }
 
 }  // namespace
@@ -67,6 +96,7 @@ void paint_drawing(cairo_t* cr, const Drawing& d) {
     }
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
     cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+    paint_tone(cr, d.tone);
     const auto all = [](const Shape&) { return true; };
     for (const Layer layer : kAllLayers) {
         if (layer == Layer::kIntersection &&

@@ -10,7 +10,8 @@
 
 namespace inkline::output::internal {
 
-// Background (when the style has one), then every layer in order.
+// Background (when the style has one), the tone layer (when there is one), then every line
+// layer in order.
 void paint_drawing(cairo_t* cr, const Drawing& drawing);
 
 // Appends Cairo's output to a string (for cairo_*_create_for_stream / write_to_png_stream); out

@@ -28,7 +28,7 @@ from ._inkline import InputError, InternalError, OutputError
 __version__ = _inkline.__version__
 
 __all__ = [
-    "InputError", "OutputError", "InternalError", "Shot", "Frame", "Stroke",
+    "InputError", "OutputError", "InternalError", "Shot", "Frame", "Stroke", "Tone",
     "open", "scene", "read_json", "__version__",
 ]
 
@@ -74,22 +74,51 @@ def _stroke_of(d: dict) -> Stroke:
     return Stroke(**d)
 
 
+@dataclass(eq=False)
+class Tone:
+    """A frame's tone (scene "tone", docs/tone.md): its dots, one row each, ascending by sample."""
+
+    mode: str                 # "stipple"
+    points: np.ndarray        # (n, 2) float64, the dots' centres, image px
+    world: np.ndarray         # (n, 3) float64, the same points in world space
+    faces: np.ndarray         # (n,) uint32, the mesh face each dot lies on
+    barycentric: np.ndarray   # (n, 3) float64, its barycentric coordinates on that face
+    radius: np.ndarray        # (n,) float64, px
+    tone: np.ndarray          # (n,) float64, the tone asked for there
+    samples: np.ndarray       # (n,) uint32, the surface sample: the same point of the surface in every frame
+    stats: dict = field(default_factory=dict)  # samples, considered, wanted, inked, occluded
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+
 class Frame:
     """One drawn frame: its strokes, camera and image size, and its files."""
 
-    def __init__(self, number: int, image: tuple, camera: dict, strokes=None, native=None, stats=None):
+    def __init__(self, number: int, image: tuple, camera: dict, strokes=None, native=None, stats=None, tone=None):
         self.number = number
         self.image = image
         self.camera = camera
         self._strokes = strokes
         self._native = native
         self._stats = stats
+        self._tone = tone
+        self._tone_read = native is None
 
     @property
     def strokes(self) -> list[Stroke]:
         if self._strokes is None:
             self._strokes = [_stroke_of(d) for d in self._native.strokes()]
         return self._strokes
+
+    @property
+    def tone(self) -> Optional[Tone]:
+        """The tone's dots as arrays; None without tone (the scene's or the shot's tone is none)."""
+        if not self._tone_read:
+            d = self._native.tone()
+            self._tone = None if d is None else Tone(**d)
+            self._tone_read = True
+        return self._tone
 
     @property
     def warnings(self) -> list[str]:
@@ -173,7 +202,7 @@ class Shot:
             yield self.render(f)
 
 
-def _args(frames, size, hidden, contour, visibility, tracker):
+def _args(frames, size, hidden, contour, visibility, tracker, tone=None):
     a = _inkline.ShotArgs()
     if frames is not None:
         a.frames = _pair("frames", frames)
@@ -184,6 +213,8 @@ def _args(frames, size, hidden, contour, visibility, tracker):
         a.contour = _text("contour", contour)
     a.visibility = _text("visibility", visibility)
     a.tracker = _text("tracker", tracker)
+    if tone is not None:
+        a.tone = _text("tone", tone)
     return a
 
 
@@ -221,19 +252,19 @@ def _limit(name, value):
 
 
 def open(path, *, frames=None, size=None, hidden=False, contour=None, visibility="auto", tracker="incremental",
-         gltf_scene=None, animation=None, camera=None, fps=None, max_faces=_LIMITS["max_faces"],
+         tone=None, gltf_scene=None, animation=None, camera=None, fps=None, max_faces=_LIMITS["max_faces"],
          max_image_side=_LIMITS["max_image_side"]) -> Shot:
     """Opens a scene (.json), a mesh (.obj .off .ply .stl: a 48-frame turntable) or a glTF shot.
 
     The keywords are `inkline render`'s options: frames=(first, last) or one frame, size=(w, h),
     hidden, contour ("mesh" or "smooth"), visibility ("auto": raycast where Embree is built in,
-    else exact; "raycast"; "exact"), tracker ("incremental" or "brute"), and for glTF input
-    gltf_scene, animation, camera, fps.
+    else exact; "raycast"; "exact"), tracker ("incremental" or "brute"), tone ("stipple" or
+    "none": overrides the scene's tone mode), and for glTF input gltf_scene, animation, camera, fps.
     """
     path = _os.fspath(path)
     if not isinstance(path, str):
         raise InputError("path: expected a file name")
-    args = _args(frames, size, hidden, contour, visibility, tracker)
+    args = _args(frames, size, hidden, contour, visibility, tracker, tone)
     scene_index = -1
     if gltf_scene is not None:
         if isinstance(gltf_scene, bool) or not isinstance(gltf_scene, (int, np.integer)) or not 0 <= gltf_scene < 2**30:
@@ -310,7 +341,8 @@ def read_json(source) -> Frame:
             raise ValueError("not an inkline.polylines document")
         strokes = [_stroke_from_json(s) for s in doc["strokes"]]
         image = (int(doc["image"]["width"]), int(doc["image"]["height"]))
-        return Frame(int(doc["frame"]), image, doc["camera"], strokes=strokes, stats=doc.get("stats", {}))
+        tone = _tone_from_json(doc["tone"]) if "tone" in doc else None
+        return Frame(int(doc["frame"]), image, doc["camera"], strokes=strokes, stats=doc.get("stats", {}), tone=tone)
     except KeyError as e:
         raise InputError(f"{where}: missing key {e}"[:200]) from None
     except (ValueError, TypeError, AttributeError) as e:
@@ -332,3 +364,14 @@ def _stroke_from_json(s: dict) -> Stroke:
         object=s.get("object"), style=s.get("style"), group=int(s.get("group", 0)), level=int(s.get("level", 0)),
         parent=None if s.get("parent") is None else int(s["parent"]), order=int(s.get("order", 0)))
 
+
+def _tone_from_json(t: dict) -> Tone:
+    dots = t["dots"]
+
+    def column(key, dtype, cols):
+        return np.asarray([d[key] for d in dots], dtype).reshape((-1, cols) if cols else -1)
+
+    return Tone(mode=str(t["mode"]), points=column("point", np.float64, 2), world=column("world", np.float64, 3),
+                faces=column("face", np.uint32, 0), barycentric=column("barycentric", np.float64, 3),
+                radius=column("radius", np.float64, 0), tone=column("tone", np.float64, 0),
+                samples=column("sample", np.uint32, 0), stats=dict(t.get("stats", {})))

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The native part of the Python module (`inkline._inkline`): a shot opened from a file or from
-// arrays, drawn frame by frame by the library's frame pipeline, and a frame's strokes as numpy
-// arrays and its files (polylines JSON, SVG, PDF, PNG) as the program writes them. The Python
+// arrays, drawn frame by frame by the library's frame pipeline, and a frame's strokes and tone as
+// numpy arrays and its files (polylines JSON, SVG, PDF, PNG) as the program writes them. The Python
 // package (python/inkline/) is the interface users see.
 #include "core/error.h"
 #include "core/lines/silhouette_tracker.h"
@@ -96,6 +96,13 @@ std::optional<core::ImageSize> size_of(const std::optional<std::pair<int, int>>&
     return core::ImageSize{w, h};
 }
 
+// tone="stipple", "hatch", "crosshatch" or "none", as --tone takes it.
+std::optional<core::ToneMode> tone_mode_of(const std::optional<std::string>& text) {
+    if (!text) return std::nullopt;
+    if (const auto mode = core::tone_mode_from_name(*text)) return mode;
+    throw InputError("tone '" + inkline::quote_value(*text) + "': expected stipple, hatch, crosshatch or none");
+}
+
 std::optional<core::ContourMode> contour_of(const std::optional<std::string>& text) {
     if (!text) return std::nullopt;
     if (const auto mode = core::contour_mode_from_name(*text)) return mode;
@@ -120,6 +127,7 @@ void with_python_names(Open open) {
 struct Frame {
     core::FrameResult result;
     output::DrawStyle style;
+    core::ToneOptions tone;     // the scene's: the colour and opacity of the tone's dots
     std::string title;          // the PDF's: the mesh file's stem
     std::string creation_date;  // the PDF's (reproducible)
 
@@ -130,7 +138,9 @@ struct Frame {
             output::parse_color(*background, "background");
             s.background = *background;
         }
-        return output::brush_drawing(result.lines, result.strokes, s, centerline);
+        output::Drawing d = output::brush_drawing(result.lines, result.strokes, s, centerline);
+        d.tone = output::tone_layer(result.tone, tone);
+        return d;
     }
 };
 
@@ -186,6 +196,43 @@ py::list strokes_of(const Frame& frame) {
     return out;
 }
 
+// The frame's tone as arrays, one row per dot; None without tone.
+py::object tone_of(const Frame& frame) {
+    const core::FrameTone& tone = frame.result.tone;
+    if (tone.mode == core::ToneMode::kNone) return py::none();
+    std::vector<glm::dvec2> points;
+    std::vector<glm::dvec3> world, barycentric;
+    std::vector<uint32_t> faces, samples;
+    std::vector<double> radius, value;
+    for (const core::Dot& d : tone.dots) {
+        points.push_back(d.point_px);
+        world.push_back(d.point_world);
+        barycentric.push_back(d.barycentric);
+        faces.push_back(d.face);
+        samples.push_back(d.sample);
+        radius.push_back(d.radius_px);
+        value.push_back(d.tone);
+    }
+    py::dict stats;
+    const core::StippleStats& s = tone.stipple_stats;
+    stats["samples"] = s.samples;
+    stats["considered"] = s.considered;
+    stats["wanted"] = s.wanted;
+    stats["inked"] = s.inked;
+    stats["occluded"] = s.occluded;
+    py::dict out;
+    out["mode"] = core::tone_mode_name(tone.mode);
+    out["points"] = rows_of(points);
+    out["world"] = rows_of(world);
+    out["faces"] = array_of(faces);
+    out["barycentric"] = rows_of(barycentric);
+    out["radius"] = array_of(radius);
+    out["tone"] = array_of(value);
+    out["samples"] = array_of(samples);
+    out["stats"] = stats;
+    return out;
+}
+
 // --- a shot -------------------------------------------------------------------------------
 
 // An in-code animation: one set of positions per frame over one topology.
@@ -217,6 +264,7 @@ struct ShotArgs {
     std::optional<std::string> contour;
     std::string visibility = "auto";
     std::string tracker = "incremental";
+    std::optional<std::string> tone;  // "stipple" or "none": overrides the scene's tone mode
 };
 
 class Shot {
@@ -298,6 +346,7 @@ class Shot {
             out->result = pipeline_->run(frame);
         }
         out->style = style_;
+        out->tone = shot_.scene.tone;
         out->title = title_;
         out->creation_date = creation_date_;
         out->result.mesh = nullptr;  // valid only until the next run
@@ -308,6 +357,7 @@ class Shot {
     // Frames, cameras, meshes and the pipeline; `meshes` given for arrays, else loaded.
     void start(const ShotArgs& args, std::unique_ptr<core::MeshFrames> meshes) {
         const core::TrackerMode tracker = core::parse_tracker_mode(args.tracker, "tracker");
+        if (const std::optional<core::ToneMode> tone = tone_mode_of(args.tone)) shot_.scene.tone.mode = *tone;
         first_ = shot_.first_frame;
         last_ = shot_.last_frame;
         if (args.frames) {
@@ -364,7 +414,8 @@ PYBIND11_MODULE(_inkline, m) {
         .def_readwrite("hidden", &ShotArgs::hidden)
         .def_readwrite("contour", &ShotArgs::contour)
         .def_readwrite("visibility", &ShotArgs::visibility)
-        .def_readwrite("tracker", &ShotArgs::tracker);
+        .def_readwrite("tracker", &ShotArgs::tracker)
+        .def_readwrite("tone", &ShotArgs::tone);
 
     py::class_<Frame, std::shared_ptr<Frame>>(m, "Frame")
         .def_property_readonly("number", [](const Frame& f) { return f.result.lines.frame; })
@@ -372,9 +423,10 @@ PYBIND11_MODULE(_inkline, m) {
         .def_property_readonly("camera", [](const Frame& f) { return camera_dict(f.result.lines.camera); })
         .def_property_readonly("warnings", [](const Frame& f) { return f.result.warnings; })
         .def("strokes", &strokes_of)
+        .def("tone", &tone_of)
         .def("json", [](const Frame& f) {
             py::gil_scoped_release release;
-            return output::polylines_json(f.result.lines, &f.result.strokes);
+            return output::polylines_json(f.result.lines, &f.result.strokes, &f.result.tone);
         })
         .def("svg", [](const Frame& f, const std::string& layers, const std::string& path_format, bool centerline,
                        const std::optional<std::string>& background) {

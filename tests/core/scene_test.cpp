@@ -296,6 +296,93 @@ TEST(Scene, BrushErrorsNameTheKey) {
     }
 }
 
+TEST(Scene, ToneBlockSetsTheTone) {
+    const core::Scene d = core::parse_scene(kMinimal, "scene.json");
+    EXPECT_EQ(d.tone.mode, core::ToneMode::kNone) << "no block: no tone";
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]},
+            "tone": {"min": 0.05, "max": 0.6, "gamma": 2, "levels": 4, "dot_radius_px": 1.5, "fade": 0.25,
+                     "color": "#ff0000", "opacity": 0.5, "seed": 7}})",
+        "scene.json");
+    EXPECT_EQ(s.tone.mode, core::ToneMode::kStipple) << "a block without a mode stipples";
+    EXPECT_EQ(s.tone.min, 0.05);
+    EXPECT_EQ(s.tone.max, 0.6);
+    EXPECT_EQ(s.tone.gamma, 2.0);
+    EXPECT_EQ(s.tone.levels, 4);
+    EXPECT_EQ(s.tone.dot_radius_px, 1.5);
+    EXPECT_EQ(s.tone.fade, 0.25);
+    EXPECT_EQ(s.tone.color, glm::dvec3(1.0, 0.0, 0.0));
+    EXPECT_EQ(s.tone.opacity, 0.5);
+    EXPECT_EQ(s.tone.seed, 7u);
+    const core::Scene h = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]},
+            "tone": {"mode": "crosshatch", "line_width_px": 1.2, "direction": [0, 0, 2], "cross_direction": [0, 3, 0],
+                     "cross_from": 0.3}})",
+        "scene.json");
+    EXPECT_EQ(h.tone.mode, core::ToneMode::kCrosshatch);
+    EXPECT_EQ(h.tone.line_width_px, 1.2);
+    EXPECT_EQ(h.tone.direction, glm::dvec3(0.0, 0.0, 1.0)) << "directions are normalised";
+    EXPECT_EQ(h.tone.cross_direction, glm::dvec3(0.0, 1.0, 0.0));
+    EXPECT_EQ(h.tone.cross_from, 0.3);
+}
+
+TEST(Scene, ToneCurveFollowsTheLight) {
+    core::ToneOptions t;
+    t.max = 0.5;
+    EXPECT_EQ(core::tone_of(1.0, t), 0.0) << "lit: white";
+    EXPECT_EQ(core::tone_of(-0.3, t), 0.5) << "turned away: the darkest";
+    EXPECT_NEAR(core::tone_of(0.5, t), 0.25, 1e-12);
+    t.gamma = 2.0;
+    EXPECT_NEAR(core::tone_of(0.5, t), 0.125, 1e-12);
+    t.gamma = 1.0;
+    t.levels = 3;  // steps 0, 0.5, 1 of the curve
+    EXPECT_NEAR(core::tone_of(0.3, t), 0.25, 1e-12);
+    EXPECT_NEAR(core::tone_of(0.1, t), 0.5, 1e-12);
+}
+
+TEST(Scene, ToneErrorsNameTheKey) {
+    const std::string camera = R"("camera": {"eye": [0,0,4], "target": [0,0,0]})";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {R"("tone": {"mode": "engrave"})", "key 'tone.mode': expected \"stipple\", \"hatch\", \"crosshatch\" or \"none\""},
+        {R"("tone": {"density": 2})", "key 'tone.density': unknown key"},
+        {R"("tone": {"max": 1})", "key 'tone.max': must be between 0 and 0.9"},
+        {R"("tone": {"min": -0.1})", "key 'tone.min'"},
+        {R"("tone": {"gamma": 0})", "key 'tone.gamma'"},
+        {R"("tone": {"levels": -1})", "key 'tone.levels'"},
+        {R"("tone": {"levels": 1.5})", "key 'tone.levels': expected an integer"},
+        {R"("tone": {"dot_radius_px": 0})", "key 'tone.dot_radius_px'"},
+        {R"("tone": {"dot_radius_px": 1e9})", "key 'tone.dot_radius_px'"},
+        {R"("tone": {"fade": -1})", "key 'tone.fade'"},
+        {R"("tone": {"line_width_px": 0})", "key 'tone.line_width_px'"},
+        {R"("tone": {"direction": [0, 0, 0]})", "key 'tone.direction': must not be the zero vector"},
+        {R"("tone": {"cross_from": 2})", "key 'tone.cross_from'"},
+        {R"("tone": {"color": "grey"})", "key 'tone.color'"},
+        {R"("tone": {"opacity": 2})", "key 'tone.opacity'"},
+        {R"("tone": {"seed": -3})", "key 'tone.seed'"},
+        {R"("tone": "stipple")", "key 'tone': expected an object"},
+        {R"("objects": {"Ground": {"tone": 1}})", "key 'objects.Ground.tone': expected true or false"},
+    };
+    for (const auto& [tone, expected] : cases) {
+        const std::string json = R"({"mesh": "m.obj", )" + camera + ", " + tone + "}";
+        const std::string error = error_of(json);
+        EXPECT_NE(error.find("dir/scene.json: "), std::string::npos) << json;
+        EXPECT_NE(error.find(expected), std::string::npos) << json << "\n  gave: " << error;
+    }
+}
+
+TEST(Scene, ObjectsCanBeLeftUnshaded) {
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, "tone": {},
+            "objects": {"Ground": {"tone": false}, "Wall*": {"lines": false}, "Tree.*": {"tone": false},
+                        "Tree.1": {"tone": true}}})",
+        "scene.json");
+    EXPECT_FALSE(core::object_draws_tone(s, "Ground"));
+    EXPECT_FALSE(core::object_draws_tone(s, "Wall.north")) << "a holdout is never shaded";
+    EXPECT_FALSE(core::object_draws_tone(s, "Tree.2"));
+    EXPECT_TRUE(core::object_draws_tone(s, "Tree.1")) << "an exact name overrides a glob";
+    EXPECT_TRUE(core::object_draws_tone(s, "Ball"));
+}
+
 TEST(Scene, BrushTipResolvesAgainstTheSceneFolder) {
     namespace fs = std::filesystem;
     const fs::path dir = test::fresh_temp_dir("BrushTipResolvesAgainstTheSceneFolder");

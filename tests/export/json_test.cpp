@@ -40,5 +40,56 @@ TEST(PolylinesJson, CarriesTheFrameAndEveryStroke) {
     EXPECT_EQ(doc["stats"]["feature_edges"]["silhouette"], 6);
 }
 
+core::FrameLines cube_frame() {
+    return test::trace(test::cube(1.0), {.eye = {3.0, 2.5, 4.0}, .size = 512});
+}
+
+TEST(PolylinesJson, ListsTheToneDots) {
+    const core::FrameLines frame = cube_frame();
+    core::FrameTone tone;
+    tone.mode = core::ToneMode::kStipple;
+    core::Dot dot;
+    dot.sample = 42;
+    dot.face = 7;
+    dot.barycentric = {0.25, 0.5, 0.25};
+    dot.point_px = {100.123456, 200.5};
+    dot.point_world = {0.1, -0.2, 0.3};
+    dot.radius_px = 0.75;
+    dot.tone = 0.123456;
+    tone.dots = {dot, dot};
+    tone.dots[1].sample = 43;
+    tone.stipple_stats = {.samples = 1000, .considered = 500, .wanted = 40, .inked = 3, .occluded = 2};
+    const auto doc = nlohmann::json::parse(output::polylines_json(frame, nullptr, &tone));
+    ASSERT_TRUE(doc.contains("tone"));
+    const auto& t = doc["tone"];
+    EXPECT_EQ(t["mode"], "stipple");
+    ASSERT_EQ(t["dots"].size(), 2u);
+    const auto& d = t["dots"][0];
+    EXPECT_EQ(d.size(), 7u) << d.dump();
+    EXPECT_EQ(d["sample"], 42);
+    EXPECT_EQ(t["dots"][1]["sample"], 43);
+    EXPECT_EQ(d["face"], 7);
+    EXPECT_EQ(d["barycentric"], nlohmann::json::array({0.25, 0.5, 0.25}));
+    EXPECT_EQ(d["point"], nlohmann::json::array({100.1235, 200.5})) << "px to 1e-4, as the strokes' points";
+    EXPECT_EQ(d["world"], nlohmann::json::array({0.1, -0.2, 0.3}));
+    EXPECT_EQ(d["radius"], 0.75);
+    EXPECT_EQ(d["tone"], 0.1235);
+    EXPECT_EQ(t["stats"], nlohmann::json({{"samples", 1000}, {"considered", 500}, {"wanted", 40}, {"inked", 3},
+                                          {"occluded", 2}}));
+    // An empty frame of a stippled sequence still says so.
+    tone.dots.clear();
+    const auto empty = nlohmann::json::parse(output::polylines_json(frame, nullptr, &tone));
+    EXPECT_TRUE(empty["tone"]["dots"].is_array());
+    EXPECT_TRUE(empty["tone"]["dots"].empty());
+}
+
+TEST(PolylinesJson, NoToneWithoutTone) {
+    const core::FrameLines frame = cube_frame();
+    const std::string lines_only = output::polylines_json(frame);
+    EXPECT_FALSE(nlohmann::json::parse(lines_only).contains("tone"));
+    const core::FrameTone none;
+    EXPECT_EQ(output::polylines_json(frame, nullptr, &none), lines_only) << "byte for byte";
+}
+
 }  // namespace
 }  // namespace inkline

@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: MIT
+// Tone by hatching (scene "tone" with mode hatch or crosshatch, docs/tone.md): lines on the
+// visible surface, closer together where it is darker, from the same light as the brush.
+//
+// The lines of a family are the surface's sections by parallel planes across an object-space
+// direction, taken on the mesh as first seen (its rest shape), so they stay on the same points of
+// the surface as it moves or deforms. The planes are nested: level 0 has planes half the mesh's
+// extent apart, each later level adds the planes halfway between. Where the tone asks for lines
+// of screen spacing s, the levels up to the one that spacing needs are drawn and the finest of
+// them fades in (its width grows), so a darker tone or a closer camera adds lines between the
+// others, never moving them. Crosshatch adds a second family once the tone passes cross_from.
+#pragma once
+
+#include "core/mesh/mesh.h"
+#include "core/mesh/topology.h"
+#include "core/scene/camera.h"
+#include "core/strokes/brush_style.h"
+#include "core/strokes/outline.h"
+#include "core/tone/tone_options.h"
+#include "core/visibility/visibility.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace inkline::core {
+
+struct Stroke;
+
+// One visible run of a hatch line.
+struct Hatch {
+    uint32_t family = 0;  // 0: across ToneOptions::direction, 1: across cross_direction
+    // Its plane, counted at the finest spacing from the family's first plane: the same curve on
+    // the surface in every frame.
+    uint64_t plane = 0;
+    uint32_t level = 0;                    // the level that plane belongs to (0: the coarsest)
+    std::vector<glm::dvec2> points_px;     // where the line crosses mesh edges, px
+    std::vector<glm::dvec3> points_world;
+    std::vector<uint32_t> edges;           // the mesh edge of each point
+    std::vector<double> width_px;          // its width at each point (faded in: less than line_width_px)
+    std::vector<Ring> outline;             // the ink: one ring, filled (nonzero)
+};
+
+struct HatchStats {
+    size_t faces = 0;     // front-facing faces whose lines were traced
+    size_t segments = 0;  // line segments traced (one per face a line crosses)
+    size_t points = 0;    // of which points tested for occlusion
+    size_t occluded = 0;
+    size_t inked = 0;     // points under a visible stroke's ink
+};
+
+// Hatches frame after frame, keeping each family's planes on the rest shape.
+class Hatcher {
+  public:
+    explicit Hatcher(ToneOptions options) : options_(options) {}
+
+    // The hatches of one frame, as Stippler::stipple takes its arguments (shaded_faces too).
+    std::vector<Hatch> hatch(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
+                             const Projection& projection, const Light& light, const Occlusion& occlusion,
+                             std::span<const Stroke> strokes, bool topology_changed,
+                             std::span<const uint8_t> shaded_faces = {});
+
+    const HatchStats& stats() const { return stats_; }
+
+  private:
+    struct Family {
+        std::vector<float> h;  // per vertex: the rest position along the family's direction
+        double first = 0.0;    // the first plane
+        double step0 = 1.0;    // spacing of level 0's planes
+    };
+
+    ToneOptions options_;
+    std::vector<Family> families_;
+    size_t faces_ = 0;
+    HatchStats stats_;
+};
+
+}  // namespace inkline::core

@@ -1,0 +1,375 @@
+// SPDX-License-Identifier: MIT
+#include "core/tone/stipple.h"
+
+#include "core/internal/parallel.h"
+#include "core/random.h"
+#include "core/strokes/strokes.h"
+#include "core/tone/internal/ink_grid.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace inkline::core {
+namespace {
+
+// Level 0 keeps about this many samples; every later level roughly doubles the count.
+constexpr double kFirstLevelSamples = 32.0;
+// Candidates thrown per level, per square of its spacing: enough to fill the level's gaps
+// almost to saturation.
+constexpr double kCandidatesPerSquare = 3.0;
+// A dot smaller than this share of a full dot's area is not drawn.
+constexpr double kMinWeight = 0.01;
+// Dots foreshorten: where the surface turns from the camera by theta, a dot's area shrinks by
+// cos(theta)^k and there are 1 / cos(theta)^k as many per square pixel (the same ink). Fewer
+// dots come and go as a surface turns than with k = 0 (every dot full size, their number per
+// square pixel fixed), which would change the count by the whole change of cos(theta).
+constexpr double kForeshortening = 0.5;
+// Dots keep this far (px) off a stroke's ink, besides their full radius: the outline strays a
+// little from the centerline's half width at joins and where it is simplified.
+constexpr double kInkClearancePx = 0.25;
+constexpr double kLeastInkRadius = 0.35;
+
+// Open-addressing hash from grid cells to the first point in them; points in a cell are linked
+// through `next`. A slot holds its key and head together: one cache line per probe.
+class CellGrid {
+  public:
+    CellGrid(double cell, size_t expected) : cell_(cell) {
+        size_t capacity = 16;
+        while (capacity < expected * 2) capacity *= 2;
+        slots_.assign(capacity, Slot{});
+    }
+
+    static constexpr uint32_t kNone = 0xffffffffu;
+
+    glm::ivec3 cell_of(const glm::vec3& p) const {
+        return glm::ivec3(glm::floor(glm::dvec3(p) / cell_));
+    }
+    double cell() const { return cell_; }
+
+    void insert(const glm::ivec3& c, uint32_t point, std::vector<uint32_t>& r_next) {
+        Slot& slot = find(pack(c));
+        slot.key = pack(c);
+        r_next[point] = slot.head;
+        slot.head = point;
+    }
+    uint32_t head(const glm::ivec3& c) const { return find(pack(c)).head; }
+
+  private:
+    static constexpr uint64_t kEmpty = ~uint64_t(0);
+    struct Slot {
+        uint64_t key = kEmpty;
+        uint32_t head = kNone;
+    };
+    static uint64_t pack(const glm::ivec3& c) {
+        const auto part = [](int v) { return uint64_t(uint32_t(v) & 0x1fffffu); };
+        return part(c.x) | (part(c.y) << 21) | (part(c.z) << 42);
+    }
+    Slot& find(uint64_t key) { return slots_[slot_of(key)]; }
+    const Slot& find(uint64_t key) const { return slots_[slot_of(key)]; }
+    size_t slot_of(uint64_t key) const {
+        const size_t mask = slots_.size() - 1;
+        size_t slot = size_t((key * 0x9e3779b97f4a7c15ull) >> 20) & mask;
+        while (slots_[slot].key != kEmpty && slots_[slot].key != key) slot = (slot + 1) & mask;
+        return slot;
+    }
+
+    double cell_;
+    std::vector<Slot> slots_;
+};
+
+// Mean weight of the dots asked for when each fades in over `fade` of its threshold: the
+// thresholds are divided by it so that the dots' areas add up to the density asked for.
+double fade_weight(double fade) {
+    if (fade <= 0.0) return 1.0;
+    return 1.0 / (1.0 + fade) + (std::log1p(fade) - fade / (1.0 + fade)) / fade;
+}
+
+// An edge of face `tri` (its first side), for the occlusion tests that seed their search there.
+uint32_t edge_of(const EdgeTable& table, const glm::uvec3& tri) {
+    for (uint32_t e : table.edges_around(tri.x)) {
+        if (table.other_vertex(e, tri.x) == tri.y) return e;
+    }
+    return table.edges_around(tri.x).empty() ? 0 : table.edges_around(tri.x).front();
+}
+
+}  // namespace
+
+double dot_density(double tone, double radius_px) {
+    // Dots thrown at random cover 1 - exp(-f) of the paper at fill f (their areas over the
+    // paper's). The nested set's dots keep apart, so they overlap less: measured on a lit sphere
+    // (tests/core/tone_test.cpp), they cover 1 - exp(-(f + kSpacedOverlap f^2)). Inverted here.
+    constexpr double kSpacedOverlap = 0.69;
+    const double t = std::clamp(tone, 0.0, 0.95);
+    const double x = -std::log1p(-t);
+    const double fill = (std::sqrt(1.0 + 4.0 * kSpacedOverlap * x) - 1.0) / (2.0 * kSpacedOverlap);
+    return fill / (std::numbers::pi * radius_px * radius_px);
+}
+
+SurfaceSamples::SurfaceSamples(const Mesh& mesh, uint64_t seed) : seed_(seed) {
+    corners_.reserve(mesh.triangles.size() * 3);
+    cdf_.reserve(mesh.triangles.size());
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+        corners_.push_back(a);
+        corners_.push_back(b);
+        corners_.push_back(c);
+        const double area = 0.5 * glm::length(face_normal(mesh.positions, t));
+        area_ += std::isfinite(area) ? area : 0.0;
+        cdf_.push_back(area_);
+    }
+    face_offsets_.assign(cdf_.size() + 1, 0);
+}
+
+void SurfaceSamples::extend_to(size_t count, size_t max_count) {
+    count = std::min(count, max_count);
+    // Each level is at most about twice the last, and a level is never cut short: a full level
+    // keeps the prefix even.
+    while (samples_.size() < count && area_ > 0.0 && samples_.size() * 2 + 64 <= std::max<size_t>(max_count, 64) &&
+           level_ < 64) {
+        add_level();
+    }
+}
+
+void SurfaceSamples::add_level() {
+    radius_ = level_ == 0 ? std::sqrt(area_ / kFirstLevelSamples) : radius_ / std::numbers::sqrt2;
+    SplitMix64 rng(seed_ ^ SplitMix64::hash(uint64_t(level_) + 1));
+    ++level_;
+    const double r = radius_;
+    const double per_area = kCandidatesPerSquare / (r * r);
+    const size_t expected = size_t(std::ceil(per_area * area_ * 0.5)) + 16;
+    // Cells twice the spacing: a ball of the spacing's radius meets at most two cells per axis.
+    CellGrid grid(2.0 * r, points_.size() + expected);
+    std::vector<uint32_t> next(points_.size() + expected, CellGrid::kNone);
+    for (uint32_t i = 0; i < points_.size(); ++i) grid.insert(grid.cell_of(points_[i]), i, next);
+
+    // Candidates face by face (nearby faces are near in memory too), as many per face as its
+    // area asks for, rounded at random.
+    const size_t level_start = samples_.size();
+    const float r2 = float(r * r);
+    double below = 0.0;
+    for (uint32_t face = 0; face < cdf_.size(); ++face) {
+        const double area = cdf_[face] - below;
+        below = cdf_[face];
+        const double wanted = per_area * area;
+        auto count = size_t(wanted);
+        if (rng.uniform(0.0, 1.0) < wanted - double(count)) ++count;
+        const glm::vec3* c = &corners_[size_t(face) * 3];
+        for (size_t k = 0; k < count; ++k) {
+            const double s = std::sqrt(rng.uniform(0.0, 1.0));
+            const double v = rng.uniform(0.0, 1.0);
+            const auto b1 = float(s * (1.0 - v)), b2 = float(s * v);
+            const glm::vec3 p = (1.0f - b1 - b2) * c[0] + b1 * c[1] + b2 * c[2];
+
+            const glm::dvec3 scaled = glm::dvec3(p) / grid.cell();
+            const glm::ivec3 cell(glm::floor(scaled));
+            const glm::ivec3 step(scaled.x - cell.x < 0.5 ? -1 : 1, scaled.y - cell.y < 0.5 ? -1 : 1,
+                                  scaled.z - cell.z < 0.5 ? -1 : 1);
+            bool near = false;
+            for (int n = 0; n < 8 && !near; ++n) {
+                const glm::ivec3 at = cell + glm::ivec3(n & 1 ? step.x : 0, n & 2 ? step.y : 0, n & 4 ? step.z : 0);
+                for (uint32_t q = grid.head(at); q != CellGrid::kNone; q = next[q]) {
+                    const glm::vec3 d = points_[q] - p;
+                    if (glm::dot(d, d) < r2) {
+                        near = true;
+                        break;
+                    }
+                }
+            }
+            if (near) continue;
+            const auto index = uint32_t(points_.size());
+            points_.push_back(p);
+            samples_.push_back({face, b1, b2});
+            if (next.size() <= index) next.resize(next.size() * 2, CellGrid::kNone);
+            grid.insert(cell, index, next);
+        }
+    }
+    // The level's samples in random order: any prefix of it is spread over the whole surface.
+    for (size_t i = samples_.size(); i > level_start + 1; --i) {
+        const size_t j = level_start + size_t(rng.next() % uint64_t(i - level_start));
+        std::swap(samples_[i - 1], samples_[j]);
+        std::swap(points_[i - 1], points_[j]);
+    }
+
+    // Each face's samples, ascending.
+    face_offsets_.assign(cdf_.size() + 1, 0);
+    for (const Sample& sample : samples_) ++face_offsets_[sample.face + 1];
+    for (size_t f = 0; f < cdf_.size(); ++f) face_offsets_[f + 1] += face_offsets_[f];
+    face_samples_.resize(samples_.size());
+    std::vector<uint32_t> fill(face_offsets_.begin(), face_offsets_.end() - 1);
+    for (uint32_t i = 0; i < samples_.size(); ++i) face_samples_[fill[samples_[i].face]++] = i;
+}
+
+std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
+                                   const Projection& projection, const Light& light, const Occlusion& occlusion,
+                                   std::span<const Stroke> strokes, bool topology_changed,
+                                  std::span<const uint8_t> shaded_faces) {
+    stats_ = {};
+    if (options_.mode != ToneMode::kStipple || mesh.triangles.empty()) return {};
+    if (!samples_ || topology_changed || samples_->faces() != mesh.triangles.size()) samples_.emplace(mesh, options_.seed);
+
+    const glm::dmat4& m = projection.clip_from_object();
+    const glm::dvec3 mx(m[0][0], m[1][0], m[2][0]), my(m[0][1], m[1][1], m[2][1]), mw(m[0][3], m[1][3], m[2][3]);
+    const ImageSize image = projection.image();
+    const double half_w = 0.5 * image.width, half_h = 0.5 * image.height;
+    const glm::dmat4& world_from_object = projection.world_from_object();
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(world_from_object)));
+    const glm::dvec3 eye = projection.eye_object();
+    const double radius = options_.dot_radius_px;
+    const double kappa = fade_weight(options_.fade);
+    const double fade = options_.fade;
+
+    // Square pixels per unit of area, at p (clip: its clip coordinates), of the plane with
+    // normal n (unit): the pixel Jacobian's rows, crossed, along n.
+    const auto area_scale = [&](const glm::dvec4& clip, const glm::dvec3& n) {
+        const double ndc_x = clip.x / clip.w, ndc_y = clip.y / clip.w;
+        const glm::dvec3 jx = (mx - ndc_x * mw) * (half_w / clip.w);
+        const glm::dvec3 jy = (my - ndc_y * mw) * (half_h / clip.w);
+        return std::abs(glm::dot(glm::cross(jx, jy), n));
+    };
+    // cos(theta)^kForeshortening at p on a face of unit normal n.
+    const auto foreshortening = [&](const glm::dvec3& p, const glm::dvec3& n) {
+        const double cos_theta = std::abs(glm::dot(n, glm::normalize(eye - p)));
+        return std::max(std::pow(cos_theta, kForeshortening), 1e-6);
+    };
+    const auto tone_at = [&](const glm::dvec3& p, glm::dvec3 normal, const glm::dvec3& face_n) {
+        if (glm::dot(normal, normal) == 0.0) normal = face_n;
+        normal = glm::normalize(normal_matrix * normal);
+        const glm::dvec3 p_world(world_from_object * glm::dvec4(p, 1.0));
+        const glm::dvec3 to_light = light.is_point ? light.position - p_world : -light.direction;
+        return tone_of(glm::dot(normal, glm::normalize(to_light)), options_);
+    };
+
+    // Per face, the most samples any point of it can ask for: the darkest tone of its corners
+    // (the interpolated normal's light is never below its corners' least) at the largest area
+    // scale of its corners (with a margin for the variation across a face under perspective).
+    // Zero for faces turned away, behind the camera or outside the image.
+    constexpr double kScaleMargin = 3.0;
+    std::vector<double> face_limit(mesh.triangles.size(), 0.0);
+    const double area = samples_->area();
+    internal::parallel_for(mesh.triangles.size(), 8192, [&](size_t begin, size_t end) {
+        for (size_t f = begin; f < end; ++f) {
+            if (!table.face_valid[f] || (!shaded_faces.empty() && !shaded_faces[f])) continue;
+            const glm::uvec3 t = mesh.triangles[f];
+            const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
+                                     glm::dvec3(mesh.positions[t.z])};
+            const glm::dvec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+            const double n_len = glm::length(n);
+            if (!(n_len > 0.0) || glm::dot(n, eye - p[0]) <= 0.0) continue;
+            const glm::dvec3 unit_n = n / n_len;
+            glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+            double scale = 0.0, tone = 0.0;
+            bool in_front = true;
+            for (int c = 0; c < 3 && in_front; ++c) {
+                const glm::dvec4 clip = m * glm::dvec4(p[c], 1.0);
+                in_front = projection.in_front(clip);
+                if (!in_front) break;
+                const glm::dvec2 q = projection.pixel_from_clip(clip);
+                lo = glm::min(lo, q);
+                hi = glm::max(hi, q);
+                scale = std::max(scale, area_scale(clip, unit_n) / foreshortening(p[c], unit_n));
+                tone = std::max(tone, tone_at(p[c], normals[t[c]], n));
+            }
+            if (!in_front || hi.x < 0.0 || hi.y < 0.0 || lo.x > image.width || lo.y > image.height) continue;
+            face_limit[f] = dot_density(tone, radius) * kScaleMargin * scale * area / kappa;
+        }
+    });
+    double most = 0.0;
+    for (double limit : face_limit) most = std::max(most, limit);
+    samples_->extend_to(size_t(std::min(most + 1.0, 1e15)), options_.max_samples);
+    const std::span<const SurfaceSamples::Sample> samples = samples_->samples();
+    stats_.samples = samples.size();
+
+    // Dots asked for: faces in parallel slices, joined in order, then sorted by sample.
+    const size_t faces = mesh.triangles.size();
+    const size_t slices = faces >= 4096 ? std::min<size_t>(internal::hardware_threads(), 8) : 1;
+    std::vector<std::vector<Dot>> found(slices);
+    std::vector<size_t> considered(slices, 0);
+    internal::run_tasks(slices, [&](size_t s) {
+        std::vector<Dot>& dots = found[s];
+        for (size_t f = faces * s / slices; f < faces * (s + 1) / slices; ++f) {
+            const double limit = face_limit[f];
+            if (limit <= 0.0) continue;
+            const glm::uvec3 t = mesh.triangles[f];
+            const glm::dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
+            const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
+            const glm::dvec3 unit_n = glm::normalize(n);
+            for (uint32_t i : samples_->on_face(uint32_t(f))) {
+                if (double(i) >= limit) break;
+                ++considered[s];
+                const SurfaceSamples::Sample& sample = samples[i];
+                const double b1 = sample.b1, b2 = sample.b2, b0 = 1.0 - b1 - b2;
+                const glm::dvec3 p = b0 * p0 + b1 * p1 + b2 * p2;
+                const glm::dvec4 clip = m * glm::dvec4(p, 1.0);
+                if (!projection.in_front(clip)) continue;
+                const glm::dvec2 px = projection.pixel_from_clip(clip);
+                if (!projection.inside_image(px)) continue;
+                const double shrink = foreshortening(p, unit_n);
+                const double scale = area_scale(clip, unit_n) / shrink;
+                const double tone = tone_at(p, b0 * normals[t.x] + b1 * normals[t.y] + b2 * normals[t.z], n);
+                const double threshold = dot_density(tone, radius) * scale * area / kappa;
+                const double rank = double(i);
+                double weight = 0.0;
+                if (fade > 0.0) {
+                    weight = std::clamp((threshold - rank) / (fade * (rank + 1.0)), 0.0, 1.0);
+                } else {
+                    weight = threshold > rank ? 1.0 : 0.0;
+                }
+                if (weight < kMinWeight) continue;
+                dots.push_back({.sample = i,
+                                .face = uint32_t(f),
+                                .barycentric = {b0, b1, b2},
+                                .point_px = px,
+                                .point_world = glm::dvec3(world_from_object * glm::dvec4(p, 1.0)),
+                                .radius_px = radius * std::sqrt(weight * shrink),
+                                .tone = tone});
+            }
+        }
+    });
+    for (size_t c : considered) stats_.considered += c;
+    std::vector<Dot> dots;
+    for (std::vector<Dot>& part : found) dots.insert(dots.end(), part.begin(), part.end());
+    std::sort(dots.begin(), dots.end(), [](const Dot& a, const Dot& b) { return a.sample < b.sample; });
+    stats_.wanted = dots.size();
+
+    // None under a visible line's ink.
+    // Next to the ink a dot shrinks to keep clear of it; one that would shrink below
+    // kLeastInkRadius of a full dot is left out. Both follow the full radius, whatever the dot
+    // has grown to: a darker tone then draws every dot a lighter one draws.
+    const internal::InkGrid ink(strokes, image, radius + kInkClearancePx);
+    std::erase_if(dots, [&](Dot& d) {
+        const double room = ink.clearance(d.point_px) - kInkClearancePx;
+        if (room < kLeastInkRadius * radius) return true;
+        d.radius_px = std::min(d.radius_px, room);
+        return false;
+    });
+    stats_.inked = stats_.wanted - dots.size();
+
+    // None on hidden surface: the same occlusion test as the lines, a dot's own face never
+    // hiding it.
+    std::vector<uint32_t> own(dots.size());
+    std::vector<OcclusionQuery> queries(dots.size());
+    for (size_t k = 0; k < dots.size(); ++k) {
+        own[k] = dots[k].face;
+        const glm::uvec3 t = mesh.triangles[dots[k].face];
+        const glm::dvec3& b = dots[k].barycentric;
+        queries[k] = {.p_object = b.x * glm::dvec3(mesh.positions[t.x]) + b.y * glm::dvec3(mesh.positions[t.y]) +
+                                  b.z * glm::dvec3(mesh.positions[t.z]),
+                      .edge = edge_of(table, t),
+                      .own_faces = std::span<const uint32_t>(&own[k], 1)};
+    }
+    std::vector<uint8_t> occluded(dots.size(), 0);
+    if (!queries.empty()) occlusion.occluded(eye, queries, occluded);
+    size_t kept = 0;
+    for (size_t k = 0; k < dots.size(); ++k) {
+        if (!occluded[k]) dots[kept++] = dots[k];
+    }
+    stats_.occluded = dots.size() - kept;
+    dots.resize(kept);
+    return dots;
+}
+
+}  // namespace inkline::core

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: MIT
+// Tone by stippling (scene "tone", docs/tone.md): dots on the visible surface, denser where it is
+// darker, from the same light as the brush.
+//
+// The dots are points of a nested blue-noise set on the surface (SurfaceSamples): sample i, a
+// face and barycentric coordinates, is drawn where the density the tone asks for there covers
+// the first i + 1 samples. A darker tone, or a camera coming closer, draws a longer prefix of the
+// same sequence, so dots are added and removed without moving the others; a dot near its
+// threshold fades in (its area grows) instead of popping. Density is counted per square pixel of
+// projected surface, so the tone holds on screen as the camera dollies.
+#pragma once
+
+#include "core/mesh/mesh.h"
+#include "core/mesh/topology.h"
+#include "core/scene/camera.h"
+#include "core/strokes/brush_style.h"
+#include "core/tone/tone_options.h"
+#include "core/visibility/visibility.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace inkline::core {
+
+struct Stroke;
+
+// Dots per square pixel that give ink coverage `tone` with dots of radius_px: the inverse of
+// the coverage of the nested set's dots, overlaps included (docs/tone.md).
+double dot_density(double tone, double radius_px);
+
+// A nested blue-noise sequence of points on a mesh's surface (hierarchical dart throwing: level
+// k keeps the candidates at least r_k from every point kept before, r_k shrinking by sqrt(2)
+// a level), so that every prefix is spread evenly. Points are anchored on faces by barycentric
+// coordinates and follow the mesh as it deforms; the distribution is that of the mesh it was
+// built on.
+class SurfaceSamples {
+  public:
+    struct Sample {
+        uint32_t face = 0;
+        float b1 = 0.0f, b2 = 0.0f;  // barycentric coordinates of corners 1 and 2 (corner 0: 1 - b1 - b2)
+    };
+
+    SurfaceSamples(const Mesh& mesh, uint64_t seed);
+
+    // Adds levels until there are at least `count` samples (or max_count, whichever is less).
+    void extend_to(size_t count, size_t max_count);
+
+    std::span<const Sample> samples() const { return samples_; }
+    // The samples on a face, ascending.
+    std::span<const uint32_t> on_face(uint32_t face) const {
+        return {face_samples_.data() + face_offsets_[face], face_offsets_[face + 1] - face_offsets_[face]};
+    }
+    size_t size() const { return samples_.size(); }
+    // Faces of the mesh it was built on.
+    size_t faces() const { return cdf_.size(); }
+    // Surface area of the mesh it was built on (object units squared).
+    double area() const { return area_; }
+
+  private:
+    void add_level();
+
+    std::vector<glm::vec3> corners_;  // three per face, the mesh's positions when built
+    std::vector<double> cdf_;         // cumulative face areas
+    double area_ = 0.0;
+    std::vector<Sample> samples_;
+    std::vector<glm::vec3> points_;   // samples' positions, for spacing the next levels
+    std::vector<uint32_t> face_offsets_{0};  // CSR: face -> its samples in face_samples_
+    std::vector<uint32_t> face_samples_;
+    double radius_ = 0.0;             // the last level's spacing
+    uint64_t seed_ = 1;
+    int level_ = 0;
+};
+
+struct Dot {
+    uint32_t sample = 0;  // index in the surface samples: the same point of the surface in every frame
+    uint32_t face = 0;
+    glm::dvec3 barycentric{1.0, 0.0, 0.0};
+    glm::dvec2 point_px{0.0};
+    glm::dvec3 point_world{0.0};
+    double radius_px = 0.0;
+    double tone = 0.0;  // the tone asked for there
+};
+
+struct StippleStats {
+    size_t samples = 0;     // surface samples built so far
+    size_t considered = 0;  // samples within the densest prefix the frame can ask for
+    size_t wanted = 0;      // front-facing, in the image, asked for by the tone
+    size_t inked = 0;       // of those, under a visible stroke's ink (left out)
+    size_t occluded = 0;    // of the rest, hidden by the surface
+};
+
+// Stipples frame after frame, keeping the surface samples of the mesh.
+class Stippler {
+  public:
+    explicit Stippler(ToneOptions options) : options_(options) {}
+
+    // The dots of one frame: mesh (object space) seen through `projection`, lit by `light`,
+    // hidden as `occlusion` says (prepared for this mesh and projection); the ink of `strokes`
+    // (visible, drawn) covers dots under it. `normals` are the mesh's vertex normals
+    // (vertex_normals). A new topology (topology_changed) rebuilds the samples. With shaded_faces,
+    // only faces marked 1 there get dots (the others still hide them); empty: every face.
+    std::vector<Dot> stipple(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
+                      const Projection& projection, const Light& light, const Occlusion& occlusion,
+                      std::span<const Stroke> strokes, bool topology_changed,
+                             std::span<const uint8_t> shaded_faces = {});
+
+    const ToneOptions& options() const { return options_; }
+    // Counts of the last stipple().
+    const StippleStats& stats() const { return stats_; }
+
+  private:
+    ToneOptions options_;
+    std::optional<SurfaceSamples> samples_;
+    StippleStats stats_;
+};
+
+}  // namespace inkline::core

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// Tone options (scene "tone", docs/tone.md): how dark the surface is shaded from the light, and
+// with what marks.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+namespace inkline::core {
+
+enum class ToneMode : uint8_t {
+    kNone,
+    kStipple,     // dots (core/tone/stipple.h)
+    kHatch,       // parallel lines (core/tone/hatch.h)
+    kCrosshatch,  // parallel lines, and a second family across them for darker tones
+};
+
+// "none", "stipple", "hatch" or "crosshatch".
+const char* tone_mode_name(ToneMode mode);
+
+// The scene's "tone" block.
+struct ToneOptions {
+    ToneMode mode = ToneMode::kNone;
+    // Tone (the share of the surface covered by ink) from the light intensity I in [0, 1] at a
+    // point: t = x^gamma with x = 1 - I, rounded to `levels` steps (0 or 1: not rounded), then
+    // tone = min + (max - min) t.
+    double gamma = 1.0;
+    int levels = 0;
+    double min = 0.0;
+    double max = 0.4;
+    double dot_radius_px = 1.0;  // radius of a dot that has faded in fully
+    // A dot fades in while the density asked for grows by this share past its threshold (0: it
+    // pops in at full size).
+    double fade = 0.5;
+    // Hatching: lines of this width (px) where they have faded in fully, the surface's sections
+    // by planes across `direction` (object space), and with crosshatch a second family across
+    // `cross_direction` once the tone passes `cross_from`.
+    double line_width_px = 0.8;
+    glm::dvec3 direction{0.0, 1.0, 0.0};
+    glm::dvec3 cross_direction{1.0, 0.0, 0.0};
+    double cross_from = 0.25;
+    glm::dvec3 color{0.09, 0.08, 0.07};  // sRGB in [0, 1]
+    double opacity = 1.0;
+    uint64_t seed = 1;
+    // The most surface samples kept: bounds memory when a camera comes very close (then the
+    // density there stops growing).
+    size_t max_samples = 8'000'000;
+};
+
+// The mode of that name; nullopt for any other text.
+std::optional<ToneMode> tone_mode_from_name(std::string_view name);
+
+// Tone at a light intensity, as ToneOptions describes.
+double tone_of(double intensity, const ToneOptions& options);
+
+}  // namespace inkline::core

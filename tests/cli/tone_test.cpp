@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// `inkline render` with tone (scene "tone", --tone): the dots reach the SVG, PNG and JSON, and
+// without tone the files are what they were.
+#include "tests/support/obj.h"
+#include "tests/support/raster.h"
+#include "tests/support/run.h"
+#include "tests/support/shapes.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace inkline {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Tone : public ::testing::Test {
+  protected:
+    fs::path dir = test::fresh_temp_dir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    void TearDown() override { fs::remove_all(dir); }
+
+    // A cube seen from a corner, lit from above, with the scene keys `extra` (",\"tone\": ...").
+    fs::path cube_scene(const std::string& name, const std::string& extra) {
+        test::write_obj(dir / "cube.obj", test::cube(1.0));
+        test::write_text(dir / name, R"({"mesh": "cube.obj", "frames": [1, 1], "image": {"width": 256, "height": 256},
+            "camera": {"eye": [3.0, 2.5, 4.0], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 40},
+            "light": {"direction": [-0.3, -1.0, -0.5]})" + extra + "}");
+        return dir / name;
+    }
+
+    // Renders `input` frame 1 with `options` into dir/<name>.svg, .json (and .png with `png`).
+    test::RunResult render(const fs::path& input, const std::string& name, const std::string& options, bool png = false) {
+        const std::string base = (dir / name).string();
+        return test::run_inkline("render " + input.string() + " --frames 1 -q --svg " + base + ".svg --json " + base + ".json" +
+                                 (png ? " --png " + base + ".png" : std::string()) + " " + options);
+    }
+
+    std::string svg(const std::string& name) { return test::read_text(dir / (name + ".svg")); }
+    nlohmann::json json(const std::string& name) { return nlohmann::json::parse(test::read_text(dir / (name + ".json"))); }
+};
+
+std::vector<long> circle_samples(const std::string& svg) {
+    std::vector<long> samples;
+    static const std::regex circle(R"re(<circle data-sample="(\d+)" cx="[-\d.]+" cy="[-\d.]+" r="[\d.]+"/>)re");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle); it != std::sregex_iterator(); ++it) {
+        samples.push_back(std::stol((*it)[1]));
+    }
+    return samples;
+}
+
+TEST_F(Tone, BogusModeFailsWithOneLineAndExitCode2) {
+    const test::RunResult r = test::run_inkline("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1 --tone bogus -o " +
+                                                (dir / "out").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_EQ(r.output, "inkline: error: --tone 'bogus': expected stipple, hatch, crosshatch or none\n");
+    EXPECT_FALSE(fs::exists(dir / "out" / "svg" / "frame_0001.svg"));
+}
+
+TEST_F(Tone, RenderHelpListsTheFlag) {
+    const test::RunResult r = test::run_inkline("render --help");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("--tone"), std::string::npos) << r.output;
+}
+
+TEST_F(Tone, TorusSampleWithStippleWritesDotsToSvgJsonAndPng) {
+    const test::RunResult r = render(std::string(INKLINE_SAMPLES) + "/torus/scene.json", "torus", "--size 512x512 --tone stipple",
+                                     true);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const nlohmann::json doc = json("torus");
+    ASSERT_TRUE(doc.contains("tone"));
+    const nlohmann::json& tone = doc["tone"];
+    EXPECT_EQ(tone["mode"], "stipple");
+    const nlohmann::json& dots = tone["dots"];
+    ASSERT_GT(dots.size(), 100u) << tone["stats"].dump();
+    for (const char* key : {"samples", "considered", "wanted", "inked", "occluded"}) EXPECT_TRUE(tone["stats"].contains(key)) << key;
+    const size_t faces = doc["stats"]["faces"].get<size_t>();
+    std::vector<long> samples;
+    for (const auto& d : dots) {
+        samples.push_back(d["sample"].get<long>());
+        EXPECT_LT(d["face"].get<size_t>(), faces);
+        ASSERT_EQ(d["barycentric"].size(), 3u);
+        EXPECT_NEAR(d["barycentric"][0].get<double>() + d["barycentric"][1].get<double>() + d["barycentric"][2].get<double>(), 1.0, 1e-6);
+        ASSERT_EQ(d["point"].size(), 2u);
+        ASSERT_EQ(d["world"].size(), 3u);
+        for (int k = 0; k < 2; ++k) {
+            EXPECT_GE(d["point"][k].get<double>(), 0.0);
+            EXPECT_LE(d["point"][k].get<double>(), 512.0);
+        }
+        EXPECT_GT(d["radius"].get<double>(), 0.0);
+        EXPECT_GE(d["tone"].get<double>(), 0.0);
+    }
+    EXPECT_TRUE(std::is_sorted(samples.begin(), samples.end()));
+    // The SVG's tone layer, under the lines, holds the same dots in the same order.
+    const std::string text = svg("torus");
+    const size_t layer = text.find("<g id=\"tone\"");
+    ASSERT_NE(layer, std::string::npos);
+    EXPECT_LT(layer, text.find("<g id=\"silhouette\""));
+    EXPECT_EQ(circle_samples(text), samples);
+    // The PNG has ink at the centre of every dot drawn at full size.
+    const std::vector<uint8_t> ink = test::png_file_coverage(dir / "torus.png", test::Ink::kAlpha);
+    size_t checked = 0;
+    for (const auto& d : dots) {
+        if (d["radius"].get<double>() < 0.99) continue;
+        const auto x = size_t(d["point"][0].get<double>()), y = size_t(d["point"][1].get<double>());
+        EXPECT_EQ(ink[y * 512 + x], 1) << "dot " << d["sample"];
+        ++checked;
+    }
+    EXPECT_GT(checked, 50u);
+}
+
+TEST_F(Tone, SceneToneBlockSetsTheLayersColourAndOpacity) {
+    const fs::path scene = cube_scene("scene.json", R"(, "tone": {"color": "#336699", "opacity": 0.5, "max": 0.6})");
+    ASSERT_EQ(render(scene, "f", "").code, 0);
+    const std::string text = svg("f");
+    EXPECT_NE(text.find("<g id=\"tone\" inkscape:groupmode=\"layer\" inkscape:label=\"tone\" data-mode=\"stipple\" fill=\"#336699\" "
+                        "opacity=\"0.5\">"),
+              std::string::npos)
+        << text.substr(0, 2000);
+    EXPECT_FALSE(circle_samples(text).empty());
+    EXPECT_EQ(json("f")["tone"]["dots"].size(), circle_samples(text).size());
+}
+
+TEST_F(Tone, NoneOverridesTheSceneAndWritesWhatAFrameWithoutToneWrites) {
+    const fs::path toned = cube_scene("toned_scene.json", R"(, "tone": {"mode": "stipple", "max": 0.6})");
+    const fs::path plain = cube_scene("plain_scene.json", "");
+    ASSERT_EQ(render(toned, "none", "--tone none").code, 0);
+    ASSERT_EQ(render(plain, "plain", "").code, 0);
+    ASSERT_EQ(render(plain, "stipple", "--tone stipple").code, 0);
+    EXPECT_EQ(svg("none"), svg("plain")) << "byte for byte";
+    EXPECT_EQ(svg("none").find("id=\"tone\""), std::string::npos);
+    nlohmann::json none = json("none"), lines_only = json("plain");
+    EXPECT_FALSE(none.contains("tone"));
+    none["stats"].erase("ms");
+    lines_only["stats"].erase("ms");
+    EXPECT_EQ(none, lines_only);
+    // --tone stipple without a tone block: the default tone (its colour, opaque).
+    EXPECT_NE(svg("stipple").find("data-mode=\"stipple\" fill=\"#171412\">"), std::string::npos);
+    EXPECT_EQ(json("stipple")["tone"]["mode"], "stipple");
+}
+
+}  // namespace
+}  // namespace inkline

@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: MIT
+// Hatched tone (core/tone/hatch.h) through core::FramePipeline, measured independently of it:
+// ink coverage per band of N.L against the tone asked for (the hatches' outlines filled here,
+// the surface's N.L from tests/support/tone_raster.h), lines on their planes, nesting of tones,
+// coherence on a turntable, no hatch on hidden surface or on a stroke's ink.
+#include "core/mesh/mesh_frames.h"
+#include "core/mesh/topology.h"
+#include "core/pipeline/frame_pipeline.h"
+#include "core/tone/tone.h"
+#include "core/visibility/occlusion_source.h"
+#include "core/visibility/raycast_visibility.h"
+#include "tests/support/pipeline.h"
+#include "tests/support/segment_occlusion.h"
+#include "tests/support/shapes.h"
+#include "tests/support/tone_raster.h"
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace inkline {
+namespace {
+
+constexpr double kCoverageTolerance = 0.10;  // as the stipples (docs/tone.md)
+constexpr double kMinAssertedTone = 0.05;
+
+const core::Light kSideLight{.direction = {-1.0, 0.0, 0.0}};
+
+core::VisibilityMode raycast_or_exact() {
+    return core::raycast_available() ? core::VisibilityMode::kRaycast : core::VisibilityMode::kExact;
+}
+
+core::Scene sphere_scene(const core::Mesh& mesh, core::ToneMode mode, double max, int size = 512) {
+    core::Scene scene = test::scene_for({.eye = {0.0, 0.0, 4.0}, .fov_y_deg = 35.0, .size = size}, mesh);
+    scene.light = kSideLight;
+    scene.lines.silhouette = scene.lines.boundary = scene.lines.crease = scene.lines.intersection = false;
+    scene.tone = {.mode = mode, .max = max};
+    return scene;
+}
+
+std::vector<core::FrameResult> run_frames(const core::Scene& scene, const core::Mesh& mesh) {
+    core::MeshFrames meshes(mesh);
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(raycast_or_exact()));
+    std::vector<core::FrameResult> out;
+    for (int frame = scene.first_frame; frame <= scene.last_frame; ++frame) out.push_back(pipeline.run(frame));
+    return out;
+}
+
+// Per pixel, the share of its n x n samples inside the union of the rings (each filled with the
+// nonzero rule), rows from the top.
+std::vector<double> ring_coverage(const std::vector<core::Hatch>& hatches, core::ImageSize image, int n = 8) {
+    const int w = image.width * n, h = image.height * n;
+    std::vector<uint8_t> inked(size_t(w) * size_t(h), 0);
+    for (const core::Hatch& hatch : hatches) {
+        for (const core::Ring& ring : hatch.outline) {
+            double y_lo = 1e300, y_hi = -1e300;
+            for (const glm::dvec2& p : ring) y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
+            const int r0 = std::max(0, int(std::floor(y_lo * n))), r1 = std::min(h - 1, int(std::ceil(y_hi * n)));
+            for (int r = r0; r <= r1; ++r) {
+                const double y = (r + 0.5) / n;
+                std::vector<std::pair<double, int>> crossings;  // x, winding change
+                for (size_t i = 0; i < ring.size(); ++i) {
+                    const glm::dvec2 a = ring[i], b = ring[(i + 1) % ring.size()];
+                    if ((a.y <= y) == (b.y <= y)) continue;
+                    crossings.emplace_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x), b.y > a.y ? 1 : -1);
+                }
+                std::sort(crossings.begin(), crossings.end());
+                int winding = 0;
+                for (size_t k = 0; k + 1 < crossings.size(); ++k) {
+                    winding += crossings[k].second;
+                    if (winding == 0) continue;
+                    const int c0 = std::max(0, int(std::ceil(crossings[k].first * n - 0.5)));
+                    const int c1 = std::min(w - 1, int(std::floor(crossings[k + 1].first * n - 0.5)));
+                    for (int c = c0; c <= c1; ++c) inked[size_t(r) * size_t(w) + size_t(c)] = 1;
+                }
+            }
+        }
+    }
+    std::vector<double> out(size_t(image.width) * size_t(image.height), 0.0);
+    for (int r = 0; r < h; ++r) {
+        for (int c = 0; c < w; ++c) {
+            if (inked[size_t(r) * size_t(w) + size_t(c)]) out[size_t(r / n) * size_t(image.width) + size_t(c / n)] += 1.0;
+        }
+    }
+    for (double& v : out) v /= double(n * n);
+    return out;
+}
+
+void expect_coverage_follows_tone(core::ToneMode mode, double max) {
+    const core::Mesh mesh = test::uv_sphere(160, 80, 1.0);
+    const core::Scene scene = sphere_scene(mesh, mode, max);
+    const std::vector<core::FrameResult> frames = run_frames(scene, mesh);
+    const core::FrameResult& r = frames.front();
+    ASSERT_FALSE(r.tone.hatches.empty());
+    const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
+    const test::SurfacePixels surface = test::sphere_pixels(glm::dvec3(0.0), 1.0, projection, scene.light);
+    const std::vector<double> coverage = ring_coverage(r.tone.hatches, scene.image);
+    const std::vector<test::ToneBand> bands = test::tone_bands(surface, coverage, {}, scene.tone);
+    std::printf("%s, max %.2f: %zu hatches\n%s", core::tone_mode_name(mode), max, r.tone.hatches.size(),
+                test::band_table(bands).c_str());
+    size_t asserted = 0;
+    for (const test::ToneBand& band : bands) {
+        if (band.pixels < 200 || band.target < kMinAssertedTone) continue;
+        ++asserted;
+        EXPECT_LE(std::abs(band.relative_error()), kCoverageTolerance)
+            << "N.L in [" << band.lo << ", " << band.hi << "): target " << band.target << ", coverage " << band.coverage;
+    }
+    EXPECT_GE(asserted, 5u);
+}
+
+TEST(Hatch, CoverageFollowsTheToneOnALitSphere) { expect_coverage_follows_tone(core::ToneMode::kHatch, 0.4); }
+
+TEST(Hatch, CrosshatchCoverageFollowsTheToneOnALitSphere) {
+    expect_coverage_follows_tone(core::ToneMode::kCrosshatch, 0.6);
+}
+
+// Each hatch lies on one plane across its family's direction: the world points (the object does
+// not move) all at the same height along it.
+TEST(Hatch, LinesLieOnTheirPlanes) {
+    const core::Mesh mesh = test::torus(1.0, 0.35, 96, 48);
+    core::Scene scene = sphere_scene(mesh, core::ToneMode::kCrosshatch, 0.6);
+    scene.tone.direction = glm::normalize(glm::dvec3(0.0, 1.0, 0.3));
+    scene.tone.cross_direction = glm::dvec3(1.0, 0.0, 0.0);
+    scene.camera.pose.eye = {0.0, 2.0, 3.5};
+    const std::vector<core::FrameResult> frames = run_frames(scene, mesh);
+    const core::FrameResult& r = frames.front();
+    ASSERT_FALSE(r.tone.hatches.empty());
+    std::map<std::pair<uint32_t, uint64_t>, double> height;  // (family, plane) -> its height
+    std::set<uint32_t> families;
+    for (const core::Hatch& hatch : r.tone.hatches) {
+        families.insert(hatch.family);
+        const glm::dvec3 d = hatch.family == 0 ? scene.tone.direction : scene.tone.cross_direction;
+        ASSERT_EQ(hatch.points_world.size(), hatch.points_px.size());
+        ASSERT_EQ(hatch.width_px.size(), hatch.points_px.size());
+        const auto [it, inserted] = height.try_emplace({hatch.family, hatch.plane}, glm::dot(d, hatch.points_world.front()));
+        for (const glm::dvec3& p : hatch.points_world) {
+            EXPECT_NEAR(glm::dot(d, p), it->second, 1e-5) << "family " << hatch.family << " plane " << hatch.plane;
+        }
+        for (double width : hatch.width_px) EXPECT_LE(width, scene.tone.line_width_px + 1e-12);
+    }
+    EXPECT_EQ(families.size(), 2u) << "crosshatch draws both families";
+    // Planes in order of their number are in order of height, within a family.
+    for (auto a = height.begin(), b = std::next(a); b != height.end(); ++a, ++b) {
+        if (a->first.first == b->first.first) {
+            EXPECT_LT(a->second, b->second);
+        }
+    }
+}
+
+// A darker tone draws every line a lighter one draws (by family and plane), and more.
+TEST(Hatch, DarkerToneAddsLinesBetweenTheOthers) {
+    const core::Mesh mesh = test::uv_sphere(128, 64, 1.0);
+    std::set<std::pair<uint32_t, uint64_t>> light_planes, dark_planes;
+    const std::vector<core::FrameResult> light = run_frames(sphere_scene(mesh, core::ToneMode::kHatch, 0.2), mesh);
+    const std::vector<core::FrameResult> dark = run_frames(sphere_scene(mesh, core::ToneMode::kHatch, 0.5), mesh);
+    for (const core::Hatch& h : light.front().tone.hatches) light_planes.insert({h.family, h.plane});
+    for (const core::Hatch& h : dark.front().tone.hatches) dark_planes.insert({h.family, h.plane});
+    ASSERT_FALSE(light_planes.empty());
+    EXPECT_GT(dark_planes.size(), light_planes.size());
+    for (const auto& plane : light_planes) EXPECT_TRUE(dark_planes.count(plane)) << "plane " << plane.second;
+}
+
+// Turning 2 degrees a frame under a fixed light, the lines stay on the surface: at least 95% of
+// a frame's hatch length lies on planes drawn the frame before.
+TEST(Hatch, TurntableKeepsItsLines) {
+    const core::Mesh mesh = test::torus(1.0, 0.35, 96, 48);
+    core::Scene scene = sphere_scene(mesh, core::ToneMode::kCrosshatch, 0.5);
+    scene.camera.pose.eye = {0.0, 2.0, 3.5};
+    scene.first_frame = 0;
+    scene.last_frame = 8;
+    scene.camera.orbit = core::Rotation{{0.0, 1.0, 0.0}, 2.0 * 9.0, {0.0, 0.0, 0.0}};
+    const std::vector<core::FrameResult> frames = run_frames(scene, mesh);
+    double least = 1.0;
+    for (size_t i = 1; i < frames.size(); ++i) {
+        std::set<std::pair<uint32_t, uint64_t>> before;
+        for (const core::Hatch& h : frames[i - 1].tone.hatches) before.insert({h.family, h.plane});
+        double kept = 0.0, total = 0.0;
+        for (const core::Hatch& h : frames[i].tone.hatches) {
+            double length = 0.0;
+            for (size_t k = 1; k < h.points_px.size(); ++k) length += glm::length(h.points_px[k] - h.points_px[k - 1]);
+            total += length;
+            if (before.count({h.family, h.plane})) kept += length;
+        }
+        ASSERT_GT(total, 0.0);
+        least = std::min(least, kept / total);
+    }
+    std::printf("turntable: least share of hatch length on last frame's planes %.4f\n", least);
+    EXPECT_GE(least, 0.95);
+}
+
+// No hatch point on hidden surface (an independent double-precision segment test, the point's
+// edge's first face its own), none on a drawn stroke's ink.
+TEST(Hatch, NoneOnHiddenSurfaceOrOnTheLines) {
+    const core::Mesh mesh =
+        test::combine(test::torus(1.0, 0.35, 96, 48), test::uv_sphere(48, 24, 0.45), {0.2f, 0.3f, 1.2f});
+    core::Scene scene = test::scene_for({.eye = {0.4, 1.6, 4.2}, .fov_y_deg = 40.0, .size = 512}, mesh);
+    scene.light = kSideLight;
+    scene.tone = {.mode = core::ToneMode::kCrosshatch, .max = 0.5};
+    const core::FrameResult r = run_frames(scene, mesh).front();
+    ASSERT_FALSE(r.tone.hatches.empty());
+    ASSERT_FALSE(r.strokes.strokes.empty());
+    const core::EdgeTable table = core::build_edge_table(mesh);
+    const test::SegmentOcclusion exact(mesh);
+    const glm::dvec3 eye = r.lines.camera.eye;  // the object does not move: object space is world space
+    size_t points = 0, hidden = 0;
+    for (const core::Hatch& hatch : r.tone.hatches) {
+        for (size_t k = 0; k < hatch.points_world.size(); ++k) {
+            ++points;
+            // Off both faces of its edge: the segment's end gap keeps the other one from meeting it.
+            if (exact.hidden(eye, hatch.points_world[k], table.faces_of(hatch.edges[k]).front())) ++hidden;
+            for (const core::Stroke& stroke : r.strokes.strokes) {
+                if (!stroke.drawn || !stroke.geometry.visible) continue;
+                for (size_t i = 0; i + 1 < stroke.centerline_px.size(); ++i) {
+                    const glm::dvec2 a = stroke.centerline_px[i], b = stroke.centerline_px[i + 1];
+                    const glm::dvec2 d = b - a;
+                    const double t = std::clamp(glm::dot(hatch.points_px[k] - a, d) / std::max(glm::dot(d, d), 1e-300),
+                                                0.0, 1.0);
+                    const double reach = 0.5 * std::min(stroke.centerline_width[i], stroke.centerline_width[i + 1]);
+                    ASSERT_GE(glm::length(a + t * d - hatch.points_px[k]), reach) << "a hatch point on a stroke's ink";
+                }
+            }
+        }
+    }
+    std::printf("hatch points %zu, hidden by the exact test %zu (%.3f%%)\n", points, hidden, 100.0 * hidden / points);
+    EXPECT_LE(double(hidden), 0.005 * double(points));
+}
+
+// Crosshatch's second family only where the tone passes cross_from.
+TEST(Hatch, CrosshatchCrossesOnlyTheDarkerTones) {
+    const core::Mesh mesh = test::uv_sphere(128, 64, 1.0);
+    const core::Scene scene = sphere_scene(mesh, core::ToneMode::kCrosshatch, 0.6);
+    const core::FrameResult r = run_frames(scene, mesh).front();
+    const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
+    size_t cross_points = 0;
+    for (const core::Hatch& hatch : r.tone.hatches) {
+        if (hatch.family != 1) continue;
+        for (const glm::dvec3& p : hatch.points_world) {
+            ++cross_points;
+            const double tone = core::tone_of(glm::dot(glm::normalize(p), -kSideLight.direction), scene.tone);
+            EXPECT_GT(tone, scene.tone.cross_from - 0.02) << "a cross line where the tone is " << tone;
+        }
+    }
+    EXPECT_GT(cross_points, 0u);
+}
+
+}  // namespace
+}  // namespace inkline
