@@ -7,8 +7,9 @@
 //   -> set_aside_occluded (without lines.hidden) -> build_strokes -> DrawingOrder::assign
 //   -> Stippler::stipple or Hatcher::hatch (with a scene "tone")
 //
-// Writers (export/) take the result: output::polylines_json(result.lines, &result.strokes),
-// output::brush_drawing(result.lines, result.strokes, ...).
+// Writers (export/) take the result: output::polylines_json(result.lines, &result.strokes,
+// &result.tone), output::brush_drawing(result.lines, result.strokes, ...) with
+// output::tone_layer(result.tone, scene.tone) as its tone.
 #pragma once
 
 #include "core/lines/intersections.h"
