@@ -247,7 +247,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     // (the interpolated normal's light is never below its corners' least) at the largest area
     // scale of its corners (with a margin for the variation across a face under perspective).
     // Zero for faces turned away, behind the camera or outside the image.
-    constexpr double kScaleMargin = 3.0;
+    constexpr double kScaleMargin = 1.1;
     std::vector<double> face_limit(mesh.triangles.size(), 0.0);
     const double area = samples_->area();
     internal::parallel_for(mesh.triangles.size(), 8192, [&](size_t begin, size_t end) {
