@@ -76,9 +76,10 @@ def _stroke_of(d: dict) -> Stroke:
 
 @dataclass(eq=False)
 class Tone:
-    """A frame's tone (scene "tone", docs/tone.md): its dots, one row each, ascending by sample."""
+    """A frame's tone (scene "tone", docs/tone.md): its dots, one row each, ascending by sample, or
+    its hatches."""
 
-    mode: str                 # "stipple"
+    mode: str                 # "stipple", "hatch" or "crosshatch"
     points: np.ndarray        # (n, 2) float64, the dots' centres, image px
     world: np.ndarray         # (n, 3) float64, the same points in world space
     faces: np.ndarray         # (n,) uint32, the mesh face each dot lies on
@@ -86,10 +87,14 @@ class Tone:
     radius: np.ndarray        # (n,) float64, px
     tone: np.ndarray          # (n,) float64, the tone asked for there
     samples: np.ndarray       # (n,) uint32, the surface sample: the same point of the surface in every frame
-    stats: dict = field(default_factory=dict)  # samples, considered, wanted, inked, occluded
+    stats: dict = field(default_factory=dict)  # samples, considered, wanted, inked, occluded (hatching: faces, segments, points, occluded, inked)
+    # Hatching: one dict per hatch: family, plane, level (ints); points (k, 2), world (k, 3), width (k,)
+    # float64; edges (k,) uint32.
+    hatches: list = field(default_factory=list)
 
     def __len__(self) -> int:
-        return len(self.points)
+        """Dots, or hatches with hatching."""
+        return len(self.hatches) if self.mode in ("hatch", "crosshatch") else len(self.points)
 
 
 class Frame:
@@ -258,8 +263,8 @@ def open(path, *, frames=None, size=None, hidden=False, contour=None, visibility
 
     The keywords are `inkline render`'s options: frames=(first, last) or one frame, size=(w, h),
     hidden, contour ("mesh" or "smooth"), visibility ("auto": raycast where Embree is built in,
-    else exact; "raycast"; "exact"), tracker ("incremental" or "brute"), tone ("stipple" or
-    "none": overrides the scene's tone mode), and for glTF input gltf_scene, animation, camera, fps.
+    else exact; "raycast"; "exact"), tracker ("incremental" or "brute"), tone ("stipple", "hatch",
+    "crosshatch" or "none": overrides the scene's tone mode), and for glTF input gltf_scene, animation, camera, fps.
     """
     path = _os.fspath(path)
     if not isinstance(path, str):
@@ -371,7 +376,12 @@ def _tone_from_json(t: dict) -> Tone:
     def column(key, dtype, cols):
         return np.asarray([d[key] for d in dots], dtype).reshape((-1, cols) if cols else -1)
 
+    hatches = [{"family": int(h["family"]), "plane": int(h["plane"]), "level": int(h["level"]),
+                "points": np.asarray(h["points"], np.float64).reshape(-1, 2),
+                "world": np.asarray(h["world"], np.float64).reshape(-1, 3),
+                "edges": np.asarray(h["edges"], np.uint32), "width": np.asarray(h["width"], np.float64)}
+               for h in t.get("hatches", [])]
     return Tone(mode=str(t["mode"]), points=column("point", np.float64, 2), world=column("world", np.float64, 3),
                 faces=column("face", np.uint32, 0), barycentric=column("barycentric", np.float64, 3),
                 radius=column("radius", np.float64, 0), tone=column("tone", np.float64, 0),
-                samples=column("sample", np.uint32, 0), stats=dict(t.get("stats", {})))
+                samples=column("sample", np.uint32, 0), stats=dict(t.get("stats", {})), hatches=hatches)

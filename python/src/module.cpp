@@ -214,12 +214,34 @@ py::object tone_of(const Frame& frame) {
         value.push_back(d.tone);
     }
     py::dict stats;
-    const core::StippleStats& s = tone.stipple_stats;
-    stats["samples"] = s.samples;
-    stats["considered"] = s.considered;
-    stats["wanted"] = s.wanted;
-    stats["inked"] = s.inked;
-    stats["occluded"] = s.occluded;
+    if (tone.mode == core::ToneMode::kStipple) {
+        const core::StippleStats& s = tone.stipple_stats;
+        stats["samples"] = s.samples;
+        stats["considered"] = s.considered;
+        stats["wanted"] = s.wanted;
+        stats["inked"] = s.inked;
+        stats["occluded"] = s.occluded;
+    } else {
+        const core::HatchStats& s = tone.hatch_stats;
+        stats["faces"] = s.faces;
+        stats["segments"] = s.segments;
+        stats["points"] = s.points;
+        stats["occluded"] = s.occluded;
+        stats["inked"] = s.inked;
+    }
+    // Hatches: one dict of arrays each, as the JSON lists them.
+    py::list hatches;
+    for (const core::Hatch& h : tone.hatches) {
+        py::dict hatch;
+        hatch["family"] = h.family;
+        hatch["plane"] = h.plane;
+        hatch["level"] = h.level;
+        hatch["points"] = rows_of(h.points_px);
+        hatch["world"] = rows_of(h.points_world);
+        hatch["edges"] = array_of(h.edges);
+        hatch["width"] = array_of(h.width_px);
+        hatches.append(hatch);
+    }
     py::dict out;
     out["mode"] = core::tone_mode_name(tone.mode);
     out["points"] = rows_of(points);
@@ -229,6 +251,7 @@ py::object tone_of(const Frame& frame) {
     out["radius"] = array_of(radius);
     out["tone"] = array_of(value);
     out["samples"] = array_of(samples);
+    out["hatches"] = hatches;
     out["stats"] = stats;
     return out;
 }

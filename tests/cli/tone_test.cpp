@@ -114,6 +114,54 @@ TEST_F(Tone, TorusSampleWithStippleWritesDotsToSvgJsonAndPng) {
     EXPECT_GT(checked, 50u);
 }
 
+TEST_F(Tone, TorusSampleWithCrosshatchWritesHatchesToSvgJsonAndPng) {
+    const test::RunResult r =
+        render(std::string(INKLINE_SAMPLES) + "/torus/scene.json", "torus", "--size 512x512 --tone crosshatch", true);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const nlohmann::json doc = json("torus");
+    const nlohmann::json& tone = doc["tone"];
+    EXPECT_EQ(tone["mode"], "crosshatch");
+    EXPECT_TRUE(tone["dots"].empty());
+    const nlohmann::json& hatches = tone["hatches"];
+    ASSERT_GT(hatches.size(), 20u);
+    for (const char* key : {"faces", "segments", "points", "occluded", "inked"}) EXPECT_TRUE(tone["stats"].contains(key)) << key;
+    const size_t edges = doc["stats"]["edges"].get<size_t>();
+    std::vector<std::pair<long, long>> ids;
+    bool cross = false;
+    const std::vector<uint8_t> ink = test::png_file_coverage(dir / "torus.png", test::Ink::kAlpha);
+    size_t checked = 0;
+    for (const auto& h : hatches) {
+        ids.emplace_back(h["family"].get<long>(), h["plane"].get<long>());
+        cross |= h["family"] == 1;
+        const size_t n = h["points"].size();
+        ASSERT_GE(n, 2u);
+        ASSERT_EQ(h["world"].size(), n);
+        ASSERT_EQ(h["edges"].size(), n);
+        ASSERT_EQ(h["width"].size(), n);
+        for (size_t k = 0; k < n; ++k) {
+            EXPECT_LT(h["edges"][k].get<size_t>(), edges);
+            EXPECT_LE(h["width"][k].get<double>(), 0.8 + 1e-9);
+            // Ink where a full-width line passes: at its points inside the line, away from its ends.
+            if (k == 0 || k + 1 == n || h["width"][k].get<double>() < 0.79) continue;
+            const auto x = size_t(h["points"][k][0].get<double>()), y = size_t(h["points"][k][1].get<double>());
+            if (ink[y * 512 + x]) ++checked;
+        }
+    }
+    EXPECT_TRUE(cross) << "crosshatch draws the second family where the torus is dark";
+    EXPECT_GT(checked, 100u);
+    // The SVG's tone layer: one path per hatch, in the JSON's order.
+    const std::string text = svg("torus");
+    ASSERT_NE(text.find("<g id=\"tone\" inkscape:groupmode=\"layer\" inkscape:label=\"tone\" data-mode=\"crosshatch\""),
+              std::string::npos);
+    std::vector<std::pair<long, long>> paths;
+    static const std::regex path(R"re(<path data-family="(\d+)" data-plane="(\d+)" d="M)re");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), path); it != std::sregex_iterator(); ++it) {
+        paths.emplace_back(std::stol((*it)[1]), std::stol((*it)[2]));
+    }
+    EXPECT_EQ(paths, ids);
+    EXPECT_LT(text.find("<g id=\"tone\""), text.find("<g id=\"silhouette\""));
+}
+
 TEST_F(Tone, SceneToneBlockSetsTheLayersColourAndOpacity) {
     const fs::path scene = cube_scene("scene.json", R"(, "tone": {"color": "#336699", "opacity": 0.5, "max": 0.6})");
     ASSERT_EQ(render(scene, "f", "").code, 0);

@@ -88,3 +88,34 @@ def test_bad_tone_keyword_is_an_input_error():
         inkline.open(SAMPLES / "torus" / "scene.json", frames=1, tone="bogus")
     with pytest.raises(inkline.InputError, match=r"^tone: expected a string"):
         inkline.open(SAMPLES / "torus" / "scene.json", frames=1, tone=1)
+
+
+def test_hatches_are_the_jsons_and_read_back():
+    vertices, faces = icosphere(3)
+    frame = inkline.scene(vertices, faces, camera=CAMERA, image=(256, 256), visibility="exact",
+                          light={"direction": [-0.5, -0.8, -0.4]},
+                          tone={"mode": "crosshatch", "max": 0.6}).render(1)
+    tone = frame.tone
+    assert tone.mode == "crosshatch" and len(tone) == len(tone.hatches) > 10
+    assert len(tone.points) == 0
+    assert {h["family"] for h in tone.hatches} == {0, 1}
+    for h in tone.hatches:
+        k = len(h["points"])
+        assert k >= 2 and h["points"].shape == (k, 2) and h["world"].shape == (k, 3)
+        assert h["edges"].dtype == np.uint32 and h["edges"].shape == (k,) and h["width"].shape == (k,)
+        assert np.all(h["width"] <= 0.8 + 1e-12)
+    assert set(tone.stats) == {"faces", "segments", "points", "occluded", "inked"}
+
+    doc = json.loads(frame.to_json())["tone"]
+    assert [(h["family"], h["plane"]) for h in doc["hatches"]] == [(h["family"], h["plane"]) for h in tone.hatches]
+    back = inkline.read_json(frame.to_json()).tone
+    assert len(back.hatches) == len(tone.hatches)
+    for a, b in zip(back.hatches, tone.hatches):
+        assert (a["family"], a["plane"], a["level"]) == (b["family"], b["plane"], b["level"])
+        np.testing.assert_array_equal(a["world"], b["world"])
+        np.testing.assert_array_equal(a["edges"], b["edges"])
+        np.testing.assert_array_equal(a["points"], json_round(b["points"], 1e4))
+
+    svg = frame.to_svg()
+    assert svg.count("<path data-family=") == len(tone.hatches)
+    assert 'data-mode="crosshatch"' in svg
