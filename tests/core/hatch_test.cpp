@@ -252,3 +252,51 @@ TEST(Hatch, CrosshatchCrossesOnlyTheDarkerTones) {
 
 }  // namespace
 }  // namespace inkline
+
+namespace inkline {
+namespace {
+
+// Odd but drawable meshes (a non-manifold vertex, a fin, degenerate and repeated faces, a flat
+// open grid, a mesh of nothing but degenerate faces) get tone without failing: every mark on a
+// valid face, every number finite.
+TEST(Tone, OddMeshesAreShadedWithoutFailing) {
+    core::Mesh folded = test::grid(12, 1.0);
+    const auto base = uint32_t(folded.positions.size());
+    folded.positions.push_back({0.0f, 0.0f, 0.5f});  // a fin standing on the grid's middle edge
+    folded.triangles.push_back({0, 1, base});
+    folded.triangles.push_back({0, 1, base});         // repeated
+    folded.triangles.push_back({2, 2, 3});            // degenerate
+    core::Mesh flat;
+    flat.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+    flat.triangles = {{0, 1, 2}, {1, 2, 3}};  // zero area: nothing to shade
+    const std::vector<core::Mesh> meshes = {test::twin_cones(64), folded, test::disc_cap(200), flat};
+    for (const core::ToneMode mode : {core::ToneMode::kStipple, core::ToneMode::kHatch, core::ToneMode::kCrosshatch}) {
+        for (size_t m = 0; m < meshes.size(); ++m) {
+            SCOPED_TRACE(std::string(core::tone_mode_name(mode)) + ", mesh " + std::to_string(m));
+            core::Scene scene = test::scene_for({.eye = {0.6, 1.8, 2.5}, .fov_y_deg = 45.0, .size = 256}, meshes[m]);
+            scene.light = kSideLight;
+            scene.tone = {.mode = mode, .max = 0.6};
+            const std::vector<core::FrameResult> frames = run_frames(scene, meshes[m]);
+            const core::FrameTone& tone = frames.front().tone;
+            for (const core::Dot& d : tone.dots) {
+                ASSERT_LT(d.face, meshes[m].triangles.size());
+                ASSERT_TRUE(std::isfinite(d.point_px.x) && std::isfinite(d.point_px.y) && std::isfinite(d.radius_px));
+            }
+            for (const core::Hatch& h : tone.hatches) {
+                for (size_t k = 0; k < h.points_px.size(); ++k) {
+                    ASSERT_TRUE(std::isfinite(h.points_px[k].x) && std::isfinite(h.points_px[k].y));
+                    ASSERT_TRUE(std::isfinite(h.width_px[k]));
+                }
+                for (const core::Ring& ring : h.outline) {
+                    for (const glm::dvec2& p : ring) ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y));
+                }
+            }
+            if (m == 3) {
+                EXPECT_TRUE(tone.dots.empty() && tone.hatches.empty()) << "nothing to shade";
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace inkline

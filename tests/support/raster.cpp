@@ -35,9 +35,8 @@ std::vector<uint8_t> coverage(const Surface& surface, Ink ink, const std::string
     return out;
 }
 
-}  // namespace
-
-std::vector<uint8_t> png_coverage(const std::string& png_bytes, Ink ink) {
+// A PNG in memory, decoded by Cairo.
+Surface decoded(const std::string& png_bytes) {
     struct Reader {
         const std::string& bytes;
         size_t at = 0;
@@ -49,8 +48,36 @@ std::vector<uint8_t> png_coverage(const std::string& png_bytes, Ink ink) {
         r->at += length;
         return CAIRO_STATUS_SUCCESS;
     };
-    return coverage(Surface(cairo_image_surface_create_from_png_stream(read, &reader), cairo_surface_destroy), ink,
-                    "PNG in memory");
+    return Surface(cairo_image_surface_create_from_png_stream(read, &reader), cairo_surface_destroy);
+}
+
+}  // namespace
+
+std::vector<uint8_t> png_coverage(const std::string& png_bytes, Ink ink) {
+    return coverage(decoded(png_bytes), ink, "PNG in memory");
+}
+
+double png_alpha_sum(const std::string& png_bytes) {
+    const Surface surface = decoded(png_bytes);
+    cairo_surface_t* s = surface.get();
+    if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS) {
+        throw std::runtime_error(std::string("PNG in memory: ") + cairo_status_to_string(cairo_surface_status(s)));
+    }
+    if (cairo_image_surface_get_format(s) != CAIRO_FORMAT_ARGB32) {
+        return double(cairo_image_surface_get_width(s)) * double(cairo_image_surface_get_height(s));
+    }
+    const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    double sum = 0.0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            uint32_t p = 0;
+            std::memcpy(&p, data + size_t(y) * size_t(stride) + 4 * size_t(x), sizeof p);
+            sum += double(p >> 24) / 255.0;
+        }
+    }
+    return sum;
 }
 
 std::vector<uint8_t> png_file_coverage(const std::filesystem::path& png, Ink ink) {

@@ -22,6 +22,9 @@ enum class Ink : uint8_t {
 std::vector<uint8_t> png_coverage(const std::string& png_bytes, Ink ink);
 std::vector<uint8_t> png_file_coverage(const std::filesystem::path& png, Ink ink);
 
+// The sum over all pixels of their alpha (0..1): the total ink of a PNG in memory. Throws
+// std::runtime_error when it cannot be decoded.
+double png_alpha_sum(const std::string& png_bytes);
 // Intersection over union of two coverages of one image size (1 when neither has ink). Throws
 // std::invalid_argument when the sizes differ.
 double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
