@@ -33,6 +33,16 @@ constexpr double kForeshortening = 0.5;
 constexpr double kInkClearancePx = 0.25;
 constexpr double kLeastInkRadius = 0.35;
 
+// A 64-bit mixer (the finaliser of MurmurHash3): every bit of a packed cell reaches the low bits
+// that pick a hash slot.
+uint64_t mix(uint64_t x) {
+    x ^= x >> 33;
+    x *= 0xff51afd7ed558ccdull;
+    x ^= x >> 33;
+    x *= 0xc4ceb9fe1a85ec53ull;
+    return x ^ (x >> 33);
+}
+
 // Open-addressing hash from grid cells to the first point in them; points in a cell are linked
 // through `next`. A slot holds its key and head together: one cache line per probe.
 class CellGrid {
@@ -72,12 +82,62 @@ class CellGrid {
     const Slot& find(uint64_t key) const { return slots_[slot_of(key)]; }
     size_t slot_of(uint64_t key) const {
         const size_t mask = slots_.size() - 1;
-        size_t slot = size_t((key * 0x9e3779b97f4a7c15ull) >> 20) & mask;
+        size_t slot = size_t(mix(key)) & mask;
         while (slots_[slot].key != kEmpty && slots_[slot].key != key) slot = (slot + 1) & mask;
         return slot;
     }
 
     double cell_;
+    std::vector<Slot> slots_;
+};
+
+// The points of earlier levels sorted by grid cell, for the spacing test: a cell's points lie
+// side by side, found through an open-addressing hash of the cells.
+class SortedCells {
+  public:
+    SortedCells(std::span<const glm::vec3> points, double cell) : cell_(cell) {
+        std::vector<std::pair<uint64_t, uint32_t>> keyed(points.size());
+        for (uint32_t i = 0; i < points.size(); ++i) keyed[i] = {pack(cell_of(points[i])), i};
+        std::sort(keyed.begin(), keyed.end());
+        points_.reserve(points.size());
+        size_t capacity = 16;
+        while (capacity < points.size() * 2) capacity *= 2;
+        slots_.assign(capacity, Slot{});
+        for (size_t i = 0; i < keyed.size();) {
+            size_t j = i;
+            while (j < keyed.size() && keyed[j].first == keyed[i].first) points_.push_back(points[keyed[j++].second]);
+            Slot& slot = slots_[slot_of(keyed[i].first)];
+            slot = {keyed[i].first, uint32_t(i), uint32_t(j - i)};
+            i = j;
+        }
+    }
+
+    glm::ivec3 cell_of(const glm::vec3& p) const { return glm::ivec3(glm::floor(glm::dvec3(p) / cell_)); }
+    // The points in a cell.
+    std::span<const glm::vec3> at(const glm::ivec3& c) const {
+        const Slot& slot = slots_[slot_of(pack(c))];
+        return {points_.data() + slot.begin, slot.count};
+    }
+    static uint64_t pack(const glm::ivec3& c) {
+        const auto part = [](int v) { return uint64_t(uint32_t(v) & 0x1fffffu); };
+        return part(c.x) | (part(c.y) << 21) | (part(c.z) << 42);
+    }
+
+  private:
+    static constexpr uint64_t kEmpty = ~uint64_t(0);
+    struct Slot {
+        uint64_t key = kEmpty;
+        uint32_t begin = 0, count = 0;
+    };
+    size_t slot_of(uint64_t key) const {
+        const size_t mask = slots_.size() - 1;
+        size_t slot = size_t(mix(key)) & mask;
+        while (slots_[slot].key != kEmpty && slots_[slot].key != key) slot = (slot + 1) & mask;
+        return slot;
+    }
+
+    double cell_;
+    std::vector<glm::vec3> points_;
     std::vector<Slot> slots_;
 };
 
@@ -142,13 +202,14 @@ void SurfaceSamples::add_level() {
     const double per_area = kCandidatesPerSquare / (r * r);
     const size_t expected = size_t(std::ceil(per_area * area_ * 0.5)) + 16;
     // Cells twice the spacing: a ball of the spacing's radius meets at most two cells per axis.
-    CellGrid grid(2.0 * r, points_.size() + expected);
-    std::vector<uint32_t> next(points_.size() + expected, CellGrid::kNone);
-    for (uint32_t i = 0; i < points_.size(); ++i) grid.insert(grid.cell_of(points_[i]), i, next);
+    // Earlier levels' points sorted by cell; this level's in a grid of their own as they come.
+    const SortedCells earlier(points_, 2.0 * r);
+    const size_t level_start = samples_.size();
+    CellGrid grid(2.0 * r, expected);
+    std::vector<uint32_t> next(expected, CellGrid::kNone);
 
     // Candidates face by face (nearby faces are near in memory too), as many per face as its
     // area asks for, rounded at random.
-    const size_t level_start = samples_.size();
     const float r2 = float(r * r);
     double below = 0.0;
     for (uint32_t face = 0; face < cdf_.size(); ++face) {
@@ -171,16 +232,20 @@ void SurfaceSamples::add_level() {
             bool near = false;
             for (int n = 0; n < 8 && !near; ++n) {
                 const glm::ivec3 at = cell + glm::ivec3(n & 1 ? step.x : 0, n & 2 ? step.y : 0, n & 4 ? step.z : 0);
-                for (uint32_t q = grid.head(at); q != CellGrid::kNone; q = next[q]) {
-                    const glm::vec3 d = points_[q] - p;
+                for (const glm::vec3& q : earlier.at(at)) {
+                    const glm::vec3 d = q - p;
                     if (glm::dot(d, d) < r2) {
                         near = true;
                         break;
                     }
                 }
+                for (uint32_t q = grid.head(at); q != CellGrid::kNone && !near; q = next[q]) {
+                    const glm::vec3 d = points_[level_start + q] - p;
+                    if (glm::dot(d, d) < r2) near = true;
+                }
             }
             if (near) continue;
-            const auto index = uint32_t(points_.size());
+            const auto index = uint32_t(points_.size() - level_start);
             points_.push_back(p);
             samples_.push_back({face, b1, b2});
             if (next.size() <= index) next.resize(next.size() * 2, CellGrid::kNone);
@@ -233,6 +298,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     // cos(theta)^kForeshortening at p on a face of unit normal n.
     const auto foreshortening = [&](const glm::dvec3& p, const glm::dvec3& n) {
         const double cos_theta = std::abs(glm::dot(n, glm::normalize(eye - p)));
+        if constexpr (kForeshortening == 0.5) return std::max(std::sqrt(cos_theta), 1e-6);
         return std::max(std::pow(cos_theta, kForeshortening), 1e-6);
     };
     const auto tone_at = [&](const glm::dvec3& p, glm::dvec3 normal, const glm::dvec3& face_n) {
@@ -248,6 +314,19 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     // scale of its corners (with a margin for the variation across a face under perspective).
     // Zero for faces turned away, behind the camera or outside the image.
     constexpr double kScaleMargin = 1.1;
+    // Per vertex first, once each: its clip coordinates and its tone (the darkest without a
+    // normal).
+    const double darkest = std::max(options_.min, options_.max);
+    std::vector<glm::dvec4> vertex_clip(mesh.positions.size());
+    std::vector<double> vertex_tone(mesh.positions.size());
+    internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
+        for (size_t v = begin; v < end; ++v) {
+            const glm::dvec3 p(mesh.positions[v]);
+            vertex_clip[v] = m * glm::dvec4(p, 1.0);
+            const glm::dvec3& normal = normals[v];
+            vertex_tone[v] = glm::dot(normal, normal) == 0.0 ? darkest : tone_at(p, normal, normal);
+        }
+    });
     std::vector<double> face_limit(mesh.triangles.size(), 0.0);
     const double area = samples_->area();
     internal::parallel_for(mesh.triangles.size(), 8192, [&](size_t begin, size_t end) {
@@ -264,14 +343,14 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             double scale = 0.0, tone = 0.0;
             bool in_front = true;
             for (int c = 0; c < 3 && in_front; ++c) {
-                const glm::dvec4 clip = m * glm::dvec4(p[c], 1.0);
+                const glm::dvec4& clip = vertex_clip[t[c]];
                 in_front = projection.in_front(clip);
                 if (!in_front) break;
                 const glm::dvec2 q = projection.pixel_from_clip(clip);
                 lo = glm::min(lo, q);
                 hi = glm::max(hi, q);
                 scale = std::max(scale, area_scale(clip, unit_n) / foreshortening(p[c], unit_n));
-                tone = std::max(tone, tone_at(p[c], normals[t[c]], n));
+                tone = std::max(tone, vertex_tone[t[c]]);
             }
             if (!in_front || hi.x < 0.0 || hi.y < 0.0 || lo.x > image.width || lo.y > image.height) continue;
             face_limit[f] = dot_density(tone, radius) * kScaleMargin * scale * area / kappa;
@@ -330,9 +409,14 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         }
     });
     for (size_t c : considered) stats_.considered += c;
+    std::vector<std::pair<uint32_t, const Dot*>> order;
+    for (const std::vector<Dot>& part : found) {
+        for (const Dot& d : part) order.emplace_back(d.sample, &d);
+    }
+    std::sort(order.begin(), order.end());
     std::vector<Dot> dots;
-    for (std::vector<Dot>& part : found) dots.insert(dots.end(), part.begin(), part.end());
-    std::sort(dots.begin(), dots.end(), [](const Dot& a, const Dot& b) { return a.sample < b.sample; });
+    dots.reserve(order.size());
+    for (const auto& [sample, d] : order) dots.push_back(*d);
     stats_.wanted = dots.size();
 
     // None under a visible line's ink.

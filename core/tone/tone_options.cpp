@@ -24,7 +24,8 @@ std::optional<ToneMode> tone_mode_from_name(std::string_view name) {
 }
 
 double tone_of(double intensity, const ToneOptions& options) {
-    double t = std::pow(1.0 - std::clamp(intensity, 0.0, 1.0), options.gamma);
+    const double x = 1.0 - std::clamp(intensity, 0.0, 1.0);
+    double t = options.gamma == 1.0 ? x : std::pow(x, options.gamma);
     if (options.levels > 1) t = std::round(t * (options.levels - 1)) / double(options.levels - 1);
     return options.min + (options.max - options.min) * t;
 }
