@@ -110,15 +110,6 @@ double tone_ms(const core::FrameResult& result) {
     return 0.0;
 }
 
-double kept_share(const std::vector<core::Dot>& before, const std::vector<core::Dot>& now) {
-    if (now.empty()) return 1.0;
-    size_t i = 0, kept = 0;
-    for (const core::Dot& dot : now) {
-        while (i < before.size() && before[i].sample < dot.sample) ++i;
-        if (i < before.size() && before[i].sample == dot.sample) ++kept;
-    }
-    return double(kept) / double(now.size());
-}
 
 double median(std::vector<double> v) {
     if (v.empty()) return 0.0;
@@ -182,7 +173,7 @@ TurntableSummary turntable(const Subject& subject, const Args& args, core::Visib
         const double ms = tone_ms(result);
         const core::Projection projection(result.lines.camera, scene.image, result.world_from_object);
         const double hidden = exact.hidden_share(projection.eye_object(), tone.dots);
-        const double kept = frame == 1 ? 1.0 : kept_share(before, tone.dots);
+        const double kept = frame == 1 ? 1.0 : test::kept_share(before, tone.dots);
         char kept_text[16] = "     -";
         if (frame > 1) std::snprintf(kept_text, sizeof kept_text, "%.4f", kept);
         std::printf("  %5d  %8.2f  %7zu      %8.2f  %s   %.4f%%        %9zu  %10zu  %5zu  %8zu\n", frame, ms,

@@ -43,102 +43,98 @@ uint64_t mix(uint64_t x) {
     return x ^ (x >> 33);
 }
 
-// Open-addressing hash from grid cells to the first point in them; points in a cell are linked
-// through `next`. A slot holds its key and head together: one cache line per probe.
-class CellGrid {
+// A grid cell, 21 bits an axis.
+uint64_t pack_cell(const glm::ivec3& c) {
+    const auto part = [](int v) { return uint64_t(uint32_t(v) & 0x1fffffu); };
+    return part(c.x) | (part(c.y) << 21) | (part(c.z) << 42);
+}
+glm::ivec3 cell_of(const glm::vec3& p, double cell) { return glm::ivec3(glm::floor(glm::dvec3(p) / cell)); }
+
+// Open-addressing hash from packed cells to a Value (default-constructed until set). A slot holds
+// its key and value together: one cache line per probe. Never more than half full.
+template <typename Value>
+class CellTable {
   public:
-    CellGrid(double cell, size_t expected) : cell_(cell) {
+    explicit CellTable(size_t expected) {
         size_t capacity = 16;
         while (capacity < expected * 2) capacity *= 2;
         slots_.assign(capacity, Slot{});
     }
-
-    static constexpr uint32_t kNone = 0xffffffffu;
-
-    glm::ivec3 cell_of(const glm::vec3& p) const {
-        return glm::ivec3(glm::floor(glm::dvec3(p) / cell_));
+    // The value of a cell, made when absent.
+    Value& operator[](uint64_t key) {
+        Slot& slot = slots_[slot_of(key)];
+        slot.key = key;
+        return slot.value;
     }
-    double cell() const { return cell_; }
-
-    void insert(const glm::ivec3& c, uint32_t point, std::vector<uint32_t>& r_next) {
-        Slot& slot = find(pack(c));
-        slot.key = pack(c);
-        r_next[point] = slot.head;
-        slot.head = point;
-    }
-    uint32_t head(const glm::ivec3& c) const { return find(pack(c)).head; }
+    // The value of a cell; Value{} when absent.
+    const Value& at(uint64_t key) const { return slots_[slot_of(key)].value; }
 
   private:
     static constexpr uint64_t kEmpty = ~uint64_t(0);
     struct Slot {
         uint64_t key = kEmpty;
-        uint32_t head = kNone;
+        Value value{};
     };
-    static uint64_t pack(const glm::ivec3& c) {
-        const auto part = [](int v) { return uint64_t(uint32_t(v) & 0x1fffffu); };
-        return part(c.x) | (part(c.y) << 21) | (part(c.z) << 42);
-    }
-    Slot& find(uint64_t key) { return slots_[slot_of(key)]; }
-    const Slot& find(uint64_t key) const { return slots_[slot_of(key)]; }
     size_t slot_of(uint64_t key) const {
         const size_t mask = slots_.size() - 1;
         size_t slot = size_t(mix(key)) & mask;
         while (slots_[slot].key != kEmpty && slots_[slot].key != key) slot = (slot + 1) & mask;
         return slot;
     }
-
-    double cell_;
     std::vector<Slot> slots_;
 };
 
+constexpr uint32_t kNoPoint = 0xffffffffu;
+
+// The points of one level as it is thrown, by grid cell: each cell's first point, the others
+// linked through `next`.
+class CellGrid {
+  public:
+    CellGrid(double cell, size_t expected) : cell_(cell), heads_(expected) {}
+    double cell() const { return cell_; }
+    void insert(const glm::ivec3& c, uint32_t point, std::vector<uint32_t>& r_next) {
+        uint32_t& head = heads_[pack_cell(c)].first;
+        r_next[point] = head;
+        head = point;
+    }
+    uint32_t head(const glm::ivec3& c) const { return heads_.at(pack_cell(c)).first; }
+
+  private:
+    struct Head {
+        uint32_t first = kNoPoint;
+    };
+    double cell_;
+    CellTable<Head> heads_;
+};
+
 // The points of earlier levels sorted by grid cell, for the spacing test: a cell's points lie
-// side by side, found through an open-addressing hash of the cells.
+// side by side.
 class SortedCells {
   public:
-    SortedCells(std::span<const glm::vec3> points, double cell) : cell_(cell) {
+    SortedCells(std::span<const glm::vec3> points, double cell) : runs_(points.size()) {
         std::vector<std::pair<uint64_t, uint32_t>> keyed(points.size());
-        for (uint32_t i = 0; i < points.size(); ++i) keyed[i] = {pack(cell_of(points[i])), i};
+        for (uint32_t i = 0; i < points.size(); ++i) keyed[i] = {pack_cell(cell_of(points[i], cell)), i};
         std::sort(keyed.begin(), keyed.end());
         points_.reserve(points.size());
-        size_t capacity = 16;
-        while (capacity < points.size() * 2) capacity *= 2;
-        slots_.assign(capacity, Slot{});
         for (size_t i = 0; i < keyed.size();) {
             size_t j = i;
             while (j < keyed.size() && keyed[j].first == keyed[i].first) points_.push_back(points[keyed[j++].second]);
-            Slot& slot = slots_[slot_of(keyed[i].first)];
-            slot = {keyed[i].first, uint32_t(i), uint32_t(j - i)};
+            runs_[keyed[i].first] = {uint32_t(i), uint32_t(j - i)};
             i = j;
         }
     }
-
-    glm::ivec3 cell_of(const glm::vec3& p) const { return glm::ivec3(glm::floor(glm::dvec3(p) / cell_)); }
     // The points in a cell.
     std::span<const glm::vec3> at(const glm::ivec3& c) const {
-        const Slot& slot = slots_[slot_of(pack(c))];
-        return {points_.data() + slot.begin, slot.count};
-    }
-    static uint64_t pack(const glm::ivec3& c) {
-        const auto part = [](int v) { return uint64_t(uint32_t(v) & 0x1fffffu); };
-        return part(c.x) | (part(c.y) << 21) | (part(c.z) << 42);
+        const Run& run = runs_.at(pack_cell(c));
+        return {points_.data() + run.begin, run.count};
     }
 
   private:
-    static constexpr uint64_t kEmpty = ~uint64_t(0);
-    struct Slot {
-        uint64_t key = kEmpty;
+    struct Run {
         uint32_t begin = 0, count = 0;
     };
-    size_t slot_of(uint64_t key) const {
-        const size_t mask = slots_.size() - 1;
-        size_t slot = size_t(mix(key)) & mask;
-        while (slots_[slot].key != kEmpty && slots_[slot].key != key) slot = (slot + 1) & mask;
-        return slot;
-    }
-
-    double cell_;
     std::vector<glm::vec3> points_;
-    std::vector<Slot> slots_;
+    CellTable<Run> runs_;
 };
 
 // Mean weight of the dots asked for when each fades in over `fade` of its threshold: the
@@ -206,7 +202,7 @@ void SurfaceSamples::add_level() {
     const SortedCells earlier(points_, 2.0 * r);
     const size_t level_start = samples_.size();
     CellGrid grid(2.0 * r, expected);
-    std::vector<uint32_t> next(expected, CellGrid::kNone);
+    std::vector<uint32_t> next(expected, kNoPoint);
 
     // Candidates face by face (nearby faces are near in memory too), as many per face as its
     // area asks for, rounded at random.
@@ -239,7 +235,7 @@ void SurfaceSamples::add_level() {
                         break;
                     }
                 }
-                for (uint32_t q = grid.head(at); q != CellGrid::kNone && !near; q = next[q]) {
+                for (uint32_t q = grid.head(at); q != kNoPoint && !near; q = next[q]) {
                     const glm::vec3 d = points_[level_start + q] - p;
                     if (glm::dot(d, d) < r2) near = true;
                 }
@@ -248,7 +244,7 @@ void SurfaceSamples::add_level() {
             const auto index = uint32_t(points_.size() - level_start);
             points_.push_back(p);
             samples_.push_back({face, b1, b2});
-            if (next.size() <= index) next.resize(next.size() * 2, CellGrid::kNone);
+            if (next.size() <= index) next.resize(next.size() * 2, kNoPoint);
             grid.insert(cell, index, next);
         }
     }

@@ -96,16 +96,6 @@ const TorusFrame& torus_frame() {
     return frame;
 }
 
-// Dots of `now` (by sample) also drawn in `before`, as a share of now's.
-double kept_share(const std::vector<core::Dot>& before, const std::vector<core::Dot>& now) {
-    if (now.empty()) return 1.0;
-    size_t i = 0, kept = 0;
-    for (const core::Dot& dot : now) {
-        while (i < before.size() && before[i].sample < dot.sample) ++i;
-        if (i < before.size() && before[i].sample == dot.sample) ++kept;
-    }
-    return double(kept) / double(now.size());
-}
 
 double distance_to_segment(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b, double* r_t) {
     const glm::dvec2 d = b - a;
@@ -228,7 +218,7 @@ TEST(Tone, TurntableKeepsTheSameSurfaceSamples) {
     double least = 1.0, sum = 0.0;
     std::string per_frame;
     for (size_t f = 1; f < frames.size(); ++f) {
-        const double kept = kept_share(frames[f - 1].tone.dots, frames[f].tone.dots);
+        const double kept = test::kept_share(frames[f - 1].tone.dots, frames[f].tone.dots);
         EXPECT_GE(kept, kMinKeptShare) << "frame " << frames[f].lines.frame;
         least = std::min(least, kept);
         sum += kept;

@@ -70,6 +70,16 @@ bool SurfacePixels::interior(int x, int y) const {
     return true;
 }
 
+double kept_share(std::span<const core::Dot> before, std::span<const core::Dot> now) {
+    if (now.empty()) return 1.0;
+    size_t i = 0, kept = 0;
+    for (const core::Dot& dot : now) {
+        while (i < before.size() && before[i].sample < dot.sample) ++i;
+        if (i < before.size() && before[i].sample == dot.sample) ++kept;
+    }
+    return double(kept) / double(now.size());
+}
+
 size_t SurfacePixels::count() const { return size_t(std::count(on_surface.begin(), on_surface.end(), uint8_t(1))); }
 
 SurfacePixels sphere_pixels(const glm::dvec3& centre, double radius, const core::Projection& projection,

@@ -50,6 +50,10 @@ SurfacePixels sphere_pixels(const glm::dvec3& centre, double radius, const core:
 SurfacePixels mesh_pixels(const core::Mesh& mesh, std::span<const glm::dvec3> normals,
                           const core::Projection& projection, const core::Light& light);
 
+// The share of `now`'s dots whose surface sample is also among `before`'s (both ascending by
+// sample, as core::Stippler gives them); 1 without dots now.
+double kept_share(std::span<const core::Dot> before, std::span<const core::Dot> now);
+
 // Ink coverage against the tone asked for in one band of N.L.
 struct ToneBand {
     double lo = 0.0, hi = 0.0;  // N.L in [lo, hi)
