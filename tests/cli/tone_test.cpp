@@ -162,6 +162,24 @@ TEST_F(Tone, TorusSampleWithCrosshatchWritesHatchesToSvgJsonAndPng) {
     EXPECT_LT(text.find("<g id=\"tone\""), text.find("<g id=\"silhouette\""));
 }
 
+// A chunk of a sequence draws the same tone as the whole run: the samples and the hatch planes
+// depend on the mesh and the seed alone, and the chunk replays the frames before it.
+TEST_F(Tone, ChunkDrawsWhatTheWholeRunDraws) {
+    const std::string scene = std::string(INKLINE_SAMPLES) + "/torus/scene.json";
+    for (const char* mode : {"stipple", "crosshatch"}) {
+        const std::string whole = (dir / (std::string("whole-") + mode)).string();
+        const std::string chunk = (dir / (std::string("chunk-") + mode)).string();
+        const std::string common = " --frames 1:6 --size 256x256 -q --tone " + std::string(mode);
+        ASSERT_EQ(test::run_inkline("render " + scene + common + " -o " + whole).code, 0);
+        ASSERT_EQ(test::run_inkline("render " + scene + common + " -o " + chunk + " --chunk 2/2").code, 0);
+        for (const char* frame : {"frame_0004", "frame_0005", "frame_0006"}) {
+            const std::string a = test::read_text(fs::path(whole) / "svg" / (std::string(frame) + ".svg"));
+            EXPECT_NE(a.find("<g id=\"tone\""), std::string::npos);
+            EXPECT_EQ(a, test::read_text(fs::path(chunk) / "svg" / (std::string(frame) + ".svg"))) << mode << " " << frame;
+        }
+    }
+}
+
 TEST_F(Tone, SceneToneBlockSetsTheLayersColourAndOpacity) {
     const fs::path scene = cube_scene("scene.json", R"(, "tone": {"color": "#336699", "opacity": 0.5, "max": 0.6})");
     ASSERT_EQ(render(scene, "f", "").code, 0);
