@@ -267,7 +267,7 @@ void SurfaceSamples::add_level() {
 std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
                                    const Projection& projection, const Light& light, const Occlusion& occlusion,
                                    std::span<const Stroke> strokes, bool topology_changed,
-                                  std::span<const uint8_t> shaded_faces) {
+                                   std::span<const uint8_t> shaded_faces) {
     stats_ = {};
     if (options_.mode != ToneMode::kStipple || mesh.triangles.empty()) return {};
     if (!samples_ || topology_changed || samples_->faces() != mesh.triangles.size()) samples_.emplace(mesh, options_.seed);
@@ -305,13 +305,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         return tone_of(glm::dot(normal, glm::normalize(to_light)), options_);
     };
 
-    // Per face, the most samples any point of it can ask for: the darkest tone of its corners
-    // (the interpolated normal's light is never below its corners' least) at the largest area
-    // scale of its corners (with a margin for the variation across a face under perspective).
-    // Zero for faces turned away, behind the camera or outside the image.
-    constexpr double kScaleMargin = 1.1;
-    // Per vertex first, once each: its clip coordinates and its tone (the darkest without a
-    // normal).
+    // Per vertex, once each: its clip coordinates and its tone (the darkest without a normal).
     const double darkest = std::max(options_.min, options_.max);
     std::vector<glm::dvec4> vertex_clip(mesh.positions.size());
     std::vector<double> vertex_tone(mesh.positions.size());
@@ -323,6 +317,11 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             vertex_tone[v] = glm::dot(normal, normal) == 0.0 ? darkest : tone_at(p, normal, normal);
         }
     });
+    // Per face, the most samples any point of it can ask for: the darkest tone of its corners
+    // (the interpolated normal's light is never below its corners' least) at the largest area
+    // scale of its corners (with a margin for the variation across a face under perspective).
+    // Zero for faces turned away, behind the camera or outside the image.
+    constexpr double kScaleMargin = 1.1;
     std::vector<double> face_limit(mesh.triangles.size(), 0.0);
     const double area = samples_->area();
     internal::parallel_for(mesh.triangles.size(), 8192, [&](size_t begin, size_t end) {
@@ -415,8 +414,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     for (const auto& [sample, d] : order) dots.push_back(*d);
     stats_.wanted = dots.size();
 
-    // None under a visible line's ink.
-    // Next to the ink a dot shrinks to keep clear of it; one that would shrink below
+    // None on a visible line's ink. Next to the ink a dot shrinks to keep clear of it; one that would shrink below
     // kLeastInkRadius of a full dot is left out. Both follow the full radius, whatever the dot
     // has grown to: a darker tone then draws every dot a lighter one draws.
     const internal::InkGrid ink(strokes, image, radius + kInkClearancePx);

@@ -106,8 +106,8 @@ class Stippler {
     // (vertex_normals). A new topology (topology_changed) rebuilds the samples. With shaded_faces,
     // only faces marked 1 there get dots (the others still hide them); empty: every face.
     std::vector<Dot> stipple(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
-                      const Projection& projection, const Light& light, const Occlusion& occlusion,
-                      std::span<const Stroke> strokes, bool topology_changed,
+                             const Projection& projection, const Light& light, const Occlusion& occlusion,
+                             std::span<const Stroke> strokes, bool topology_changed,
                              std::span<const uint8_t> shaded_faces = {});
 
     const ToneOptions& options() const { return options_; }
