@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "core/tone/hatch.h"
 
+#include "core/internal/parallel.h"
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
 
@@ -11,7 +12,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
+#include <numeric>
 
 namespace inkline::core {
 namespace {
@@ -70,14 +71,30 @@ uint32_t edge_between(const EdgeTable& table, uint32_t a, uint32_t b) {
     return std::numeric_limits<uint32_t>::max();
 }
 
-struct LinePoint {
-    uint32_t edge = 0;
+// The ink of a thin line: each point offset across it by half its width, along the normal of
+// its neighbours' chord, out on one side and back on the other, ends cut square. Folds at sharp
+// turns overlap themselves, which the nonzero rule fills.
+Ring ribbon(std::span<const glm::dvec2> points, std::span<const double> width) {
+    const size_t n = points.size();
+    Ring out(2 * n);
+    for (size_t i = 0; i < n; ++i) {
+        glm::dvec2 chord = points[std::min(i + 1, n - 1)] - points[i > 0 ? i - 1 : 0];
+        const double length = glm::length(chord);
+        chord = length > 0.0 ? chord / length : glm::dvec2(1.0, 0.0);
+        const glm::dvec2 across = 0.5 * width[i] * glm::dvec2(-chord.y, chord.x);
+        out[i] = points[i] + across;
+        out[2 * n - 1 - i] = points[i] - across;
+    }
+    return out;
+}
+
+// A hatch line's segment across one face.
+struct FaceLine {
+    uint32_t face = 0;
     uint64_t plane = 0;
-    glm::dvec3 p_object{0.0};
-    double width = 0.0;
-    uint32_t segments[2] = {kNone, kNone};
-    uint32_t degree = 0;
-    static constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+    uint32_t sides[2] = {0, 0};  // the mesh edges it crosses
+    glm::dvec3 points[2];        // where, object space
+    double width[2] = {0.0, 0.0};  // its width there, px, by this face's gradient
 };
 
 }  // namespace
@@ -130,52 +147,54 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
         return tone_of(glm::dot(normal, glm::normalize(to_light)), options_);
     };
 
+    // Per vertex, once a frame: the tone (0 without a normal) and the clip coordinates.
+    std::vector<double> vertex_tone(mesh.positions.size());
+    std::vector<glm::dvec4> vertex_clip(mesh.positions.size());
+    internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
+        for (size_t v = begin; v < end; ++v) {
+            const glm::dvec3 p(mesh.positions[v]);
+            vertex_tone[v] = tone_at(p, normals[v]);
+            vertex_clip[v] = projection.clip(p);
+        }
+    });
+
     const internal::InkGrid ink(strokes, image, width);
+    const size_t faces = mesh.triangles.size();
     for (uint32_t f = 0; f < families_.size(); ++f) {
         const Family& family = families_[f];
         const double finest_step = family.step0 / kFinestSteps;
-        std::vector<LinePoint> points;
-        std::unordered_map<uint64_t, uint32_t> point_at;  // plane << 32 | edge -> index in points
-        struct Segment {
-            uint32_t a, b;
-        };
-        std::vector<Segment> segments;
 
-        for (uint32_t face = 0; face < mesh.triangles.size(); ++face) {
-            if (!table.face_valid[face] || (!shaded_faces.empty() && !shaded_faces[face])) continue;
+        // The lines across one face, appended to r_lines in plane order.
+        const auto trace_face = [&](uint32_t face, std::vector<FaceLine>& r_lines) {
             const glm::uvec3 t = mesh.triangles[face];
             const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
                                      glm::dvec3(mesh.positions[t.z])};
-            if (glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), eye - p[0]) <= 0.0) continue;  // back-facing
+            if (glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), eye - p[0]) <= 0.0) return;  // back-facing
             const double h[3] = {family.h[t.x], family.h[t.y], family.h[t.z]};
             const double h_lo = std::min({h[0], h[1], h[2]}), h_hi = std::max({h[0], h[1], h[2]});
-            if (!(h_hi > h_lo)) continue;
+            if (!(h_hi > h_lo)) return;
             glm::dvec2 q[3];
-            bool in_front = true;
             for (int c = 0; c < 3; ++c) {
-                const glm::dvec4 clip = projection.clip(p[c]);
-                in_front = in_front && projection.in_front(clip);
-                if (in_front) q[c] = projection.pixel_from_clip(clip);
+                if (!projection.in_front(vertex_clip[t[c]])) return;
+                q[c] = projection.pixel_from_clip(vertex_clip[t[c]]);
             }
-            if (!in_front) continue;
             const glm::dvec2 box_lo = glm::min(q[0], glm::min(q[1], q[2]));
             const glm::dvec2 box_hi = glm::max(q[0], glm::max(q[1], q[2]));
-            if (box_hi.x < 0.0 || box_hi.y < 0.0 || box_lo.x > image.width || box_lo.y > image.height) continue;
+            if (box_hi.x < 0.0 || box_hi.y < 0.0 || box_lo.x > image.width || box_lo.y > image.height) return;
 
             // h's gradient on screen, in h per pixel: the lines of level 0 lie step0 / |g| px apart.
             const glm::dvec2 a = q[1] - q[0], b = q[2] - q[0];
             const double det = a.x * b.y - a.y * b.x;
-            if (std::abs(det) < 1e-12) continue;
+            if (std::abs(det) < 1e-12) return;
             const glm::dvec2 g = ((h[1] - h[0]) * glm::dvec2(b.y, -b.x) - (h[2] - h[0]) * glm::dvec2(a.y, -a.x)) / det;
             const double gradient = glm::length(g);
 
             int finest = -1;
             for (int c = 0; c < 3; ++c) {
-                const double tone = family_tone(tone_at(p[c], normals[t[c]]), f, options_);
-                finest = std::max(finest, finest_level(tone, family.step0, gradient, width));
+                finest = std::max(finest, finest_level(family_tone(vertex_tone[t[c]], f, options_), family.step0,
+                                                       gradient, width));
             }
-            if (finest < 0) continue;
-            ++stats_.faces;
+            if (finest < 0) return;
             // Planes of levels up to `finest` with h_lo < c <= h_hi (a corner on a plane counts
             // as above it, so each line crosses exactly two sides).
             uint64_t step = uint64_t(1) << (kFinest - finest);
@@ -190,134 +209,189 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             }
             for (uint64_t plane = first_plane; plane <= last_plane; plane += step) {
                 const double c = family.first + double(plane) * finest_step;
-                uint32_t ends[2];
+                FaceLine line;
+                line.face = face;
+                line.plane = plane;
                 int found = 0;
                 for (int k = 0; k < 3 && found < 2; ++k) {
                     const int l = (k + 1) % 3;
                     if ((h[k] >= c) == (h[l] >= c)) continue;
                     const uint32_t edge = edge_between(table, t[k], t[l]);
                     if (edge == std::numeric_limits<uint32_t>::max()) break;
-                    const uint64_t key = (plane << 32) | edge;
-                    auto [it, inserted] = point_at.try_emplace(key, uint32_t(points.size()));
-                    if (inserted) {
-                        const double s = (c - h[k]) / (h[l] - h[k]);
-                        LinePoint point;
-                        point.edge = edge;
-                        point.plane = plane;
-                        point.p_object = p[k] + s * (p[l] - p[k]);
-                        const glm::dvec3 normal = normals[t[k]] + s * (normals[t[l]] - normals[t[k]]);
-                        const double tone = family_tone(tone_at(point.p_object, normal), f, options_);
-                        point.width = width * line_weight(level_of(plane), tone, family.step0, gradient, width);
-                        points.push_back(point);
-                    }
-                    ends[found++] = it->second;
+                    // From the side's own first vertex: both of its faces compute the same point.
+                    const glm::uvec2 ends = table.edge_vertices[edge];
+                    const double h0 = family.h[ends.x], h1 = family.h[ends.y];
+                    const double along = (c - h0) / (h1 - h0);
+                    const glm::dvec3 e0(mesh.positions[ends.x]), e1(mesh.positions[ends.y]);
+                    line.sides[found] = edge;
+                    line.points[found] = e0 + along * (e1 - e0);
+                    const glm::dvec3 normal = normals[ends.x] + along * (normals[ends.y] - normals[ends.x]);
+                    const double tone = family_tone(tone_at(line.points[found], normal), f, options_);
+                    line.width[found] = width * line_weight(level_of(plane), tone, family.step0, gradient, width);
+                    ++found;
                 }
-                if (found != 2) continue;
-                const auto seg = uint32_t(segments.size());
-                segments.push_back({ends[0], ends[1]});
-                for (uint32_t e : ends) {
-                    LinePoint& lp = points[e];
-                    if (lp.degree < 2) lp.segments[lp.degree] = seg;
-                    ++lp.degree;
-                }
+                if (found == 2) r_lines.push_back(line);
             }
-        }
-        stats_.segments += segments.size();
-
-        // Which points are drawn: in the image, faded in, off the strokes' ink, not hidden.
-        std::vector<uint8_t> drawn(points.size(), 0);
-        std::vector<glm::dvec2> px(points.size());
-        std::vector<OcclusionQuery> queries;
-        std::vector<uint32_t> queried;
-        for (uint32_t i = 0; i < points.size(); ++i) {
-            const LinePoint& lp = points[i];
-            px[i] = projection.pixel(lp.p_object);
-            if (lp.width < kMinWeight * width || !projection.inside_image(px[i])) continue;
-            if (ink.touches(px[i], 0.5 * lp.width)) {
-                ++stats_.inked;
-                continue;
-            }
-            queries.push_back({.p_object = lp.p_object, .edge = lp.edge});
-            queried.push_back(i);
-        }
-        std::vector<uint8_t> occluded(queries.size(), 0);
-        if (!queries.empty()) occlusion.occluded(eye, queries, occluded);
-        stats_.points += queries.size();
-        for (size_t k = 0; k < queried.size(); ++k) {
-            if (occluded[k]) {
-                ++stats_.occluded;
-            } else {
-                drawn[queried[k]] = 1;
-            }
-        }
-
-        // Chain the segments through their shared points, then cut the chains where points are
-        // not drawn. A point on three or more faces' lines (a non-manifold edge) ends a chain.
-        std::vector<uint8_t> used(segments.size(), 0);
-        const auto walk = [&](uint32_t start_point, uint32_t start_segment) {
-            std::vector<uint32_t> chain{start_point};
-            uint32_t point = start_point, seg = start_segment;
-            while (seg != LinePoint::kNone && !used[seg]) {
-                used[seg] = 1;
-                const uint32_t next = segments[seg].a == point ? segments[seg].b : segments[seg].a;
-                chain.push_back(next);
-                point = next;
-                const LinePoint& lp = points[point];
-                if (lp.degree != 2) break;
-                seg = lp.segments[0] == seg ? lp.segments[1] : lp.segments[0];
-            }
-            return chain;
         };
-        const auto emit = [&](const std::vector<uint32_t>& chain) {
-            size_t i = 0;
-            while (i < chain.size()) {
-                while (i < chain.size() && !drawn[chain[i]]) ++i;
+
+        // Every face's lines, in parallel slices of faces joined in face order: per line its
+        // plane and the two sides it crosses, where (the same point from both faces of a side:
+        // computed from the side's own vertex order) and how wide (this face's gradient).
+        std::vector<FaceLine> lines;
+        std::vector<uint32_t> line_offsets(faces + 1, 0);
+        {
+            const size_t slices = faces >= 4096 ? std::min<size_t>(internal::hardware_threads(), 8) : 1;
+            std::vector<std::vector<FaceLine>> found(slices);
+            std::vector<HatchStats> slice_stats(slices);
+            internal::run_tasks(slices, [&](size_t s) {
+                for (size_t face = faces * s / slices; face < faces * (s + 1) / slices; ++face) {
+                    if (!table.face_valid[face] || (!shaded_faces.empty() && !shaded_faces[face])) continue;
+                    const size_t before = found[s].size();
+                    trace_face(uint32_t(face), found[s]);
+                    line_offsets[face + 1] = uint32_t(found[s].size() - before);
+                    if (found[s].size() > before) ++slice_stats[s].faces;
+                }
+            });
+            for (const HatchStats& st : slice_stats) stats_.faces += st.faces;
+            for (size_t face = 0; face < faces; ++face) line_offsets[face + 1] += line_offsets[face];
+            lines.reserve(line_offsets[faces]);
+            for (std::vector<FaceLine>& part : found) lines.insert(lines.end(), part.begin(), part.end());
+        }
+        stats_.segments += lines.size();
+
+        // The line on the other face of `side` of line l, on the same plane; -1 where there is
+        // none (a boundary, a non-manifold side, a face with no line there).
+        const auto across = [&](uint32_t l, int side) -> int64_t {
+            const FaceLine& line = lines[l];
+            const std::span<const uint32_t> around = table.faces_of(line.sides[side]);
+            if (around.size() != 2) return -1;
+            const uint32_t other = around[0] == line.face ? around[1] : around[0];
+            for (uint32_t k = line_offsets[other]; k < line_offsets[other + 1]; ++k) {
+                if (lines[k].plane == line.plane) return k;
+            }
+            return -1;
+        };
+
+        // Chains of lines through their shared sides, then cut where points are not drawn.
+        std::vector<uint8_t> used(lines.size(), 0);
+        struct ChainPoint {
+            uint32_t edge;
+            glm::dvec3 p_object;
+            double width;
+        };
+        std::vector<ChainPoint> chain;
+        std::vector<OcclusionQuery> queries;
+        for (uint32_t start = 0; start < lines.size(); ++start) {
+            if (used[start]) continue;
+            used[start] = 1;
+            // Back through side 0 as far as it goes (or round to the start: a loop).
+            std::vector<std::pair<uint32_t, int>> back;  // line, the side it was entered by
+            bool loop = false;
+            for (int64_t l = start, side = 0;;) {
+                const int64_t next = across(uint32_t(l), int(side));
+                if (next < 0) break;
+                if (next == start) {
+                    loop = true;
+                    break;
+                }
+                if (used[next]) break;
+                used[next] = 1;
+                const int entered = lines[next].sides[0] == lines[l].sides[side] ? 0 : 1;
+                back.emplace_back(uint32_t(next), entered);
+                l = next;
+                side = 1 - entered;
+            }
+            // The chain's lines in order, each with the side it leaves by.
+            std::vector<std::pair<uint32_t, int>> order;
+            for (auto it = back.rbegin(); it != back.rend(); ++it) order.emplace_back(it->first, it->second);
+            order.emplace_back(start, 1);
+            if (!loop) {
+                for (int64_t l = start, side = 1;;) {
+                    const int64_t next = across(uint32_t(l), int(side));
+                    if (next < 0 || used[next]) break;
+                    used[next] = 1;
+                    const int entered = lines[next].sides[0] == lines[l].sides[side] ? 0 : 1;
+                    order.emplace_back(uint32_t(next), 1 - entered);
+                    l = next;
+                    side = 1 - entered;
+                }
+            }
+            // Its points: the first line's far side, then each side it crosses (the thinner
+            // width of its two faces).
+            chain.clear();
+            const auto point_of = [&](uint32_t l, int side) {
+                return ChainPoint{lines[l].sides[side], lines[l].points[side], lines[l].width[side]};
+            };
+            if (!loop) chain.push_back(point_of(order.front().first, 1 - order.front().second));
+            for (size_t k = 0; k < order.size(); ++k) {
+                ChainPoint p = point_of(order[k].first, order[k].second);
+                const size_t next = k + 1 < order.size() ? k + 1 : (loop ? 0 : order.size());
+                if (next < order.size()) {
+                    const FaceLine& n = lines[order[next].first];
+                    p.width = std::min(p.width, n.width[n.sides[0] == p.edge ? 0 : 1]);
+                }
+                if (next < order.size() || !loop) chain.push_back(p);
+            }
+
+            // Which points are drawn: in the image, faded in, off the strokes' ink, not hidden.
+            std::vector<glm::dvec2> px(chain.size());
+            std::vector<uint8_t> drawn(chain.size(), 0);
+            queries.clear();
+            std::vector<uint32_t> queried;
+            for (uint32_t i = 0; i < chain.size(); ++i) {
+                const ChainPoint& cp = chain[i];
+                px[i] = projection.pixel(cp.p_object);
+                if (cp.width < kMinWeight * width || !projection.inside_image(px[i])) continue;
+                if (ink.touches(px[i], 0.5 * cp.width)) {
+                    ++stats_.inked;
+                    continue;
+                }
+                queries.push_back({.p_object = cp.p_object, .edge = cp.edge});
+                queried.push_back(i);
+            }
+            std::vector<uint8_t> occluded(queries.size(), 0);
+            if (!queries.empty()) occlusion.occluded(eye, queries, occluded);
+            stats_.points += queries.size();
+            for (size_t k = 0; k < queried.size(); ++k) {
+                if (occluded[k]) {
+                    ++stats_.occluded;
+                } else {
+                    drawn[queried[k]] = 1;
+                }
+            }
+            // A loop drawn all round is closed where it began; else it starts at a point not
+            // drawn, so that its drawn runs are whole.
+            std::vector<uint32_t> at(chain.size());
+            std::iota(at.begin(), at.end(), 0u);
+            if (loop) {
+                const auto gap = std::find(drawn.begin(), drawn.end(), 0);
+                if (gap == drawn.end()) {
+                    at.push_back(0);
+                } else {
+                    std::rotate(at.begin(), at.begin() + (gap - drawn.begin()), at.end());
+                }
+            }
+            for (size_t i = 0; i < at.size();) {
+                while (i < at.size() && !drawn[at[i]]) ++i;
                 size_t j = i;
-                while (j < chain.size() && drawn[chain[j]]) ++j;
+                while (j < at.size() && drawn[at[j]]) ++j;
                 if (j - i >= 2) {
                     Hatch hatch;
                     hatch.family = f;
-                    hatch.plane = points[chain[i]].plane;
+                    hatch.plane = lines[start].plane;
                     hatch.level = level_of(hatch.plane);
                     for (size_t k = i; k < j; ++k) {
-                        const LinePoint& lp = points[chain[k]];
-                        hatch.points_px.push_back(px[chain[k]]);
-                        hatch.points_world.emplace_back(world_from_object * glm::dvec4(lp.p_object, 1.0));
-                        hatch.edges.push_back(lp.edge);
-                        hatch.width_px.push_back(lp.width);
+                        const ChainPoint& cp = chain[at[k]];
+                        hatch.points_px.push_back(px[at[k]]);
+                        hatch.points_world.emplace_back(world_from_object * glm::dvec4(cp.p_object, 1.0));
+                        hatch.edges.push_back(cp.edge);
+                        hatch.width_px.push_back(cp.width);
                     }
-                    hatch.outline = build_outline(hatch.points_px, hatch.width_px, false,
-                                                  {.simplify_px = 0.05, .cap = LineCap::kButt});
+                    hatch.outline = {ribbon(hatch.points_px, hatch.width_px)};
                     out.push_back(std::move(hatch));
                 }
                 i = j;
             }
-        };
-        // Open chains from their ends first, then the loops that remain.
-        for (uint32_t i = 0; i < points.size(); ++i) {
-            if (points[i].degree == 1 && !used[points[i].segments[0]]) emit(walk(i, points[i].segments[0]));
-        }
-        for (uint32_t i = 0; i < points.size(); ++i) {
-            for (int k = 0; k < 2 && k < int(points[i].degree); ++k) {
-                const uint32_t seg = points[i].segments[k];
-                if (used[seg]) continue;
-                std::vector<uint32_t> chain = walk(i, seg);
-                // A loop: start it at a point that is not drawn, so that its drawn runs are whole.
-                if (chain.size() > 2 && chain.front() == chain.back()) {
-                    chain.pop_back();
-                    const auto gap = std::find_if(chain.begin(), chain.end(), [&](uint32_t q) { return !drawn[q]; });
-                    if (gap == chain.end()) {
-                        chain.push_back(chain.front());  // drawn all round: closed where it began
-                    } else {
-                        std::rotate(chain.begin(), gap, chain.end());
-                    }
-                }
-                emit(chain);
-            }
-        }
-        // Segments at points shared by three or more (not listed there): each on its own.
-        for (uint32_t seg = 0; seg < segments.size(); ++seg) {
-            if (!used[seg]) emit({segments[seg].a, segments[seg].b});
         }
     }
     return out;

@@ -42,7 +42,7 @@ struct Hatch {
     std::vector<glm::dvec3> points_world;
     std::vector<uint32_t> edges;           // the mesh edge of each point
     std::vector<double> width_px;          // its width at each point (faded in: less than line_width_px)
-    std::vector<Ring> outline;             // the ink: one ring, filled (nonzero)
+    std::vector<Ring> outline;             // the ink: one ring, filled (nonzero), ends cut square
 };
 
 struct HatchStats {

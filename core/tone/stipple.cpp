@@ -5,6 +5,7 @@
 #include "core/random.h"
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
+#include "core/tone/internal/key_table.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -33,56 +34,12 @@ constexpr double kForeshortening = 0.5;
 constexpr double kInkClearancePx = 0.25;
 constexpr double kLeastInkRadius = 0.35;
 
-// A 64-bit mixer (the finaliser of MurmurHash3): every bit of a packed cell reaches the low bits
-// that pick a hash slot.
-uint64_t mix(uint64_t x) {
-    x ^= x >> 33;
-    x *= 0xff51afd7ed558ccdull;
-    x ^= x >> 33;
-    x *= 0xc4ceb9fe1a85ec53ull;
-    return x ^ (x >> 33);
-}
-
 // A grid cell, 21 bits an axis.
 uint64_t pack_cell(const glm::ivec3& c) {
     const auto part = [](int v) { return uint64_t(uint32_t(v) & 0x1fffffu); };
     return part(c.x) | (part(c.y) << 21) | (part(c.z) << 42);
 }
 glm::ivec3 cell_of(const glm::vec3& p, double cell) { return glm::ivec3(glm::floor(glm::dvec3(p) / cell)); }
-
-// Open-addressing hash from packed cells to a Value (default-constructed until set). A slot holds
-// its key and value together: one cache line per probe. Never more than half full.
-template <typename Value>
-class CellTable {
-  public:
-    explicit CellTable(size_t expected) {
-        size_t capacity = 16;
-        while (capacity < expected * 2) capacity *= 2;
-        slots_.assign(capacity, Slot{});
-    }
-    // The value of a cell, made when absent.
-    Value& operator[](uint64_t key) {
-        Slot& slot = slots_[slot_of(key)];
-        slot.key = key;
-        return slot.value;
-    }
-    // The value of a cell; Value{} when absent.
-    const Value& at(uint64_t key) const { return slots_[slot_of(key)].value; }
-
-  private:
-    static constexpr uint64_t kEmpty = ~uint64_t(0);
-    struct Slot {
-        uint64_t key = kEmpty;
-        Value value{};
-    };
-    size_t slot_of(uint64_t key) const {
-        const size_t mask = slots_.size() - 1;
-        size_t slot = size_t(mix(key)) & mask;
-        while (slots_[slot].key != kEmpty && slots_[slot].key != key) slot = (slot + 1) & mask;
-        return slot;
-    }
-    std::vector<Slot> slots_;
-};
 
 constexpr uint32_t kNoPoint = 0xffffffffu;
 
@@ -97,14 +54,17 @@ class CellGrid {
         r_next[point] = head;
         head = point;
     }
-    uint32_t head(const glm::ivec3& c) const { return heads_.at(pack_cell(c)).first; }
+    uint32_t head(const glm::ivec3& c) const {
+        const Head* head = heads_.find(pack_cell(c));
+        return head ? head->first : kNoPoint;
+    }
 
   private:
     struct Head {
         uint32_t first = kNoPoint;
     };
     double cell_;
-    CellTable<Head> heads_;
+    internal::KeyTable<Head> heads_;
 };
 
 // The points of earlier levels sorted by grid cell, for the spacing test: a cell's points lie
@@ -125,8 +85,9 @@ class SortedCells {
     }
     // The points in a cell.
     std::span<const glm::vec3> at(const glm::ivec3& c) const {
-        const Run& run = runs_.at(pack_cell(c));
-        return {points_.data() + run.begin, run.count};
+        const Run* run = runs_.find(pack_cell(c));
+        if (!run) return {};
+        return {points_.data() + run->begin, run->count};
     }
 
   private:
@@ -134,7 +95,7 @@ class SortedCells {
         uint32_t begin = 0, count = 0;
     };
     std::vector<glm::vec3> points_;
-    CellTable<Run> runs_;
+    internal::KeyTable<Run> runs_;
 };
 
 // Mean weight of the dots asked for when each fades in over `fade` of its threshold: the
