@@ -279,7 +279,13 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             glm::dvec3 p_object;
             double width;
         };
-        std::vector<ChainPoint> chain;
+        struct Run {  // a chain: its plane, whether it closes, its points
+            uint64_t plane;
+            bool loop;
+            uint32_t first, count;  // its points in `points`
+        };
+        std::vector<Run> chains;
+        std::vector<ChainPoint> points, chain;
         std::vector<OcclusionQuery> queries;
         for (uint32_t start = 0; start < lines.size(); ++start) {
             if (used[start]) continue;
@@ -333,42 +339,49 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                 if (next < order.size() || !loop) chain.push_back(p);
             }
 
-            // Which points are drawn: in the image, faded in, off the strokes' ink, not hidden.
-            std::vector<glm::dvec2> px(chain.size());
-            std::vector<uint8_t> drawn(chain.size(), 0);
-            queries.clear();
-            std::vector<uint32_t> queried;
-            for (uint32_t i = 0; i < chain.size(); ++i) {
-                const ChainPoint& cp = chain[i];
-                px[i] = projection.pixel(cp.p_object);
-                if (cp.width < kMinWeight * width || !projection.inside_image(px[i])) continue;
-                if (ink.touches(px[i], 0.5 * cp.width)) {
-                    ++stats_.inked;
-                    continue;
-                }
-                queries.push_back({.p_object = cp.p_object, .edge = cp.edge});
-                queried.push_back(i);
+            chains.push_back({lines[start].plane, loop, uint32_t(points.size()), uint32_t(chain.size())});
+            points.insert(points.end(), chain.begin(), chain.end());
+        }
+
+        // Which points are drawn: in the image, faded in, off the strokes' ink, not hidden (one
+        // batch of occlusion queries for the whole family).
+        std::vector<glm::dvec2> px(points.size());
+        std::vector<uint8_t> drawn(points.size(), 0);
+        queries.clear();
+        std::vector<uint32_t> queried;
+        for (uint32_t i = 0; i < points.size(); ++i) {
+            const ChainPoint& cp = points[i];
+            px[i] = projection.pixel(cp.p_object);
+            if (cp.width < kMinWeight * width || !projection.inside_image(px[i])) continue;
+            if (ink.touches(px[i], 0.5 * cp.width)) {
+                ++stats_.inked;
+                continue;
             }
-            std::vector<uint8_t> occluded(queries.size(), 0);
-            if (!queries.empty()) occlusion.occluded(eye, queries, occluded);
-            stats_.points += queries.size();
-            for (size_t k = 0; k < queried.size(); ++k) {
-                if (occluded[k]) {
-                    ++stats_.occluded;
-                } else {
-                    drawn[queried[k]] = 1;
-                }
+            queries.push_back({.p_object = cp.p_object, .edge = cp.edge});
+            queried.push_back(i);
+        }
+        std::vector<uint8_t> occluded(queries.size(), 0);
+        if (!queries.empty()) occlusion.occluded(eye, queries, occluded);
+        stats_.points += queries.size();
+        for (size_t k = 0; k < queried.size(); ++k) {
+            if (occluded[k]) {
+                ++stats_.occluded;
+            } else {
+                drawn[queried[k]] = 1;
             }
-            // A loop drawn all round is closed where it began; else it starts at a point not
-            // drawn, so that its drawn runs are whole.
-            std::vector<uint32_t> at(chain.size());
-            std::iota(at.begin(), at.end(), 0u);
-            if (loop) {
-                const auto gap = std::find(drawn.begin(), drawn.end(), 0);
-                if (gap == drawn.end()) {
-                    at.push_back(0);
+        }
+
+        // Each chain's drawn runs. A loop drawn all round is closed where it began; else it
+        // starts at a point not drawn, so that its drawn runs are whole.
+        for (const Run& c : chains) {
+            std::vector<uint32_t> at(c.count);
+            std::iota(at.begin(), at.end(), c.first);
+            if (c.loop) {
+                const auto gap = std::find_if(at.begin(), at.end(), [&](uint32_t i) { return !drawn[i]; });
+                if (gap == at.end()) {
+                    at.push_back(c.first);
                 } else {
-                    std::rotate(at.begin(), at.begin() + (gap - drawn.begin()), at.end());
+                    std::rotate(at.begin(), gap, at.end());
                 }
             }
             for (size_t i = 0; i < at.size();) {
@@ -378,10 +391,10 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                 if (j - i >= 2) {
                     Hatch hatch;
                     hatch.family = f;
-                    hatch.plane = lines[start].plane;
+                    hatch.plane = c.plane;
                     hatch.level = level_of(hatch.plane);
                     for (size_t k = i; k < j; ++k) {
-                        const ChainPoint& cp = chain[at[k]];
+                        const ChainPoint& cp = points[at[k]];
                         hatch.points_px.push_back(px[at[k]]);
                         hatch.points_world.emplace_back(world_from_object * glm::dvec4(cp.p_object, 1.0));
                         hatch.edges.push_back(cp.edge);
