@@ -148,8 +148,10 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
     };
 
     // Per vertex, once a frame: the tone (0 without a normal) and the clip coordinates.
-    std::vector<double> vertex_tone(mesh.positions.size());
-    std::vector<glm::dvec4> vertex_clip(mesh.positions.size());
+    std::vector<double>& vertex_tone = vertex_tone_;
+    std::vector<glm::dvec4>& vertex_clip = vertex_clip_;
+    vertex_tone.resize(mesh.positions.size());
+    vertex_clip.resize(mesh.positions.size());
     internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
         for (size_t v = begin; v < end; ++v) {
             const glm::dvec3 p(mesh.positions[v]);

@@ -21,6 +21,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <array>
 #include <cstdint>
@@ -77,6 +78,9 @@ class Hatcher {
     std::vector<Family> families_;
     size_t faces_ = 0;
     HatchStats stats_;
+    // A frame's scratch, kept for the next: per vertex its tone and clip coordinates.
+    std::vector<double> vertex_tone_;
+    std::vector<glm::dvec4> vertex_clip_;
 };
 
 }  // namespace inkline::core

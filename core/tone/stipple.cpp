@@ -268,8 +268,11 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
 
     // Per vertex, once each: its clip coordinates and its tone (the darkest without a normal).
     const double darkest = std::max(options_.min, options_.max);
-    std::vector<glm::dvec4> vertex_clip(mesh.positions.size());
-    std::vector<double> vertex_tone(mesh.positions.size());
+    // (Kept from frame to frame: a new buffer's pages cost more than filling it.)
+    std::vector<glm::dvec4>& vertex_clip = vertex_clip_;
+    std::vector<double>& vertex_tone = vertex_tone_;
+    vertex_clip.resize(mesh.positions.size());
+    vertex_tone.resize(mesh.positions.size());
     internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
         for (size_t v = begin; v < end; ++v) {
             const glm::dvec3 p(mesh.positions[v]);
@@ -283,7 +286,8 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     // scale of its corners (with a margin for the variation across a face under perspective).
     // Zero for faces turned away, behind the camera or outside the image.
     constexpr double kScaleMargin = 1.1;
-    std::vector<double> face_limit(mesh.triangles.size(), 0.0);
+    std::vector<double>& face_limit = face_limit_;
+    face_limit.assign(mesh.triangles.size(), 0.0);
     const double area = samples_->area();
     internal::parallel_for(mesh.triangles.size(), 8192, [&](size_t begin, size_t end) {
         for (size_t f = begin; f < end; ++f) {

@@ -19,6 +19,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -118,6 +119,11 @@ class Stippler {
     ToneOptions options_;
     std::optional<SurfaceSamples> samples_;
     StippleStats stats_;
+    // A frame's scratch, kept for the next: per vertex its clip coordinates and tone, per face
+    // the most samples it can ask for.
+    std::vector<glm::dvec4> vertex_clip_;
+    std::vector<double> vertex_tone_;
+    std::vector<double> face_limit_;
 };
 
 }  // namespace inkline::core
