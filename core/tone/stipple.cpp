@@ -41,6 +41,40 @@ uint64_t pack_cell(const glm::ivec3& c) {
 }
 glm::ivec3 cell_of(const glm::vec3& p, double cell) { return glm::ivec3(glm::floor(glm::dvec3(p) / cell)); }
 
+// Grid cells in blocks of 8 x 8 x 8: a hash of the blocks (a surface meets few, so it stays in
+// cache) and each block's cells side by side, so that a cell's neighbours are near in memory
+// too. A cell's value is Value{} until set.
+template <typename Value>
+class BlockedCells {
+  public:
+    explicit BlockedCells(size_t expected_cells) : blocks_(expected_cells / 32 + 16) {}
+
+    Value& operator[](const glm::ivec3& c) {
+        uint32_t& block = blocks_[pack_cell(c >> kShift)];
+        if (block == 0) {
+            values_.resize(values_.size() + kCells);
+            block = uint32_t(values_.size() / kCells);
+        }
+        return values_[(block - 1) * kCells + local(c)];
+    }
+    const Value* find(const glm::ivec3& c) const {
+        const uint32_t* block = blocks_.find(pack_cell(c >> kShift));
+        return block ? &values_[(*block - 1) * kCells + local(c)] : nullptr;
+    }
+    // Orders cells block by block, then within a block (the order of the values).
+    static std::pair<uint64_t, uint32_t> order(const glm::ivec3& c) {
+        return {pack_cell(c >> kShift), uint32_t(local(c))};
+    }
+
+  private:
+    static constexpr int kShift = 3;
+    static constexpr size_t kCells = 512;
+    static size_t local(const glm::ivec3& c) { return size_t(((c.z & 7) << 6) | ((c.y & 7) << 3) | (c.x & 7)); }
+
+    internal::KeyTable<uint32_t> blocks_;  // block -> 1 + its index
+    std::vector<Value> values_;
+};
+
 constexpr uint32_t kNoPoint = 0xffffffffu;
 
 // The points of one level as it is thrown, by grid cell: each cell's first point, the others
@@ -50,12 +84,12 @@ class CellGrid {
     CellGrid(double cell, size_t expected) : cell_(cell), heads_(expected) {}
     double cell() const { return cell_; }
     void insert(const glm::ivec3& c, uint32_t point, std::vector<uint32_t>& r_next) {
-        uint32_t& head = heads_[pack_cell(c)].first;
+        uint32_t& head = heads_[c].first;
         r_next[point] = head;
         head = point;
     }
     uint32_t head(const glm::ivec3& c) const {
-        const Head* head = heads_.find(pack_cell(c));
+        const Head* head = heads_.find(c);
         return head ? head->first : kNoPoint;
     }
 
@@ -64,28 +98,32 @@ class CellGrid {
         uint32_t first = kNoPoint;
     };
     double cell_;
-    internal::KeyTable<Head> heads_;
+    BlockedCells<Head> heads_;
 };
 
 // The points of earlier levels sorted by grid cell, for the spacing test: a cell's points lie
-// side by side.
+// side by side, and a block's cells too.
 class SortedCells {
   public:
     SortedCells(std::span<const glm::vec3> points, double cell) : runs_(points.size()) {
-        std::vector<std::pair<uint64_t, uint32_t>> keyed(points.size());
-        for (uint32_t i = 0; i < points.size(); ++i) keyed[i] = {pack_cell(cell_of(points[i], cell)), i};
+        std::vector<std::pair<std::pair<uint64_t, uint32_t>, uint32_t>> keyed(points.size());
+        std::vector<glm::ivec3> cells(points.size());
+        for (uint32_t i = 0; i < points.size(); ++i) {
+            cells[i] = cell_of(points[i], cell);
+            keyed[i] = {BlockedCells<Run>::order(cells[i]), i};
+        }
         std::sort(keyed.begin(), keyed.end());
         points_.reserve(points.size());
         for (size_t i = 0; i < keyed.size();) {
             size_t j = i;
             while (j < keyed.size() && keyed[j].first == keyed[i].first) points_.push_back(points[keyed[j++].second]);
-            runs_[keyed[i].first] = {uint32_t(i), uint32_t(j - i)};
+            runs_[cells[keyed[i].second]] = {uint32_t(i), uint32_t(j - i)};
             i = j;
         }
     }
     // The points in a cell.
     std::span<const glm::vec3> at(const glm::ivec3& c) const {
-        const Run* run = runs_.find(pack_cell(c));
+        const Run* run = runs_.find(c);
         if (!run) return {};
         return {points_.data() + run->begin, run->count};
     }
@@ -95,7 +133,7 @@ class SortedCells {
         uint32_t begin = 0, count = 0;
     };
     std::vector<glm::vec3> points_;
-    internal::KeyTable<Run> runs_;
+    BlockedCells<Run> runs_;
 };
 
 // Mean weight of the dots asked for when each fades in over `fade` of its threshold: the
