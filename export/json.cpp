@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <span>
+#include <string_view>
 
 namespace inkline::output {
 namespace {
@@ -124,39 +126,52 @@ json brush_strokes(const core::FrameLines& frame, const core::FrameStrokes& fram
     return strokes;
 }
 
-// The tone's dots: where on the surface (sample, face, barycentric coordinates, world point), where
-// in the image, how large, and the tone asked for there. Its hatches: family, plane and level,
-// and per point where in the image, the world point, the mesh edge it lies on and the width.
+// The tone's dots and hatches are written one by one as text and spliced into the document where
+// these marks stand: a frame's dots can run to millions, and as one document (nlohmann's objects)
+// they would take many times the memory of their text. User text comes before "tone" in the
+// sorted document, so the last occurrence of a mark is the tone's own.
+struct Mark {
+    const char* value;   // the string the document holds there
+    const char* dumped;  // as dump() writes it
+};
+constexpr Mark kDotsMark{"\x01" "inkline-dots", "\"\\u0001inkline-dots\""};
+constexpr Mark kHatchesMark{"\x01" "inkline-hatches", "\"\\u0001inkline-hatches\""};
+
+// A dot: where on the surface (sample, face, barycentric coordinates, world point), where in the
+// image, how large, and the tone asked for there.
+json dot_json(const core::Dot& d) {
+    return {{"sample", d.sample},
+            {"face", d.face},
+            {"barycentric", vec3(d.barycentric)},
+            {"point", json::array({round_px(d.point_px.x), round_px(d.point_px.y)})},
+            {"world", vec3(d.point_world)},
+            {"radius", round_px(d.radius_px)},
+            {"tone", std::round(d.tone * 1e4) / 1e4}};
+}
+
+// A hatch: family, plane and level, and per point where in the image, the world point, the mesh
+// edge it lies on and the width.
+json hatch_json(const core::Hatch& h) {
+    json points = json::array(), world = json::array(), width = json::array();
+    for (size_t i = 0; i < h.points_px.size(); ++i) {
+        points.push_back(json::array({round_px(h.points_px[i].x), round_px(h.points_px[i].y)}));
+        world.push_back(vec3(h.points_world[i]));
+        width.push_back(round_px(h.width_px[i]));
+    }
+    return {{"family", h.family},
+            {"plane", h.plane},
+            {"level", h.level},
+            {"points", std::move(points)},
+            {"world", std::move(world)},
+            {"edges", h.edges},
+            {"width", std::move(width)}};
+}
+
+// The tone object, its dots and hatches as marks.
 json tone_json(const core::FrameTone& tone) {
-    json dots = json::array();
-    for (const core::Dot& d : tone.dots) {
-        dots.push_back({{"sample", d.sample},
-                        {"face", d.face},
-                        {"barycentric", vec3(d.barycentric)},
-                        {"point", json::array({round_px(d.point_px.x), round_px(d.point_px.y)})},
-                        {"world", vec3(d.point_world)},
-                        {"radius", round_px(d.radius_px)},
-                        {"tone", std::round(d.tone * 1e4) / 1e4}});
-    }
-    json hatches = json::array();
-    for (const core::Hatch& h : tone.hatches) {
-        json points = json::array(), world = json::array(), width = json::array();
-        for (size_t i = 0; i < h.points_px.size(); ++i) {
-            points.push_back(json::array({round_px(h.points_px[i].x), round_px(h.points_px[i].y)}));
-            world.push_back(vec3(h.points_world[i]));
-            width.push_back(round_px(h.width_px[i]));
-        }
-        hatches.push_back({{"family", h.family},
-                           {"plane", h.plane},
-                           {"level", h.level},
-                           {"points", std::move(points)},
-                           {"world", std::move(world)},
-                           {"edges", h.edges},
-                           {"width", std::move(width)}});
-    }
-    json out = {{"mode", core::tone_mode_name(tone.mode)}, {"dots", std::move(dots)}};
+    json out = {{"mode", core::tone_mode_name(tone.mode)}, {"dots", kDotsMark.value}};
     if (tone.mode == core::ToneMode::kHatch || tone.mode == core::ToneMode::kCrosshatch) {
-        out["hatches"] = std::move(hatches);
+        out["hatches"] = kHatchesMark.value;
         const core::HatchStats& s = tone.hatch_stats;
         out["stats"] = {{"faces", s.faces},
                         {"segments", s.segments},
@@ -172,6 +187,26 @@ json tone_json(const core::FrameTone& tone) {
                         {"inked", s.inked},
                         {"occluded", s.occluded}};
     }
+    return out;
+}
+
+// `text` with the quoted mark (its last occurrence) replaced by a JSON array of `items`, each
+// written by `write`.
+template <typename Item, typename Write>
+std::string splice(std::string text, const Mark& mark, std::span<const Item> items, const Write& write) {
+    const std::string_view quoted = mark.dumped;
+    const size_t at = text.rfind(quoted);
+    if (at == std::string::npos) return text;
+    std::string out;
+    out.reserve(text.size() + 96 * items.size());
+    out.append(text, 0, at);
+    out += '[';
+    for (size_t i = 0; i < items.size(); ++i) {
+        if (i > 0) out += ',';
+        out += write(items[i]).dump();
+    }
+    out += ']';
+    out.append(text, at + quoted.size(), std::string::npos);
     return out;
 }
 
@@ -226,8 +261,12 @@ std::string polylines_json(const core::FrameLines& frame, const core::FrameStrok
                            {"seconds", w.seconds},
                            {"speed_px_per_s", write_on_number(w.speed_px_s, 1e3)}};
     }
-    if (tone && tone->mode != core::ToneMode::kNone) doc["tone"] = tone_json(*tone);
-    return doc.dump() + "\n";
+    if (!tone || tone->mode == core::ToneMode::kNone) return doc.dump() + "\n";
+    doc["tone"] = tone_json(*tone);
+    std::string text = doc.dump();
+    text = splice(std::move(text), kHatchesMark, std::span<const core::Hatch>(tone->hatches), hatch_json);
+    text = splice(std::move(text), kDotsMark, std::span<const core::Dot>(tone->dots), dot_json);
+    return text + "\n";
 }
 
 }  // namespace inkline::output

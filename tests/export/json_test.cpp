@@ -83,6 +83,50 @@ TEST(PolylinesJson, ListsTheToneDots) {
     EXPECT_TRUE(empty["tone"]["dots"].empty());
 }
 
+// The dots and hatches are written one by one and spliced in (a frame's dots can run to
+// millions): the text is what dumping the whole document would give, even with an object named
+// as the marks the writer splices at.
+TEST(PolylinesJson, ToneIsWrittenAsTheWholeDocumentWouldBe) {
+    core::FrameLines frame = cube_frame();
+    frame.objects = {{.name = "\x01inkline-dots"}, {.name = "\x01inkline-hatches"}};
+    for (core::Polyline& line : frame.polylines) line.object = 0;
+    for (const core::ToneMode mode : {core::ToneMode::kStipple, core::ToneMode::kCrosshatch}) {
+        core::FrameTone tone;
+        tone.mode = mode;
+        if (mode == core::ToneMode::kStipple) {
+            for (uint32_t i = 0; i < 1000; ++i) {
+                tone.dots.push_back({.sample = i, .face = i % 7, .barycentric = {0.2, 0.3, 0.5},
+                                     .point_px = {i * 0.37, 1e4 / (i + 1.0)}, .point_world = {i * 1e-3, -1.0 / 3.0, 2.0},
+                                     .radius_px = 0.5 + i % 3, .tone = i / 1000.0});
+            }
+        } else {
+            for (uint32_t i = 0; i < 50; ++i) {
+                core::Hatch h;
+                h.family = i % 2;
+                h.plane = 1000 + i;
+                h.level = 3;
+                h.points_px = {{i, 2.0 * i}, {i + 0.5, 2.0 * i + 1.0 / 3.0}};
+                h.points_world = {{0.1, 0.2, 0.3}, {0.4, 0.5, 1.0 / 7.0}};
+                h.edges = {i, i + 1};
+                h.width_px = {0.8, 0.4};
+                tone.hatches.push_back(h);
+            }
+        }
+        const std::string text = output::polylines_json(frame, nullptr, &tone);
+        const nlohmann::json doc = nlohmann::json::parse(text);
+        EXPECT_EQ(doc.dump() + "\n", text) << core::tone_mode_name(mode);
+        EXPECT_EQ(doc["tone"]["dots"].size(), tone.dots.size());
+        if (mode == core::ToneMode::kCrosshatch) {
+            ASSERT_EQ(doc["tone"]["hatches"].size(), 50u);
+            EXPECT_EQ(doc["tone"]["hatches"][49]["plane"], 1049);
+            EXPECT_EQ(doc["tone"]["hatches"][3]["edges"], nlohmann::json::array({3, 4}));
+        } else {
+            EXPECT_EQ(doc["tone"]["dots"][999]["sample"], 999);
+        }
+        EXPECT_NE(text.find("\"\\u0001inkline-dots\""), std::string::npos) << "the object's name is kept";
+    }
+}
+
 TEST(PolylinesJson, NoToneWithoutTone) {
     const core::FrameLines frame = cube_frame();
     const std::string lines_only = output::polylines_json(frame);
