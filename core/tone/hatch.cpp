@@ -64,13 +64,6 @@ int finest_level(double tone, double step0, double gradient_px, double width_px)
     return int(std::clamp(std::floor(std::log2(need)) + 1.0, 0.0, double(kFinest)));
 }
 
-uint32_t edge_between(const EdgeTable& table, uint32_t a, uint32_t b) {
-    for (uint32_t e : table.edges_around(a)) {
-        if (table.other_vertex(e, a) == b) return e;
-    }
-    return std::numeric_limits<uint32_t>::max();
-}
-
 // The ink of a thin line: each point offset across it by half its width, along the normal of
 // its neighbours' chord, out on one side and back on the other, ends cut square. Folds at sharp
 // turns overlap themselves, which the nonzero rule fills.
@@ -218,8 +211,8 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                 for (int k = 0; k < 3 && found < 2; ++k) {
                     const int l = (k + 1) % 3;
                     if ((h[k] >= c) == (h[l] >= c)) continue;
-                    const uint32_t edge = edge_between(table, t[k], t[l]);
-                    if (edge == std::numeric_limits<uint32_t>::max()) break;
+                    const uint32_t edge = find_edge(table, t[k], t[l]);
+                    if (edge == kNoIndex) break;
                     // From the side's own first vertex: both of its faces compute the same point.
                     const glm::uvec2 ends = table.edge_vertices[edge];
                     const double h0 = family.h[ends.x], h1 = family.h[ends.y];

@@ -143,12 +143,10 @@ double fade_weight(double fade) {
     return 1.0 / (1.0 + fade) + (std::log1p(fade) - fade / (1.0 + fade)) / fade;
 }
 
-// An edge of face `tri` (its first side), for the occlusion tests that seed their search there.
+// An edge of a valid face (its first side), for the occlusion tests that seed their search there.
 uint32_t edge_of(const EdgeTable& table, const glm::uvec3& tri) {
-    for (uint32_t e : table.edges_around(tri.x)) {
-        if (table.other_vertex(e, tri.x) == tri.y) return e;
-    }
-    return table.edges_around(tri.x).empty() ? 0 : table.edges_around(tri.x).front();
+    const uint32_t edge = find_edge(table, tri.x, tri.y);
+    return edge == kNoIndex ? 0 : edge;
 }
 
 }  // namespace
