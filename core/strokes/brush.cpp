@@ -2,6 +2,7 @@
 #include "core/strokes/brush.h"
 
 #include "core/error.h"
+#include "core/internal/parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,12 @@
 #include <glm/matrix.hpp>
 
 namespace inkline::core {
+namespace {
+
+// Below this many vertices, the normals are summed on the calling thread.
+constexpr size_t kMinParallelVertices = 4096;
+
+}  // namespace
 
 std::vector<glm::dvec3> vertex_normals_at(const Mesh& mesh, const EdgeTable& table, std::span<const uint32_t> vertices) {
     // Degenerate faces are missing from the edge table, but vertex_normals counts those of
@@ -29,24 +36,27 @@ std::vector<glm::dvec3> vertex_normals_at(const Mesh& mesh, const EdgeTable& tab
     std::sort(degenerate.begin(), degenerate.end());
 
     // The faces around each vertex, ascending, summed in that order as vertex_normals sums them.
+    // Each vertex is its own: slices of them run in parallel.
     std::vector<glm::dvec3> normals(vertices.size(), glm::dvec3(0.0));
-    std::vector<uint32_t> faces;
-    auto next_degenerate = degenerate.begin();
-    for (size_t i = 0; i < vertices.size(); ++i) {
-        faces.clear();
-        for (uint32_t e : table.edges_around(vertices[i])) {
-            for (uint32_t f : table.faces_of(e)) faces.push_back(f);
+    internal::parallel_for(vertices.size(), kMinParallelVertices, [&](size_t begin, size_t end) {
+        std::vector<uint32_t> faces;
+        auto next_degenerate = std::lower_bound(degenerate.begin(), degenerate.end(), std::pair<size_t, uint32_t>(begin, 0));
+        for (size_t i = begin; i < end; ++i) {
+            faces.clear();
+            for (uint32_t e : table.edges_around(vertices[i])) {
+                for (uint32_t f : table.faces_of(e)) faces.push_back(f);
+            }
+            for (; next_degenerate != degenerate.end() && next_degenerate->first == i; ++next_degenerate) {
+                faces.push_back(next_degenerate->second);
+            }
+            std::sort(faces.begin(), faces.end());
+            faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+            glm::dvec3 sum(0.0);
+            for (uint32_t f : faces) sum += face_normal(mesh.positions, mesh.triangles[f]);
+            const double len = glm::length(sum);
+            normals[i] = len > 0.0 ? sum / len : glm::dvec3(0.0);
         }
-        for (; next_degenerate != degenerate.end() && next_degenerate->first == i; ++next_degenerate) {
-            faces.push_back(next_degenerate->second);
-        }
-        std::sort(faces.begin(), faces.end());
-        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-        glm::dvec3 sum(0.0);
-        for (uint32_t f : faces) sum += face_normal(mesh.positions, mesh.triangles[f]);
-        const double len = glm::length(sum);
-        normals[i] = len > 0.0 ? sum / len : glm::dvec3(0.0);
-    }
+    });
     return normals;
 }
 

@@ -235,6 +235,9 @@ StrokePath build_stroke_path(std::span<const glm::dvec2> points, bool closed, co
     for (size_t i = 0; i < smooth.size(); ++i) {
         const double g = std::min(even_g[i], double(points.size() - 1));
         const size_t s = std::min(size_t(g), points.size() - 2);
+        // The exact segment the sample came from is in the search window, so the nearest point is
+        // no farther than it: within the largest deviation so far, the search would change nothing.
+        if (distance_to_segment(smooth[i], points[s], points[s + 1]) <= path.deviation_px) continue;
         const double center = exact_arc[s] + (exact_arc[s + 1] - exact_arc[s]) * (g - double(s));
         const glm::dvec2 q = closest_on_polyline(smooth[i], points, exact_arc, closed, center, window);
         const double d = glm::length(smooth[i] - q);
@@ -260,6 +263,11 @@ double removed_extent_px(std::span<const glm::dvec2> points, const StrokePath& p
     double worst = 0.0;
     for (size_t k = 0; k < points.size(); ++k) {
         const auto center = std::ptrdiff_t(path.sample_at(double(k)));
+        // A segment of the window first: within the worst distance so far, this point cannot raise it.
+        const auto first = std::min(center, std::ptrdiff_t(n) - 2);
+        if (distance_to_segment(points[k], path.points_px[size_t(first)], path.points_px[size_t(first + 1)]) <= worst) {
+            continue;
+        }
         double best = HUGE_VAL;
         for (std::ptrdiff_t i = center - reach; i <= center + reach; ++i) {
             std::ptrdiff_t a = i, b = i + 1;
