@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "core/mesh/mesh.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace inkline::core {
@@ -19,7 +20,12 @@ double Bounds::radius() const { return valid ? 0.5 * glm::length(max - min) : 0.
 
 Bounds bounds_of(const std::vector<glm::vec3>& positions) {
     Bounds b;
-    for (const glm::vec3& p : positions) b.add(glm::dvec3(p));
+    if (positions.empty()) return b;
+    // The least and greatest floats, widened once: the same bounds as widening every point.
+    glm::vec3 lo = positions[0], hi = positions[0];
+    for (const glm::vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    b.add(glm::dvec3(lo));
+    b.add(glm::dvec3(hi));
     return b;
 }
 

@@ -19,13 +19,13 @@ MeshFrames::MeshFrames(const MeshSource& source, int first_frame, const MeshLimi
     for (std::string& name : loaded.object_names) objects_.push_back({std::move(name), -1});
     face_objects_ = std::move(loaded.face_objects);
     table_ = build_edge_table(mesh_);
-    for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_))) {
+    for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_, MeshReportScope::kWarnings))) {
         warnings_.push_back(reference_file_.string() + ": " + w);
     }
 }
 
 MeshFrames::MeshFrames(Mesh mesh) : mesh_(std::move(mesh)), loaded_frame_(0), table_(build_edge_table(mesh_)) {
-    warnings_ = mesh_warnings(describe_mesh(mesh_, table_));
+    warnings_ = mesh_warnings(describe_mesh(mesh_, table_, MeshReportScope::kWarnings));
 }
 
 MeshFrames::MeshFrames(std::shared_ptr<const AnimatedMesh> animation, const std::filesystem::path& source)
@@ -38,7 +38,7 @@ MeshFrames::MeshFrames(std::shared_ptr<const AnimatedMesh> animation, const std:
         face_objects_ = animation_->face_objects();
         INKLINE_CHECK_EQ(face_objects_.size(), mesh_.triangles.size());
     }
-    for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_))) warnings_.push_back(source.string() + ": " + w);
+    for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_, MeshReportScope::kWarnings))) warnings_.push_back(source.string() + ": " + w);
     loaded_frame_ = std::numeric_limits<int>::min();
 }
 

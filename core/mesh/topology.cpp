@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <numeric>
 
 namespace inkline::core {
@@ -16,8 +17,10 @@ namespace {
 // zero-area: its normal would be numerically meaningless for the facing test.
 constexpr double kDegenerateAreaRatio = 1e-12;
 
-// Meshes with fewer faces are checked for degenerate faces on one thread.
+// Meshes with fewer faces (edges, vertices) are checked on one thread.
 constexpr size_t kMinParallelFaces = 100000;
+constexpr size_t kMinParallelEdges = 150000;
+constexpr size_t kMinParallelVertices = 50000;
 
 // Vertex buckets of more sides than this are sorted with std::sort rather than by insertion,
 // whose cost grows with the square of the bucket.
@@ -203,33 +206,34 @@ namespace {
 // vertex's faces is looked up in a table over all faces, not searched for (a fan's apex may have
 // hundreds of thousands).
 size_t count_non_manifold_vertices(const EdgeTable& table) {
-    size_t count = 0;
-    std::vector<uint32_t> faces;                                    // the vertex's faces
-    std::vector<uint32_t> slot(table.face_valid.size(), kNoIndex);  // face -> index in `faces`
-    internal::UnionFind<uint32_t> fans_of(0);  // over indices into `faces`: the faces of one fan form a set
     const size_t vertices = table.vertex_edge_offsets.empty() ? 0 : table.vertex_edge_offsets.size() - 1;
-    for (uint32_t v = 0; v < vertices; ++v) {
-        faces.clear();
-        for (uint32_t e : table.edges_around(v)) {
-            for (uint32_t f : table.faces_of(e)) {
-                if (slot[f] == kNoIndex) {
-                    slot[f] = uint32_t(faces.size());
-                    faces.push_back(f);
-                }
+    std::atomic<size_t> count{0};
+    internal::parallel_for(vertices, kMinParallelVertices, [&](size_t begin, size_t end) {
+        size_t local = 0;
+        std::vector<uint32_t> faces;               // the vertex's faces, ascending
+        internal::UnionFind<uint32_t> fans_of(0);  // over indices into `faces`: the faces of one fan form a set
+        for (size_t v = begin; v < end; ++v) {
+            faces.clear();
+            for (uint32_t e : table.edges_around(uint32_t(v))) {
+                for (uint32_t f : table.faces_of(e)) faces.push_back(f);
             }
-        }
-        if (faces.size() >= 2) {
+            std::sort(faces.begin(), faces.end());
+            faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+            if (faces.size() < 2) continue;
+            const auto slot = [&](uint32_t f) {
+                return uint32_t(std::lower_bound(faces.begin(), faces.end(), f) - faces.begin());
+            };
             fans_of.reset(faces.size());
             size_t fans = faces.size();
-            for (uint32_t e : table.edges_around(v)) {
+            for (uint32_t e : table.edges_around(uint32_t(v))) {
                 if (!table.is_interior(e)) continue;
                 const auto pair = table.faces_of(e);
-                if (fans_of.unite(slot[pair[0]], slot[pair[1]])) --fans;
+                if (fans_of.unite(slot(pair[0]), slot(pair[1]))) --fans;
             }
-            if (fans > 1) ++count;
+            if (fans > 1) ++local;
         }
-        for (uint32_t f : faces) slot[f] = kNoIndex;
-    }
+        count += local;
+    });
     return count;
 }
 
@@ -259,7 +263,7 @@ std::vector<glm::uvec3> face_edges(const Mesh& mesh, const EdgeTable& table) {
     return out;
 }
 
-MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table) {
+MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table, MeshReportScope scope) {
     MeshReport r;
     r.vertices = mesh.positions.size();
     r.faces = mesh.triangles.size();
@@ -267,27 +271,44 @@ MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table) {
     r.duplicate_faces = table.duplicate_faces;
     r.degenerate_faces = size_t(std::count(table.face_valid.begin(), table.face_valid.end(), 0)) - r.duplicate_faces;
 
-    internal::UnionFind<uint32_t> components(r.faces);
-    for (uint32_t e = 0; e < table.edge_count(); ++e) {
+    // Consistent neighbours traverse their shared edge in opposite directions.
+    auto inconsistent = [&](uint32_t e) {
         const auto faces = table.faces_of(e);
-        if (faces.size() == 1) ++r.boundary_edges;
-        if (faces.size() >= 3) ++r.non_manifold_edges;
-        for (size_t i = 1; i < faces.size(); ++i) components.unite(faces[0], faces[i]);
-        if (faces.size() == 2) {
-            // Consistent neighbours traverse their shared edge in opposite directions.
-            const uint32_t v0 = table.edge_vertices[e].x;
-            auto runs_forward = [&](uint32_t f) {
-                const glm::uvec3 tri = mesh.triangles[f];
-                for (int s = 0; s < 3; ++s) {
-                    if (tri[s] == v0) return tri[(s + 1) % 3] == table.edge_vertices[e].y;
-                }
-                return false;
-            };
-            if (runs_forward(faces[0]) == runs_forward(faces[1])) ++r.inconsistent_edges;
+        const uint32_t v0 = table.edge_vertices[e].x;
+        auto runs_forward = [&](uint32_t f) {
+            const glm::uvec3 tri = mesh.triangles[f];
+            for (int s = 0; s < 3; ++s) {
+                if (tri[s] == v0) return tri[(s + 1) % 3] == table.edge_vertices[e].y;
+            }
+            return false;
+        };
+        return runs_forward(faces[0]) == runs_forward(faces[1]);
+    };
+    std::atomic<size_t> boundary{0}, non_manifold{0}, inconsistent_edges{0};
+    internal::parallel_for(table.edge_count(), kMinParallelEdges, [&](size_t begin, size_t end) {
+        size_t b = 0, n = 0, i = 0;
+        for (size_t e = begin; e < end; ++e) {
+            const size_t faces = table.faces_of(uint32_t(e)).size();
+            b += faces == 1;
+            n += faces >= 3;
+            i += faces == 2 && inconsistent(uint32_t(e));
         }
-    }
-    for (uint32_t f = 0; f < r.faces; ++f) {
-        if (table.face_valid[f] && components.is_root(f)) ++r.connected_components;
+        boundary += b;
+        non_manifold += n;
+        inconsistent_edges += i;
+    });
+    r.boundary_edges = boundary;
+    r.non_manifold_edges = non_manifold;
+    r.inconsistent_edges = inconsistent_edges;
+    if (scope == MeshReportScope::kAll) {
+        internal::UnionFind<uint32_t> components(r.faces);
+        for (uint32_t e = 0; e < table.edge_count(); ++e) {
+            const auto faces = table.faces_of(e);
+            for (size_t i = 1; i < faces.size(); ++i) components.unite(faces[0], faces[i]);
+        }
+        for (uint32_t f = 0; f < r.faces; ++f) {
+            if (table.face_valid[f] && components.is_root(f)) ++r.connected_components;
+        }
     }
     r.non_manifold_vertices = count_non_manifold_vertices(table);
     return r;

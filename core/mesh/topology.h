@@ -74,7 +74,10 @@ struct MeshReport {
     size_t connected_components = 0;  // of valid faces joined by edges
 };
 
-MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table);
+// kWarnings leaves connected_components at 0: mesh_warnings does not need them, and counting them
+// is a serial pass over every face.
+enum class MeshReportScope { kAll, kWarnings };
+MeshReport describe_mesh(const Mesh& mesh, const EdgeTable& table, MeshReportScope scope = MeshReportScope::kAll);
 
 // Warnings for drawable oddities (degenerate faces, non-manifold edges and vertices, inconsistent
 // orientation).

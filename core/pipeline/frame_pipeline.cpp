@@ -62,7 +62,11 @@ FrameResult FramePipeline::run(int frame) {
     // The camera, fitted to the object's bounds where it moves (object space: extraction and
     // occlusion move the eye instead of the mesh).
     const glm::dmat4 world_from_object = world_from_object_at(scene_, frame);
-    const Bounds object_bounds = bounds_of(mesh.positions);
+    const MeshChange change = first_frame_             ? MeshChange::kTopology
+                              : meshes_.deforming()    ? MeshChange::kPositions
+                                                      : MeshChange::kNone;
+    if (change != MeshChange::kNone) object_bounds_ = bounds_of(mesh.positions);
+    const Bounds& object_bounds = object_bounds_;
     result.camera = camera_at(scene_, frame, transformed(object_bounds, world_from_object));
     const Projection projection(result.camera, scene_.image, world_from_object);
     if (!warned_inside_ && inside(object_bounds, projection.eye_object())) {
@@ -104,9 +108,6 @@ FrameResult FramePipeline::run(int frame) {
         }
         contours = &smooth_->trace(mesh, table, projection.eye_object());
     }
-    const MeshChange change = first_frame_             ? MeshChange::kTopology
-                              : meshes_.deforming()    ? MeshChange::kPositions
-                                                      : MeshChange::kNone;
     // Intersection lines, where objects cross (and, with lines.self_intersection, where one
     // crosses itself); retraced only when the mesh moved.
     const std::vector<Chain>* crossings = nullptr;
@@ -148,8 +149,9 @@ FrameResult FramePipeline::run(int frame) {
     const double visibility_ms = occlusion_ms + step("visibility");
 
     // Strokes, coherent with the last frame's.
+    if (change != MeshChange::kNone) stroke_normals_.clear();
     out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_, scene_.styles,
-                                [this](std::span<const uint32_t> edges) { return object_of(edges); });
+                                [this](std::span<const uint32_t> edges) { return object_of(edges); }, &stroke_normals_);
     if (contours) {
         const glm::dmat4 object_from_world = glm::inverse(world_from_object);
         for (Stroke& stroke : out.strokes.strokes) {

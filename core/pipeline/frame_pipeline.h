@@ -100,6 +100,8 @@ class FramePipeline {
     // With smooth contours on a mesh that does not change, its boundary and crease edges.
     std::optional<std::vector<FeatureEdge>> still_edges_;
     StrokeCoherence coherence_;
+    Bounds object_bounds_;              // of the mesh, while it holds still
+    VertexNormalCache stroke_normals_;  // the strokes' vertex normals, while the mesh holds still
     DrawingOrder drawing_order_;
     std::optional<Stippler> stippler_;  // with a scene "tone" of mode stipple
     std::optional<Hatcher> hatcher_;    // ... of mode hatch or crosshatch

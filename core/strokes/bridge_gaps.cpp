@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 #include <map>
 #include <optional>
+#include <unordered_map>
 
 #include "core/internal/union_find.h"
 #include "core/strokes/internal/splice.h"
@@ -39,7 +40,7 @@ size_t bridge_hidden_gaps(std::vector<StrokeGeometry>& r_strokes, const std::vec
                           std::vector<uint8_t>& r_bridged_whole) {
     r_bridged_whole.assign(occluded.size(), 0);
     // Open ends of visible strokes by their exact point: a gap's ends are the same cut points.
-    std::map<internal::PointKey, std::vector<EndRef>> ends;
+    std::unordered_map<internal::PointKey, std::vector<EndRef>, internal::PointKeyHash> ends;
     for (size_t s = 0; s < r_strokes.size(); ++s) {
         const StrokeGeometry& g = r_strokes[s];
         if (!internal::is_open_visible(g)) continue;

@@ -60,6 +60,33 @@ std::vector<glm::dvec3> vertex_normals_at(const Mesh& mesh, const EdgeTable& tab
     return normals;
 }
 
+void VertexNormalCache::clear() {
+    vertices_.clear();
+    normals_.clear();
+}
+
+std::vector<glm::dvec3> VertexNormalCache::at(const Mesh& mesh, const EdgeTable& table,
+                                              std::span<const uint32_t> vertices) {
+    std::vector<glm::dvec3> normals(vertices.size());
+    std::vector<uint32_t> missing;
+    std::vector<size_t> missing_at;
+    size_t j = 0;
+    for (size_t i = 0; i < vertices.size(); ++i) {
+        while (j < vertices_.size() && vertices_[j] < vertices[i]) ++j;
+        if (j < vertices_.size() && vertices_[j] == vertices[i]) {
+            normals[i] = normals_[j];
+        } else {
+            missing.push_back(vertices[i]);
+            missing_at.push_back(i);
+        }
+    }
+    const std::vector<glm::dvec3> computed = vertex_normals_at(mesh, table, missing);
+    for (size_t k = 0; k < missing.size(); ++k) normals[missing_at[k]] = computed[k];
+    vertices_.assign(vertices.begin(), vertices.end());
+    normals_ = normals;
+    return normals;
+}
+
 StrokeLighting::StrokeLighting(const Mesh& mesh, const EdgeTable& table, const glm::dmat4& world_from_object,
                                const Light& light)
     : mesh_(mesh),
@@ -70,7 +97,7 @@ StrokeLighting::StrokeLighting(const Mesh& mesh, const EdgeTable& table, const g
       light_(light) {}
 
 StrokeLighting::StrokeLighting(const Mesh& mesh, const EdgeTable& table, const glm::dmat4& world_from_object,
-                               const Light& light, std::span<const uint32_t> edges)
+                               const Light& light, std::span<const uint32_t> edges, VertexNormalCache* cache)
     : mesh_(mesh),
       table_(table),
       restricted_(true),
@@ -83,7 +110,7 @@ StrokeLighting::StrokeLighting(const Mesh& mesh, const EdgeTable& table, const g
     }
     std::sort(normal_vertices_.begin(), normal_vertices_.end());
     normal_vertices_.erase(std::unique(normal_vertices_.begin(), normal_vertices_.end()), normal_vertices_.end());
-    normals_ = vertex_normals_at(mesh, table, normal_vertices_);
+    normals_ = cache ? cache->at(mesh, table, normal_vertices_) : vertex_normals_at(mesh, table, normal_vertices_);
 }
 
 const glm::dvec3& StrokeLighting::normal_of(uint32_t vertex) const {

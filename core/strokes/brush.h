@@ -25,13 +25,30 @@ namespace inkline::core {
 // only the faces around them: a frame's strokes touch a few thousand of a million vertices.
 std::vector<glm::dvec3> vertex_normals_at(const Mesh& mesh, const EdgeTable& table, std::span<const uint32_t> vertices);
 
+// Vertex normals kept from one frame to the next while the mesh holds still: a frame's strokes
+// run through mostly the vertices of the last frame's.
+class VertexNormalCache {
+  public:
+    // Forgets every normal: the mesh moved or changed.
+    void clear();
+    // vertex_normals_at(mesh, table, vertices), reusing those kept from the last call; only these
+    // are kept for the next.
+    std::vector<glm::dvec3> at(const Mesh& mesh, const EdgeTable& table, std::span<const uint32_t> vertices);
+
+  private:
+    std::vector<uint32_t> vertices_;  // ascending
+    std::vector<glm::dvec3> normals_;
+};
+
 // The light as one frame's strokes see it: mesh normals in world space and the light direction.
 class StrokeLighting {
   public:
     StrokeLighting(const Mesh& mesh, const EdgeTable& table, const glm::dmat4& world_from_object, const Light& light);
     // Normals at the vertices of `edges` only; facing() may then only be asked about those edges.
+    // With a cache, normals kept from the last frame are reused (the caller clears it when the
+    // mesh changes).
     StrokeLighting(const Mesh& mesh, const EdgeTable& table, const glm::dmat4& world_from_object, const Light& light,
-                   std::span<const uint32_t> edges);
+                   std::span<const uint32_t> edges, VertexNormalCache* cache = nullptr);
 
     // dot(N, -l) at each point, not clamped: N interpolated from the normals of the vertices of
     // the point's edge (edges[i] for point i, the last point uses the last edge), l the light

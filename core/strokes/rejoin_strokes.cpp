@@ -9,6 +9,7 @@
 #include <queue>
 #include <set>
 #include <tuple>
+#include <unordered_map>
 
 #include "core/internal/point_grid.h"
 #include "core/internal/union_find.h"
@@ -82,7 +83,7 @@ class JoinGraph {
     size_t size() const { return arcs_.size(); }
 
   private:
-    std::map<internal::PointKey, size_t> nodes_;
+    std::unordered_map<internal::PointKey, size_t, internal::PointKeyHash> nodes_;
     std::vector<std::vector<Arc>> arcs_;
 };
 

@@ -321,7 +321,8 @@ StrokeInk stroke_ink(std::span<const glm::dvec2> centerline, std::span<const dou
 
 FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
                            const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence,
-                           std::span<const StyleRule> rules, const ObjectOfEdges& object_of) {
+                           std::span<const StyleRule> rules, const ObjectOfEdges& object_of,
+                           VertexNormalCache* normals) {
     FrameStrokes out;
     out.frame = frame.frame;
     // Visible lines are stroked alike whether or not hidden lines are output: with hidden lines
@@ -398,14 +399,12 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
         stroke_style[i] = sheet.resolve({g.kind, g.visible, object, roles[i]});
     }
 
-    // Normals only where the frame's lines run (bridged gaps included): a full pass over a million vertices would cost
+    // Normals only where the strokes run (bridged gaps included): a full pass over a million vertices would cost
     // more than the rest of this stage.
     std::vector<uint32_t> line_edges;
-    for (const Polyline& line : frame.polylines)
-        line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
-    for (const Polyline& line : frame.occluded)
-        line_edges.insert(line_edges.end(), line.edges.begin(), line.edges.end());
-    const StrokeLighting lighting(mesh, table, projection.world_from_object(), frame.light, line_edges);
+    for (const StrokeCandidate& c : candidates)
+        line_edges.insert(line_edges.end(), c.geometry.edges.begin(), c.geometry.edges.end());
+    const StrokeLighting lighting(mesh, table, projection.world_from_object(), frame.light, line_edges, normals);
     const glm::dmat4 object_from_world = glm::inverse(projection.world_from_object());
     std::vector<Stroke> styled(n);
     std::vector<StrokeTrace> traces(n);

@@ -19,6 +19,7 @@
 #include "core/mesh/topology.h"
 #include "core/pipeline/frame_lines.h"
 #include "core/scene/camera.h"
+#include "core/strokes/brush.h"
 #include "core/strokes/brush_style.h"
 #include "core/strokes/line_styles.h"
 #include "core/strokes/outline.h"
@@ -128,10 +129,12 @@ using ObjectOfEdges = std::function<int32_t(std::span<const uint32_t> edges)>;
 
 // Each stroke is drawn with `style` and the style rules that match it applied in order. With
 // object_of, each stroke's geometry.object is the object of its first edge in drawing direction
-// (for a loop, before its start is chosen), and rules select by it.
+// (for a loop, before its start is chosen), and rules select by it. With `normals`, the vertex
+// normals the light needs are kept there for the next frame (clear it when the mesh changes).
 // Deterministic: the same frames in the same order give the same strokes, bit for bit.
 FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
                            const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence,
-                           std::span<const StyleRule> rules = {}, const ObjectOfEdges& object_of = {});
+                           std::span<const StyleRule> rules = {}, const ObjectOfEdges& object_of = {},
+                           VertexNormalCache* normals = nullptr);
 
 }  // namespace inkline::core

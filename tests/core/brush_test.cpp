@@ -169,6 +169,21 @@ TEST(Brush, NormalsAtSomeVerticesEqualTheFullPassBitForBit) {
     for (size_t v = 0; v < full.size(); ++v) EXPECT_EQ(full[v], some[v]) << "vertex " << v;
 }
 
+TEST(Brush, NormalCacheGivesTheNormalsOfAFreshPass) {
+    core::Mesh mesh = test::uv_sphere(24, 12, 2.0);
+    const core::EdgeTable table = core::build_edge_table(mesh);
+    core::VertexNormalCache cache;
+    const std::vector<uint32_t> first = {0, 3, 5, 9, 40}, second = {3, 4, 9, 41, 100};
+    EXPECT_EQ(cache.at(mesh, table, first), core::vertex_normals_at(mesh, table, first));
+    EXPECT_EQ(cache.at(mesh, table, second), core::vertex_normals_at(mesh, table, second)) << "some kept, some new";
+    // Moved: without clear() the kept normals would be stale; after it they are fresh.
+    for (glm::vec3& p : mesh.positions) p.z *= 3.0f;
+    cache.clear();
+    const std::vector<glm::dvec3> moved = cache.at(mesh, table, second);
+    EXPECT_EQ(moved, core::vertex_normals_at(mesh, table, second));
+    EXPECT_NE(moved, core::vertex_normals_at(test::uv_sphere(24, 12, 2.0), table, second));
+}
+
 TEST(Brush, ColorHex) {
     EXPECT_EQ(core::color_hex({0.0, 0.5, 1.0}), "#0080ff");
     EXPECT_EQ(core::color_hex(core::BrushStyle{}.color), "#171412");

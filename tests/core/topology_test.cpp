@@ -135,6 +135,21 @@ TEST(Topology, NonManifoldVerticesCountedOnMeshesWhereTheCountIsKnown) {
     EXPECT_EQ(r.non_manifold_vertices, 2u);
 }
 
+TEST(Topology, WarningsScopeCountsAllButComponents) {
+    // Large enough that the edge and vertex passes run on every core.
+    const core::Mesh two = test::twin_cones(60000);
+    const core::EdgeTable table = core::build_edge_table(two);
+    const core::MeshReport all = core::describe_mesh(two, table);
+    const core::MeshReport warnings = core::describe_mesh(two, table, core::MeshReportScope::kWarnings);
+    EXPECT_EQ(all.connected_components, 2u);
+    EXPECT_EQ(warnings.connected_components, 0u);
+    EXPECT_EQ(warnings.non_manifold_vertices, all.non_manifold_vertices);
+    EXPECT_EQ(warnings.non_manifold_edges, all.non_manifold_edges);
+    EXPECT_EQ(warnings.boundary_edges, all.boundary_edges);
+    EXPECT_EQ(warnings.inconsistent_edges, all.inconsistent_edges);
+    EXPECT_EQ(core::mesh_warnings(warnings), core::mesh_warnings(all));
+}
+
 TEST(Topology, FindEdgeAtAVertexWithManyEdges) {
     // The apex of a cone has an edge to each of its 20000 ring vertices and none to the base
     // centre; a ring vertex has its two ring neighbours, the apex and the centre.

@@ -3,6 +3,7 @@
 // how the repairs (bridge_gaps, rejoin_strokes, t_junctions, reversals) join and cut them.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec2.hpp>
@@ -29,9 +30,16 @@ bool orient_for_splice(StrokeGeometry& a, const glm::dvec2& pa, StrokeGeometry& 
 // Points [begin, end] of a stroke as a stroke of its own: the ends cut inside it are junctions.
 StrokeGeometry part_of(const StrokeGeometry& g, size_t begin, size_t end);
 
-// Strokes that meet share their end points bit for bit: an exact point as a map key.
+// Strokes that meet share their end points bit for bit: an exact point as a map key (-0 as +0,
+// as == compares them).
 using PointKey = std::pair<double, double>;
-inline PointKey point_key(const glm::dvec2& p) { return {p.x, p.y}; }
+inline PointKey point_key(const glm::dvec2& p) { return {p.x + 0.0, p.y + 0.0}; }
+struct PointKeyHash {
+    size_t operator()(const PointKey& k) const {
+        const uint64_t h = std::bit_cast<uint64_t>(k.first) * 0x9e3779b97f4a7c15ull ^ std::bit_cast<uint64_t>(k.second);
+        return size_t((h ^ (h >> 29)) * 0xbf58476d1ce4e5b9ull);
+    }
+};
 
 // An open visible stroke with two ends, the only kind the repairs join, cut or end on.
 inline bool is_open_visible(const StrokeGeometry& g) { return g.visible && !g.closed && g.points_px.size() >= 2; }
