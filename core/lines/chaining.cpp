@@ -8,6 +8,9 @@ namespace {
 
 constexpr uint8_t kNotFeature = 0xff;
 
+// Vertices with at most this many edges have their feature edges counted by a scan.
+constexpr size_t kScanEdges = 32;
+
 class Chainer {
   public:
     Chainer(const FeatureEdges& features, const EdgeTable& table)
@@ -29,8 +32,15 @@ class Chainer {
         std::sort(ends_.begin(), ends_.end());
     }
 
-    // Same-kind feature edges meeting at a vertex.
+    // Same-kind feature edges meeting at a vertex: counted around it when it has few edges (a
+    // lookup in ends_ would miss the cache at every step), else looked up.
     int degree(uint32_t vertex, uint8_t kind) const {
+        const auto around = table_.edges_around(vertex);
+        if (around.size() <= kScanEdges) {
+            int count = 0;
+            for (uint32_t e : around) count += kind_[e] == kind;
+            return count;
+        }
         const auto range = std::equal_range(ends_.begin(), ends_.end(), end_key(vertex, kind));
         return int(range.second - range.first);
     }

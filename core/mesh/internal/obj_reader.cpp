@@ -48,11 +48,13 @@ bool is_plain_number(std::string_view token) {
 bool parse_coordinate(std::string_view token, float& r_value) {
     if (!is_plain_number(token)) return false;
     const char* end = token.data() + token.size();
+    auto [float_end, float_error] = std::from_chars(token.data(), end, r_value);
+    if (float_error != std::errc() || float_end != end) return false;
+    // The float is within a relative 2^-24 of the double: far below the limit, so is the double.
+    if (std::abs(double(r_value)) < 0.5 * kMaxCoordinate) return true;
     double checked = 0.0;
     auto [checked_end, checked_error] = std::from_chars(token.data(), end, checked);
-    if (checked_error != std::errc() || checked_end != end || !(std::abs(checked) <= kMaxCoordinate)) return false;
-    auto [float_end, float_error] = std::from_chars(token.data(), end, r_value);
-    return float_error == std::errc() && float_end == end;
+    return checked_error == std::errc() && checked_end == end && std::abs(checked) <= kMaxCoordinate;
 }
 
 // An optional '-' and 1..kMaxIndexDigits digits, the whole token.
