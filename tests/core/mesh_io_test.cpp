@@ -107,6 +107,17 @@ TEST_F(MeshIo, AstronomicalCoordinateIsAnError) {
     EXPECT_NE(error.find("exceeds the limit"), std::string::npos) << error;
 }
 
+TEST_F(MeshIo, CoordinateLimitHoldsForTheTextNotItsFloat) {
+    // 1.00000001e18 rounds to a float below the limit, but the text is above it.
+    test::write_text(dir / "over.obj", "v 0 0 0\nv 1.00000001e18 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string error = error_of(dir / "over.obj");
+    EXPECT_NE(error.find("over.obj:2: coordinate"), std::string::npos) << error;
+    test::write_text(dir / "at.obj", "v 0 0 0\nv -1e18 0 0\nv 0 4e17 0\nf 1 2 3\n");
+    const core::LoadedMesh at = core::load_mesh(dir / "at.obj");
+    EXPECT_EQ(at.mesh.positions[1].x, -1e18f);
+    EXPECT_EQ(at.mesh.positions[2].y, 4e17f);
+}
+
 TEST_F(MeshIo, ZeroAndOutOfRangeRelativeIndicesAreErrors) {
     for (const char* face : {"f 0 1 2", "f -5 -2 -1", "f 1 2 4"}) {
         test::write_text(dir / "idx.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\n") + face + "\n");
