@@ -221,12 +221,25 @@ StrokePath build_stroke_path(std::span<const glm::dvec2> points, bool closed, co
         }
         double total = weight[0];
         for (std::ptrdiff_t k = 1; k <= radius; ++k) total += 2.0 * weight[size_t(k)];
+        // Each sample's sum adds its terms in order of k, as one loop over k per sample would, but
+        // a pass per k over all samples lets the additions of different samples overlap.
+        std::vector<double> sx(static_cast<size_t>(n)), sy(static_cast<size_t>(n));
+        std::vector<double> px(padded.size()), py(padded.size());
+        for (size_t j = 0; j < padded.size(); ++j) px[j] = padded[j].x, py[j] = padded[j].y;
         for (std::ptrdiff_t i = 0; i < n; ++i) {
-            const glm::dvec2* c = &padded[size_t(i + radius)];
-            glm::dvec2 sum = c[0] * weight[0];
-            for (std::ptrdiff_t k = 1; k <= radius; ++k) sum += (c[-k] + c[k]) * weight[size_t(k)];
-            smooth[size_t(i)] = sum / total;
+            sx[size_t(i)] = px[size_t(i + radius)] * weight[0];
+            sy[size_t(i)] = py[size_t(i + radius)] * weight[0];
         }
+        for (std::ptrdiff_t k = 1; k <= radius; ++k) {
+            const double w = weight[size_t(k)];
+            const double *xl = &px[size_t(radius - k)], *xr = &px[size_t(radius + k)];
+            const double *yl = &py[size_t(radius - k)], *yr = &py[size_t(radius + k)];
+            for (std::ptrdiff_t i = 0; i < n; ++i) {
+                sx[size_t(i)] += (xl[i] + xr[i]) * w;
+                sy[size_t(i)] += (yl[i] + yr[i]) * w;
+            }
+        }
+        for (std::ptrdiff_t i = 0; i < n; ++i) smooth[size_t(i)] = glm::dvec2(sx[size_t(i)], sy[size_t(i)]) / total;
     }
 
     // Bounded deviation: pull every sample back to within max_deviation_px of the exact polyline.
@@ -293,25 +306,31 @@ std::vector<double> smooth_samples(std::span<const double> values, double step_p
     const std::vector<double> weight = gaussian_weights(sigma, radius);
     double full = weight[0];
     for (std::ptrdiff_t k = 1; k <= radius; ++k) full += 2.0 * weight[size_t(k)];
-    for (std::ptrdiff_t i = 0; i < n; ++i) {
-        double sum = values[size_t(i)] * weight[0], total = full;
-        if (i >= radius && i + radius < n) {
-            for (std::ptrdiff_t k = 1; k <= radius; ++k)
-                sum += (values[size_t(i - k)] + values[size_t(i + k)]) * weight[size_t(k)];
-        } else {
-            // Near an end: a loop wraps around; an open path's kernel is cut there.
-            total = weight[0];
-            for (std::ptrdiff_t k = 1; k <= radius; ++k) {
-                for (const std::ptrdiff_t j : {i - k, i + k}) {
-                    if (!closed && (j < 0 || j >= n)) continue;
-                    // j lies within n of [0, n): one wrap at most (cheaper than %).
-                    sum += values[size_t(j < 0 ? j + n : j >= n ? j - n : j)] * weight[size_t(k)];
-                    total += weight[size_t(k)];
-                }
+    // Samples whose kernel lies inside: a pass per k over them all, each sum in order of k.
+    const std::ptrdiff_t inner_begin = radius, inner_end = std::max(radius, n - radius);
+    for (std::ptrdiff_t i = inner_begin; i < inner_end; ++i) out[size_t(i)] = values[size_t(i)] * weight[0];
+    for (std::ptrdiff_t k = 1; k <= radius; ++k) {
+        const double w = weight[size_t(k)];
+        for (std::ptrdiff_t i = inner_begin; i < inner_end; ++i) {
+            out[size_t(i)] += (values[size_t(i - k)] + values[size_t(i + k)]) * w;
+        }
+    }
+    for (std::ptrdiff_t i = inner_begin; i < inner_end; ++i) out[size_t(i)] /= full;
+    // Near an end: a loop wraps around; an open path's kernel is cut there.
+    auto near_end = [&](std::ptrdiff_t i) {
+        double sum = values[size_t(i)] * weight[0], total = weight[0];
+        for (std::ptrdiff_t k = 1; k <= radius; ++k) {
+            for (const std::ptrdiff_t j : {i - k, i + k}) {
+                if (!closed && (j < 0 || j >= n)) continue;
+                // j lies within n of [0, n): one wrap at most (cheaper than %).
+                sum += values[size_t(j < 0 ? j + n : j >= n ? j - n : j)] * weight[size_t(k)];
+                total += weight[size_t(k)];
             }
         }
         out[size_t(i)] = sum / total;
-    }
+    };
+    for (std::ptrdiff_t i = 0; i < inner_begin; ++i) near_end(i);
+    for (std::ptrdiff_t i = inner_end; i < n; ++i) near_end(i);
     return out;
 }
 
