@@ -2,6 +2,7 @@
 #include "core/lines/silhouette_tracker.h"
 
 #include "core/error.h"
+#include "core/internal/parallel.h"
 #include "core/lines/internal/cone_tree.h"
 
 #include <glm/trigonometric.hpp>
@@ -21,6 +22,9 @@ using internal::ClusterFacing;
 // its two faces now share, before the search is left to the cone hierarchy: a silhouette that
 // moved by a few faces is found again here, and one that vanished costs no more than this.
 constexpr int kStoppedWalkRings = 2;
+
+// A full pass over fewer faces (edges) than this runs on the calling thread.
+constexpr size_t kMinParallelItems = 100000;
 
 }  // namespace
 
@@ -154,17 +158,16 @@ void SilhouetteTracker::begin_frame() {
     stats_ = {};
 }
 
+double SilhouetteTracker::facing_at(uint32_t position) const {
+    if (local_triangles_.empty()) return facing_value(*mesh_, tree_->faces[position], eye_);
+    const glm::uvec3 t = local_triangles_[position];
+    return facing_value(local_positions_[t.x], local_positions_[t.y], local_positions_[t.z], eye_);
+}
+
 bool SilhouetteTracker::is_front(uint32_t position) {
     uint8_t& state = face_state_[position];
     if ((state >> 1) != face_stamp_) {
-        double facing;
-        if (local_triangles_.empty()) {
-            facing = facing_value(*mesh_, tree_->faces[position], eye_);
-        } else {
-            const glm::uvec3 t = local_triangles_[position];
-            facing = facing_value(local_positions_[t.x], local_positions_[t.y], local_positions_[t.z], eye_);
-        }
-        state = uint8_t((face_stamp_ << 1) | (facing > 0.0 ? 1u : 0u));
+        state = uint8_t((face_stamp_ << 1) | (facing_at(position) > 0.0 ? 1u : 0u));
         ++faces_tested_;
     }
     return (state & 1u) != 0;
@@ -195,7 +198,13 @@ SilhouetteTracker::Visit SilhouetteTracker::visit_interior_edge(const internal::
 void SilhouetteTracker::full_pass(const LineOptions& lines, double cos_crease) {
     const EdgeTable& table = *table_;
     if (lines.silhouette) {
-        for (uint32_t k = 0; k < tree_->faces.size(); ++k) is_front(k);
+        // Every face's facing, on every core (each face its own state), then every edge.
+        internal::parallel_for(tree_->faces.size(), kMinParallelItems, [&](size_t begin, size_t end) {
+            for (size_t k = begin; k < end; ++k) {
+                face_state_[k] = uint8_t((face_stamp_ << 1) | (facing_at(uint32_t(k)) > 0.0 ? 1u : 0u));
+            }
+        });
+        faces_tested_ += tree_->faces.size();
         for (const internal::ListedEdge& le : tree_->edges) {
             visit_interior_edge(le, ClusterFacing::kUnknown, ClusterFacing::kUnknown);
         }
@@ -211,12 +220,19 @@ void SilhouetteTracker::full_pass(const LineOptions& lines, double cos_crease) {
 }
 
 void SilhouetteTracker::all_creases(double cos_crease) {
+    // Slices of the edges on every core, joined in edge order.
+    const size_t edges = table_->edge_count();
+    const size_t slices = edges < kMinParallelItems ? 1 : internal::hardware_threads();
+    std::vector<std::vector<uint32_t>> found(slices);
+    internal::run_tasks(slices, [&](size_t slice) {
+        for (size_t e = edges * slice / slices; e < edges * (slice + 1) / slices; ++e) {
+            if (!table_->is_interior(uint32_t(e))) continue;
+            const auto faces = table_->faces_of(uint32_t(e));
+            if (is_crease(*mesh_, faces[0], faces[1], cos_crease)) found[slice].push_back(uint32_t(e));
+        }
+    });
     creases_.clear();
-    for (uint32_t e = 0; e < table_->edge_count(); ++e) {
-        if (!table_->is_interior(e)) continue;
-        const auto faces = table_->faces_of(e);
-        if (is_crease(*mesh_, faces[0], faces[1], cos_crease)) creases_.push_back(e);
-    }
+    for (const std::vector<uint32_t>& part : found) creases_.insert(creases_.end(), part.begin(), part.end());
 }
 
 void SilhouetteTracker::search() {

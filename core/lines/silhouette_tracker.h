@@ -90,6 +90,7 @@ class SilhouetteTracker {
     void begin_frame();
     void sort_found();  // found_ into silhouettes_, ascending
     bool is_front(uint32_t position);  // of the face at this position in ConeTree::faces
+    double facing_at(uint32_t position) const;  // facing_value of that face
     Visit visit_edge(uint32_t edge);
     // Tests an edge listed in the cone tree; a face's facing given as known is not evaluated.
     Visit visit_interior_edge(const internal::ListedEdge& edge, internal::ClusterFacing known0,
