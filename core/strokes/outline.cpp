@@ -20,6 +20,8 @@ constexpr double kCapMinWidthPx = 1e-3;
 constexpr double kSamePointPx = 1e-9;
 // Simplification error stays below this fraction of a stroke's mean width (and simplify_px).
 constexpr double kSimplifyWidthFraction = 0.02;
+// edges_meet tests at most this many edge pairs per edge before leaving the ring to is_simple.
+constexpr size_t kEdgePairsPerEdge = 16;
 // Folds are looked for this far (px of centerline, beyond the widest width) ahead of a segment.
 constexpr double kFoldReachPx = 2.0;
 
@@ -168,6 +170,48 @@ void end_cap(const glm::dvec2& c, const glm::dvec2& from, const glm::dvec2& thro
     }
 }
 
+// True when two edges of the ring that do not follow one another meet (exact predicates): then
+// the ring is not simple. False says nothing: is_simple decides. The edges are bucketed in a
+// grid of about one cell per edge, so that a ring of thousands of points costs a few pair tests
+// per edge where CGAL's sweep sorts every vertex.
+bool edges_meet(const Ring& ring) {
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    const size_t n = ring.size();
+    if (n < 4) return false;
+    glm::dvec2 lo = ring[0], hi = ring[0];
+    for (const glm::dvec2& p : ring) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const double cell = std::max(std::max(hi.x - lo.x, hi.y - lo.y) / std::sqrt(double(n)), 1e-9);
+    const auto columns = size_t(std::floor((hi.x - lo.x) / cell)) + 1;
+    std::vector<std::pair<size_t, uint32_t>> cells;  // (cell, edge)
+    for (size_t e = 0; e < n; ++e) {
+        const glm::dvec2 a = ring[e], b = ring[(e + 1) % n];
+        const auto x0 = size_t((std::min(a.x, b.x) - lo.x) / cell), x1 = size_t((std::max(a.x, b.x) - lo.x) / cell);
+        const auto y0 = size_t((std::min(a.y, b.y) - lo.y) / cell), y1 = size_t((std::max(a.y, b.y) - lo.y) / cell);
+        for (size_t y = y0; y <= y1; ++y) {
+            for (size_t x = x0; x <= x1; ++x) cells.emplace_back(y * columns + x, uint32_t(e));
+        }
+    }
+    std::sort(cells.begin(), cells.end());
+    auto segment = [&](uint32_t e) {
+        const glm::dvec2 a = ring[e], b = ring[(e + 1) % n];
+        return Kernel::Segment_2({a.x, a.y}, {b.x, b.y});
+    };
+    // Points crowded into a few cells would make this quadratic: past a budget, is_simple decides.
+    size_t budget = kEdgePairsPerEdge * n;
+    for (size_t begin = 0, end = 0; begin < cells.size(); begin = end) {
+        while (end < cells.size() && cells[end].first == cells[begin].first) ++end;
+        for (size_t i = begin; i < end; ++i) {
+            for (size_t j = i + 1; j < end; ++j) {
+                const size_t d = cells[j].second - cells[i].second;  // edges ascend within a cell
+                if (d <= 1 || d == n - 1) continue;                  // neighbours share a corner
+                if (budget-- == 0) return false;
+                if (CGAL::do_intersect(segment(cells[i].second), segment(cells[j].second))) return true;
+            }
+        }
+    }
+    return false;
+}
+
 Ring dedupe(std::vector<glm::dvec2> ring) {
     Ring out;
     for (const glm::dvec2& p : ring) {
@@ -210,9 +254,10 @@ std::vector<Ring> build_outline(std::span<const glm::dvec2> c, std::span<const d
     for (Ring& ring : rings) {
         if (!(tolerance > 0.0)) continue;
         // Simplification can make a thin ring touch itself; then the full ring is kept, unless it
-        // touches itself already (an open stroke whose end overlaps its own ink, a hairpin).
+        // touches itself already (an open stroke whose end overlaps its own ink, a hairpin: then
+        // two of its edges are usually found to meet without the full test).
         Ring simple = simplify_ring(ring, tolerance);
-        if (simple.size() >= 3 && (is_simple(simple) || !is_simple(ring))) ring = std::move(simple);
+        if (simple.size() >= 3 && (is_simple(simple) || edges_meet(ring) || !is_simple(ring))) ring = std::move(simple);
     }
     std::erase_if(rings, [](const Ring& r) { return r.size() < 3; });
     return rings;
