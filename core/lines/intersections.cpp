@@ -194,6 +194,26 @@ bool share_vertex(const glm::uvec3& a, const glm::uvec3& b) {
     return false;
 }
 
+// The axis along which a sweep over the boxes compares the fewest pairs: for each box, those
+// that start within its extent along the axis.
+int sweep_axis(const std::vector<std::pair<Box3, uint32_t>>& boxes) {
+    int best = 0;
+    size_t fewest = SIZE_MAX;
+    std::vector<float> starts(boxes.size());
+    for (int axis = 0; axis < 3; ++axis) {
+        for (size_t i = 0; i < boxes.size(); ++i) starts[i] = boxes[i].first.min[axis];
+        std::sort(starts.begin(), starts.end());
+        size_t compared = 0;
+        for (const auto& [box, face] : boxes) {
+            const auto lo = std::lower_bound(starts.begin(), starts.end(), box.min[axis]);
+            const auto hi = std::upper_bound(lo, starts.end(), box.max[axis]);
+            compared += size_t(hi - lo);
+        }
+        if (compared < fewest) fewest = compared, best = axis;
+    }
+    return best;
+}
+
 // Face pairs whose boxes overlap and that may cross under the options, each (first, other).
 std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const Mesh& mesh, const EdgeTable& table,
                                                            const Crossings& crossings, uint32_t objects,
@@ -244,12 +264,15 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const Mesh& mesh, con
         if (wanted[f]) boxes.emplace_back(face_box(mesh, f), f);
     }
     if (boxes.size() <= kMaxSweptBoxes) {
-        // Few boxes (a ground plane under a few objects): sorted by their least x, each compared
-        // with those that start before it ends. The same pairs as below, with none of its setup.
-        std::sort(boxes.begin(), boxes.end(), [](const auto& a, const auto& b) { return a.first.min.x < b.first.min.x; });
+        // Few boxes (a ground plane under a few objects): sorted by their least coordinate along
+        // one axis, each compared with those that start before it ends. The same pairs as below,
+        // with none of its setup. The axis is the one with the fewest such comparisons (a flat
+        // ground's boxes all overlap along its normal, long faces along their length).
+        const int axis = sweep_axis(boxes);
+        std::sort(boxes.begin(), boxes.end(), [axis](const auto& a, const auto& b) { return a.first.min[axis] < b.first.min[axis]; });
         for (size_t i = 0; i < boxes.size(); ++i) {
             const Box3& a = boxes[i].first;
-            for (size_t j = i + 1; j < boxes.size() && boxes[j].first.min.x <= a.max.x; ++j) {
+            for (size_t j = i + 1; j < boxes.size() && boxes[j].first.min[axis] <= a.max[axis]; ++j) {
                 if (a.overlaps(boxes[j].first)) meet(boxes[i].second, boxes[j].second);
             }
         }
