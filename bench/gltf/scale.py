@@ -70,6 +70,8 @@ def main():
         check = subprocess.run([sys.executable, os.path.join(HERE, "compare_lines.py"), shot, "--inkline", args.inkline],
                                capture_output=True, text=True)
         worst = re.search(r"worst precision ([\d.]+), worst recall ([\d.]+)", check.stdout)
+        if check.returncode != 0 or not worst:
+            raise SystemExit("compare_lines.py failed (it needs numpy for %s):\n%s" % (sys.executable, check.stderr[-2000:]))
         ink_ms, peak, faces = inkline_frames(args.inkline, os.path.join(shot, "shot.glb"), args.frames, os.path.join(shot, "ink"))
         la_ms = lineart_frames(os.path.join(shot, "shot.blend"), args.frames, shot)
         print("| %s | %.1f | %.1f | %.1fx | %.0f | %s | %s |" % (

@@ -269,7 +269,8 @@ std::vector<std::pair<uint32_t, uint32_t>> candidate_pairs(const Mesh& mesh, con
         // with none of its setup. The axis is the one with the fewest such comparisons (a flat
         // ground's boxes all overlap along its normal, long faces along their length).
         const int axis = sweep_axis(boxes);
-        std::sort(boxes.begin(), boxes.end(), [axis](const auto& a, const auto& b) { return a.first.min[axis] < b.first.min[axis]; });
+        std::sort(boxes.begin(), boxes.end(),
+                  [axis](const auto& a, const auto& b) { return a.first.min[axis] < b.first.min[axis]; });
         for (size_t i = 0; i < boxes.size(); ++i) {
             const Box3& a = boxes[i].first;
             for (size_t j = i + 1; j < boxes.size() && boxes[j].first.min[axis] <= a.max[axis]; ++j) {

@@ -38,7 +38,9 @@ MeshFrames::MeshFrames(std::shared_ptr<const AnimatedMesh> animation, const std:
         face_objects_ = animation_->face_objects();
         INKLINE_CHECK_EQ(face_objects_.size(), mesh_.triangles.size());
     }
-    for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_, MeshReportScope::kWarnings))) warnings_.push_back(source.string() + ": " + w);
+    for (const std::string& w : mesh_warnings(describe_mesh(mesh_, table_, MeshReportScope::kWarnings))) {
+        warnings_.push_back(source.string() + ": " + w);
+    }
     loaded_frame_ = std::numeric_limits<int>::min();
 }
 

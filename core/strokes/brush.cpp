@@ -40,7 +40,8 @@ std::vector<glm::dvec3> vertex_normals_at(const Mesh& mesh, const EdgeTable& tab
     std::vector<glm::dvec3> normals(vertices.size(), glm::dvec3(0.0));
     internal::parallel_for(vertices.size(), kMinParallelVertices, [&](size_t begin, size_t end) {
         std::vector<uint32_t> faces;
-        auto next_degenerate = std::lower_bound(degenerate.begin(), degenerate.end(), std::pair<size_t, uint32_t>(begin, 0));
+        auto next_degenerate =
+            std::lower_bound(degenerate.begin(), degenerate.end(), std::pair<size_t, uint32_t>(begin, 0));
         for (size_t i = begin; i < end; ++i) {
             faces.clear();
             for (uint32_t e : table.edges_around(vertices[i])) {
