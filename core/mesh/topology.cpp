@@ -202,9 +202,9 @@ namespace {
 
 // A vertex is manifold when its faces form one fan: each joined to the next across an edge of the
 // vertex that has exactly two faces. Two cones touching at their tips, or faces meeting at a
-// non-manifold edge, make more than one fan. Linear in the mesh: each face's place among its
-// vertex's faces is looked up in a table over all faces, not searched for (a fan's apex may have
-// hundreds of thousands).
+// non-manifold edge, make more than one fan. Each face's place among its vertex's faces is
+// found by a binary search of them, sorted: n log n at a fan's apex of hundreds of thousands, and
+// no table over all faces, so that vertices can be counted on every core.
 size_t count_non_manifold_vertices(const EdgeTable& table) {
     const size_t vertices = table.vertex_edge_offsets.empty() ? 0 : table.vertex_edge_offsets.size() - 1;
     std::atomic<size_t> count{0};
