@@ -44,9 +44,10 @@ glm::dvec3 jitter(uint32_t vertex) {
 
 constexpr uint32_t kNone = 0xffffffffu;
 
-// Candidate face boxes up to this many are paired by a sweep along x; more by CGAL's segment
-// tree, whose setup costs more than the sweep on a few thousand boxes (1,844 boxes of a shot's
-// ground plane and objects: 1.4 ms a frame) but which stays n log^2 n where boxes crowd along x.
+// Candidate face boxes up to this many are paired by a sweep along one axis; more by CGAL's
+// segment tree, whose setup costs more than the sweep on a few thousand boxes (1,844 boxes of a
+// shot's ground plane and objects: 1.4 ms a frame) but which stays n log^2 n however the boxes
+// crowd along every axis.
 constexpr size_t kMaxSweptBoxes = 4096;
 
 // Where an edge of one surface pierces a face of the other.

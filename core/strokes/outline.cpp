@@ -20,7 +20,8 @@ constexpr double kCapMinWidthPx = 1e-3;
 constexpr double kSamePointPx = 1e-9;
 // Simplification error stays below this fraction of a stroke's mean width (and simplify_px).
 constexpr double kSimplifyWidthFraction = 0.02;
-// edges_meet tests at most this many edge pairs per edge before leaving the ring to is_simple.
+// edges_meet files at most this many cells, and tests at most this many edge pairs, per edge
+// before leaving the ring to is_simple.
 constexpr size_t kEdgePairsPerEdge = 16;
 // Folds are looked for this far (px of centerline, beyond the widest width) ahead of a segment.
 constexpr double kFoldReachPx = 2.0;
@@ -179,14 +180,21 @@ bool edges_meet(const Ring& ring) {
     const size_t n = ring.size();
     if (n < 4) return false;
     glm::dvec2 lo = ring[0], hi = ring[0];
-    for (const glm::dvec2& p : ring) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    for (const glm::dvec2& p : ring) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) return false;
+        lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
     const double cell = std::max(std::max(hi.x - lo.x, hi.y - lo.y) / std::sqrt(double(n)), 1e-9);
     const auto columns = size_t(std::floor((hi.x - lo.x) / cell)) + 1;
+    // Points crowded into a few cells, or edges across many, would make this quadratic: past a
+    // budget of cells and of pair tests, is_simple decides.
+    size_t budget = kEdgePairsPerEdge * n;
     std::vector<std::pair<size_t, uint32_t>> cells;  // (cell, edge)
     for (size_t e = 0; e < n; ++e) {
         const glm::dvec2 a = ring[e], b = ring[(e + 1) % n];
         const auto x0 = size_t((std::min(a.x, b.x) - lo.x) / cell), x1 = size_t((std::max(a.x, b.x) - lo.x) / cell);
         const auto y0 = size_t((std::min(a.y, b.y) - lo.y) / cell), y1 = size_t((std::max(a.y, b.y) - lo.y) / cell);
+        if ((x1 - x0 + 1) * (y1 - y0 + 1) > budget - cells.size()) return false;
         for (size_t y = y0; y <= y1; ++y) {
             for (size_t x = x0; x <= x1; ++x) cells.emplace_back(y * columns + x, uint32_t(e));
         }
@@ -196,8 +204,6 @@ bool edges_meet(const Ring& ring) {
         const glm::dvec2 a = ring[e], b = ring[(e + 1) % n];
         return Kernel::Segment_2({a.x, a.y}, {b.x, b.y});
     };
-    // Points crowded into a few cells would make this quadratic: past a budget, is_simple decides.
-    size_t budget = kEdgePairsPerEdge * n;
     for (size_t begin = 0, end = 0; begin < cells.size(); begin = end) {
         while (end < cells.size() && cells[end].first == cells[begin].first) ++end;
         for (size_t i = begin; i < end; ++i) {
