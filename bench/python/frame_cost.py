@@ -7,6 +7,10 @@
 # program, module, program, module ... in one session so both see the same machine.
 #
 #   bench/python/frame_cost.py INPUT [--build build] [--frames 24] [--runs 3] [--visibility raycast]
+#       [--python /usr/bin/python3]
+#
+# The module runs under --python, the interpreter it was built for (Debian's python3 by default,
+# as the build picks it), whichever Python runs this script.
 #
 # INPUT is a scene (.json) or a mesh (drawn as the default turntable), e.g. Suzanne subdivided 4
 # times (251,904 triangles) from bench/blender/build_scene.py. Per run: the median over frames
@@ -37,7 +41,7 @@ def program_frames(exe, source, frames, visibility, work):
     return [out[n] for n in sorted(out)]
 
 
-def module_frames(source, frames, visibility):
+def module_frames(python, source, frames, visibility):
     """Per frame, the wall time of Shot.render() and the frame's own stage times."""
     code = f"""
 import json, sys, time
@@ -51,7 +55,9 @@ for n in shot.frames:
     stages.append(sum(frame.stats["ms"].values()))
 print(json.dumps([walls, stages]))
 """
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    r = subprocess.run([python, "-c", code], capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit("frame_cost.py: the module failed under %s:\n%s" % (python, r.stderr[-3000:]))
     import json
     return json.loads(r.stdout)
 
@@ -63,6 +69,7 @@ def main():
     p.add_argument("--frames", type=int, default=24)
     p.add_argument("--runs", type=int, default=3)
     p.add_argument("--visibility", default="raycast")
+    p.add_argument("--python", default="/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable)
     a = p.parse_args()
     exe = os.path.join(a.build, "cli", "inkline")
     os.environ["PYTHONPATH"] = os.path.join(a.build, "python")
@@ -70,7 +77,7 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         for run in range(a.runs):
             program = program_frames(exe, a.input, a.frames, a.visibility, work)
-            walls, stages = module_frames(a.input, a.frames, a.visibility)
+            walls, stages = module_frames(a.python, a.input, a.frames, a.visibility)
             row = (statistics.median(program[1:]), statistics.median(walls[1:]), statistics.median(stages[1:]),
                    program[0], walls[0])
             rows.append(row)
