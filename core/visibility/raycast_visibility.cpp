@@ -207,11 +207,22 @@ struct RaycastOcclusion::Impl {
             if (two_level) rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_REFIT);
             void* vertices = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                      sizeof(glm::vec3), vertex_count);
-            auto* indices = static_cast<glm::uvec3*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(glm::uvec3), primitives));
+            glm::uvec3* indices = nullptr;
+            if (face_of.empty() && !two_level) {
+                // Every face is a primitive of a BVH that is never refitted: Embree reads the
+                // mesh's own triangles (12 MB not copied at 1M faces). A refittable build keeps a
+                // copy: a deforming mesh's later frames may come in other storage.
+                rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.triangles.data(), 0,
+                                           sizeof(glm::uvec3), primitives);
+            } else {
+                indices = static_cast<glm::uvec3*>(rtcSetNewGeometryBuffer(
+                    g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(glm::uvec3), primitives));
+            }
             check_device(device.get(), "allocating the mesh buffers");
             copy_scaled(mesh, static_cast<glm::vec3*>(vertices));
-            for (size_t i = 0; i < primitives; ++i) indices[i] = mesh.triangles[face_of.empty() ? i : face_of[i]];
+            if (indices) {
+                for (size_t i = 0; i < primitives; ++i) indices[i] = mesh.triangles[face_of.empty() ? i : face_of[i]];
+            }
             rtcSetGeometryOccludedFilterFunction(g, reject_own_faces);
             rtcAttachGeometry(scene.get(), g);
         }

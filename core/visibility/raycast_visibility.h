@@ -20,8 +20,10 @@ class RaycastOcclusion final : public Occlusion {
     // Builds the BVH over the valid faces of the mesh in its current (object-space) positions.
     // The faces around a vertex of very high valence (a cone's apex, a disc cap's centre) are
     // indexed apart, so that a ray near that vertex tests a few of them, not a share of all.
-    // Keeps a reference to `table`, which must outlive this object. Throws InputError when this
-    // build has no Embree.
+    // Keeps a reference to `table`, which must outlive this object, and reads the triangles of
+    // `mesh` in place: the mesh must outlive it too, with the same triangles, until the first
+    // update_positions (which copies what it keeps). Throws InputError when this build has no
+    // Embree.
     RaycastOcclusion(const Mesh& mesh, const EdgeTable& table);
     ~RaycastOcclusion() override;
 
