@@ -30,6 +30,18 @@ constexpr double kBoxPad = 1e-12;
 // counts as crease-free only this far below the crease angle.
 constexpr double kCreaseMargin = 1e-6;
 
+// FaceCone keeps its values in float: a unit normal moves by at most sqrt(3) 2^-24 when rounded
+// and a centroid by 2^-24 of its largest coordinate; a node's spread and box grow by these pads,
+// which cover that with room for the sums' own rounding.
+constexpr double kFloatNormalPad = 0x1p-22;
+constexpr double kFloatBoxPad = 0x1p-22;
+
+// The float just above (at or above) a double.
+float float_at_least(double x) {
+    const auto f = float(x);
+    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
 // Chord between two unit vectors at 90 degrees (sqrt 2): a cone this wide proves no facing.
 constexpr double kMaxSpread = 1.4142135623730951;
 
@@ -99,7 +111,7 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
     // subtree is built and the subtrees below the top levels are built in parallel, each exactly
     // as the sequential recursion would.
     Bounds all;
-    for (const FaceCone& cone : cones_) all.add(cone.centroid);
+    for (const FaceCone& cone : cones_) all.add(glm::dvec3(cone.centroid));
     const double diagonal = std::max(2.0 * all.radius(), std::numeric_limits<double>::min());
     std::vector<uint32_t> face_leaf(n_faces, kNoIndex);
     SubtreeSizes sizes(leaf_faces);
@@ -119,16 +131,16 @@ ConeTree::ConeTree(const Mesh& mesh, const EdgeTable& table, uint32_t leaf_faces
             return t.end;
         }
         // Split along the widest of three centroid axes and three normal components.
-        glm::dvec3 p_min(std::numeric_limits<double>::max()), p_max(-std::numeric_limits<double>::max());
-        glm::dvec3 n_min(2.0), n_max(-2.0);
+        glm::vec3 p_min(std::numeric_limits<float>::max()), p_max(-std::numeric_limits<float>::max());
+        glm::vec3 n_min(2.0f), n_max(-2.0f);
         for (uint32_t k = t.begin; k < t.end; ++k) {
             p_min = glm::min(p_min, cones_[k].centroid);
             p_max = glm::max(p_max, cones_[k].centroid);
             n_min = glm::min(n_min, cones_[k].normal);
             n_max = glm::max(n_max, cones_[k].normal);
         }
-        const glm::dvec3 p_spread = kPositionWeight * (p_max - p_min) / diagonal;
-        const glm::dvec3 n_spread = n_max - n_min;
+        const glm::dvec3 p_spread = kPositionWeight * glm::dvec3(p_max - p_min) / diagonal;
+        const glm::dvec3 n_spread(n_max - n_min);
         int key = 0;
         double widest = -1.0;
         for (int k = 0; k < 6; ++k) {
@@ -236,14 +248,14 @@ ConeTree::FaceCone ConeTree::face_cone(const Mesh& mesh, uint32_t face) {
     const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
     const glm::dvec3 n = glm::cross(b - a, c - a);
     const double len = glm::length(n);
-    FaceCone fc{.centroid = (a + b + c) / 3.0, .normal = glm::dvec3(0.0, 0.0, 1.0), .error = 1.0, .face = face};
+    FaceCone fc{.centroid = glm::vec3((a + b + c) / 3.0), .normal = glm::vec3(0.0f, 0.0f, 1.0f), .error = 1.0f, .face = face};
     if (!(len > 0.0)) return fc;
-    fc.normal = n / len;
+    fc.normal = glm::vec3(n / len);
     // Relative error of facing_value's normal against this one, were they rounded differently
     // (about 12 ulp of |b-a||c-a| per cross product, large for slivers), plus the rounding of
     // eye - centroid and of the dot product.
     const double edges2 = glm::dot(b - a, b - a) * glm::dot(c - a, c - a);
-    fc.error = std::min(1.0, 8.0 * kEpsilon * (std::sqrt(edges2) / len + 1.0));
+    fc.error = float_at_least(std::min(1.0, 8.0 * kEpsilon * (std::sqrt(edges2) / len + 1.0)));
     return fc;
 }
 
@@ -262,22 +274,21 @@ ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, const CornerNormals& 
     }
     // The corners' values are dot products of the very normals bounded here: only their own
     // rounding (and that of corner - eye, which the box padding covers) is left.
-    FaceCone fc{.centroid = 0.5 * (glm::dvec3(bounds.box_min) + glm::dvec3(bounds.box_max)),
-                .normal = glm::dvec3(0.0, 0.0, 1.0),
-                .error = 8.0 * kEpsilon,
+    FaceCone fc{.centroid = glm::vec3(0.5 * (glm::dvec3(bounds.box_min) + glm::dvec3(bounds.box_max))),
+                .normal = glm::vec3(0.0f, 0.0f, 1.0f),
+                .error = float_at_least(8.0 * kEpsilon),
                 .face = face};
     bounds.spread = 2.0f;
     const double len = glm::length(sum);
     if (!unit || !(len > 1e-6)) return fc;
-    fc.normal = sum / len;
+    const glm::dvec3 normal = sum / len;
+    fc.normal = glm::vec3(normal);
     double spread2 = 0.0;
     for (int c = 0; c < 3; ++c) {
-        const glm::dvec3 d = corner_normals.normals[corner[c]] - fc.normal;
+        const glm::dvec3 d = corner_normals.normals[corner[c]] - normal;
         spread2 = std::max(spread2, glm::dot(d, d));
     }
-    const double spread = std::sqrt(spread2);
-    bounds.spread = float(spread);
-    if (double(bounds.spread) < spread) bounds.spread = std::nextafter(bounds.spread, 3.0f);
+    bounds.spread = float_at_least(std::sqrt(spread2));
     return fc;
 }
 
@@ -292,15 +303,22 @@ void ConeTree::fit_node(ConeNode& node) const {
     node.error = 0.0;
     for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
         const FaceCone& fc = cones_[k];
-        sum += fc.normal;
+        sum += glm::dvec3(fc.normal);
         if (over_corner_normals_) {
             node.box_min = glm::min(node.box_min, glm::dvec3(corners_[fc.face].box_min));
             node.box_max = glm::max(node.box_max, glm::dvec3(corners_[fc.face].box_max));
         } else {
-            node.box_min = glm::min(node.box_min, fc.centroid);
-            node.box_max = glm::max(node.box_max, fc.centroid);
+            node.box_min = glm::min(node.box_min, glm::dvec3(fc.centroid));
+            node.box_max = glm::max(node.box_max, glm::dvec3(fc.centroid));
         }
-        node.error = std::max(node.error, fc.error);
+        node.error = std::max(node.error, double(fc.error));
+    }
+    if (!over_corner_normals_) {
+        // The centroids were rounded to float (the corners' boxes are exact); the floor covers
+        // subnormal centroids, whose rounding is absolute.
+        const double pad = std::max(kFloatBoxPad * std::max(max_abs(node.box_min), max_abs(node.box_max)), 0x1p-148);
+        node.box_min -= pad;
+        node.box_max += pad;
     }
     const double len = glm::length(sum);
     if (!(len > 1e-6 * double(node.face_end - node.face_begin))) {
@@ -313,18 +331,18 @@ void ConeTree::fit_node(ConeNode& node) const {
         // Every corner normal lies within its face's spread of the face's normal.
         double spread = 0.0;
         for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
-            const glm::dvec3 d = cones_[k].normal - node.axis;
+            const glm::dvec3 d = glm::dvec3(cones_[k].normal) - node.axis;
             spread = std::max(spread, std::sqrt(glm::dot(d, d)) + double(corners_[cones_[k].face].spread));
         }
-        set_spread(node, spread);
+        set_spread(node, spread + kFloatNormalPad);
         return;
     }
     double spread2 = 0.0;
     for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
-        const glm::dvec3 d = cones_[k].normal - node.axis;
+        const glm::dvec3 d = glm::dvec3(cones_[k].normal) - node.axis;
         spread2 = std::max(spread2, glm::dot(d, d));
     }
-    set_spread(node, std::sqrt(spread2));
+    set_spread(node, std::sqrt(spread2) + kFloatNormalPad);
 }
 
 void ConeTree::set_spread(ConeNode& node, double spread) { node.spread = std::min(2.0, spread); }
@@ -404,7 +422,9 @@ bool ConeTree::maybe_crease(const ListedEdge& edge, double cos_crease) const {
     // Unit normals within error of is_crease's own directions: their cosine is within the sum.
     const FaceCone& a = cones_[edge.position[0]];
     const FaceCone& b = cones_[edge.position[1]];
-    return glm::dot(a.normal, b.normal) - (a.error + b.error + kConeMargin) < cos_crease;
+    return glm::dot(glm::dvec3(a.normal), glm::dvec3(b.normal)) -
+               (double(a.error) + double(b.error) + 2.0 * kFloatNormalPad + kConeMargin) <
+           cos_crease;
 }
 
 bool ConeTree::crease_free(uint32_t index, double crease_angle_rad) const {

@@ -96,19 +96,23 @@ class ConeTree {
 
   private:
     uint32_t leaf_faces_;
+    // Single precision, 32 bytes a face (the build's scratch: 32 MB at 1M faces, moved by every
+    // split): the values are computed in double and rounded to float, the error upwards; a node's
+    // box and spread are widened by what that rounding can move them (fit_node).
     struct FaceCone {
-        glm::dvec3 centroid;  // over corner normals: the centre of the corners' box
-        glm::dvec3 normal;    // unit
-        double error;
-        uint32_t face;        // the mesh face
+        glm::vec3 centroid;  // over corner normals: the centre of the corners' box
+        glm::vec3 normal;    // unit before rounding
+        float error;
+        uint32_t face;       // the mesh face
     };
+    static_assert(sizeof(FaceCone) == 32);
     // Over corner normals, what a face's cone adds to its centroid and normal.
     // Single precision, 28 bytes a face: the corners are floats, so their box is exact; the
     // spread is rounded up.
     struct CornerBounds {
         glm::vec3 box_min;  // of the corners
         glm::vec3 box_max;
-        float spread;       // at least max |corner normal - FaceCone::normal|; 2 bounds nothing
+        float spread;       // at least max |corner normal - the face's unit normal|; 2 bounds nothing
     };
     static FaceCone face_cone(const Mesh& mesh, uint32_t face);
     // Corner normals: normals[face_corners[f][c]] at corner c of face f.
