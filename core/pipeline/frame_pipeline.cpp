@@ -2,6 +2,7 @@
 #include "core/pipeline/frame_pipeline.h"
 
 #include "core/error.h"
+#include "core/internal/worker.h"
 #include "core/lines/chaining.h"
 #include "core/lines/features.h"
 #include "core/pipeline/stopwatch.h"
@@ -10,6 +11,9 @@
 #include <glm/matrix.hpp>
 #include <glm/vector_relational.hpp>
 
+#include <exception>
+#include <new>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -29,6 +33,10 @@ FramePipeline::FramePipeline(const Scene& scene, MeshFrames& meshes, std::unique
     const long long frames =
         options_.frame_count > 0 ? options_.frame_count : (long long)scene_.last_frame - scene_.first_frame + 1;
     tracker_mode_ = frames > 1 ? options_.tracker : TrackerMode::kBrute;
+    // The next frame's lines are found while a frame is drawn only where that cannot touch what
+    // the frame reads: a mesh that holds still (a sequence's next file, a deforming animation's
+    // next positions would replace its mesh), and no caller timing the steps.
+    lines_ahead_ = frames > 1 && !meshes_.deforming() && !options_.step_done;
     for (const MeshObject& object : meshes_.objects()) object_kinds_.push_back(object_line_kinds(scene_, object.name));
     // Intersection lines need an object that draws them, and a second object or self intersections.
     bool any_crossing_object = object_kinds_.empty() && scene_.lines.intersection;
@@ -43,36 +51,35 @@ int32_t FramePipeline::object_of(std::span<const uint32_t> edges) const {
 
 FramePipeline::~FramePipeline() = default;
 
-FrameResult FramePipeline::run(int frame) {
+FramePipeline::FoundLines FramePipeline::find_lines(int frame) {
     Stopwatch laps;
     const auto step = [&](const char* name) {
         const double ms = laps.lap_ms();
         if (options_.step_done) options_.step_done(name);
         return ms;
     };
-    FrameResult out;
-    FrameLines& result = out.lines;
-    result.frame = frame;
-    result.image = scene_.image;
-    result.light = scene_.light;
+    FoundLines found;
+    found.frame = frame;
     const Mesh& mesh = meshes_.at(frame);
-    const double load_ms = step("load");
+    found.mesh = &mesh;
+    found.load_ms = step("load");
     const EdgeTable& table = meshes_.edges();
 
     // The camera, fitted to the object's bounds where it moves (object space: extraction and
     // occlusion move the eye instead of the mesh).
-    const glm::dmat4 world_from_object = world_from_object_at(scene_, frame);
-    const MeshChange change = first_frame_             ? MeshChange::kTopology
-                              : meshes_.deforming()    ? MeshChange::kPositions
-                                                      : MeshChange::kNone;
-    if (change != MeshChange::kNone) object_bounds_ = bounds_of(mesh.positions);
+    found.world_from_object = world_from_object_at(scene_, frame);
+    found.change = first_lines_             ? MeshChange::kTopology
+                   : meshes_.deforming()    ? MeshChange::kPositions
+                                            : MeshChange::kNone;
+    first_lines_ = false;
+    if (found.change != MeshChange::kNone) object_bounds_ = bounds_of(mesh.positions);
     const Bounds& object_bounds = object_bounds_;
-    result.camera = camera_at(scene_, frame, transformed(object_bounds, world_from_object));
-    const Projection projection(result.camera, scene_.image, world_from_object);
+    found.camera = camera_at(scene_, frame, transformed(object_bounds, found.world_from_object));
+    const Projection projection(found.camera, scene_.image, found.world_from_object);
     if (!warned_inside_ && inside(object_bounds, projection.eye_object())) {
         warned_inside_ = true;
-        out.warnings.push_back("frame " + std::to_string(frame) +
-                               ": the camera is inside the mesh's bounds; lines may be hidden");
+        found.warnings.push_back("frame " + std::to_string(frame) +
+                                 ": the camera is inside the mesh's bounds; lines may be hidden");
     }
 
     // Feature edges and chains. Smooth contours replace the silhouette edges.
@@ -116,13 +123,83 @@ FrameResult FramePipeline::run(int frame) {
             intersections_.emplace(IntersectionOptions{.between_objects = meshes_.objects().size() > 1,
                                                        .self = scene_.lines.self_intersection});
         }
-        crossings = &intersections_->trace(mesh, table, meshes_.face_objects(), change != MeshChange::kNone);
+        crossings = &intersections_->trace(mesh, table, meshes_.face_objects(), found.change != MeshChange::kNone);
     }
-    const double extract_ms = tracker_build_ms + step("extract");
-    std::vector<Chain> chains = chain_feature_edges(features, table);
-    if (contours) chains.insert(chains.end(), contours->begin(), contours->end());
-    if (crossings) chains.insert(chains.end(), crossings->begin(), crossings->end());
-    const double chain_ms = step("chain");
+    found.extract_ms = tracker_build_ms + step("extract");
+    found.chains = chain_feature_edges(features, table);
+    if (contours) found.chains.insert(found.chains.end(), contours->begin(), contours->end());
+    if (crossings) found.chains.insert(found.chains.end(), crossings->begin(), crossings->end());
+    found.chain_ms = step("chain");
+
+    // What the stats need of the tracers, read now: the next frame's lines may be traced while
+    // this frame is drawn.
+    FrameStats& stats = found.stats;
+    stats.faces = mesh.triangles.size();
+    stats.edges = table.edge_count();
+    stats.edges_tested = features.edges_tested;
+    stats.faces_tested = features.faces_tested;
+    stats.feature_edges = features.count_by_kind();
+    stats.intersections = crossings != nullptr;
+    if (crossings) stats.feature_edges[size_t(LineKind::kIntersection)] = intersections_->stats().segments;
+    if (contours) {
+        // Smooth contours: the faces whose corner signs were compared, and the faces crossed.
+        stats.faces_tested += smooth_->stats().faces_tested;
+        stats.feature_edges[size_t(LineKind::kSilhouette)] = smooth_->stats().segments;
+    }
+    stats.silhouette_edges = stats.feature_edges[size_t(LineKind::kSilhouette)];
+    found.smooth_contours = contours != nullptr;
+    return found;
+}
+
+FramePipeline::FoundLines FramePipeline::lines_of(int frame) {
+    if (ahead_.valid()) {
+        const int ahead_frame = ahead_frame_;
+        std::future<FoundLines> ahead = std::move(ahead_);
+        if (ahead_frame == frame) return ahead.get();  // an error finding them is this frame's
+        try {
+            ahead.get();  // not the frame asked for: finished, then dropped
+        } catch (...) {
+        }
+    }
+    return find_lines(frame);
+}
+
+void FramePipeline::find_lines_ahead(int frame) {
+    if (!lines_ahead_ || frame > scene_.last_frame) return;
+    try {
+        if (!ahead_worker_) ahead_worker_ = std::make_unique<internal::Worker>();
+        ahead_ = ahead_worker_->submit([this, frame] { return find_lines(frame); });
+        ahead_frame_ = frame;
+    } catch (const std::system_error&) {
+        // No thread to be had (limits): the frame's lines are found when it is drawn.
+    } catch (const std::bad_alloc&) {
+        // Nor the memory to start one: the same.
+    }
+}
+
+FrameResult FramePipeline::run(int frame) {
+    FoundLines found = lines_of(frame);
+    find_lines_ahead(frame + 1);
+
+    Stopwatch laps;
+    const auto step = [&](const char* name) {
+        const double ms = laps.lap_ms();
+        if (options_.step_done) options_.step_done(name);
+        return ms;
+    };
+    FrameResult out;
+    out.warnings = std::move(found.warnings);
+    FrameLines& result = out.lines;
+    result.frame = frame;
+    result.image = scene_.image;
+    result.light = scene_.light;
+    result.camera = found.camera;
+    const Mesh& mesh = *found.mesh;
+    const EdgeTable& table = meshes_.edges();
+    const glm::dmat4& world_from_object = found.world_from_object;
+    const MeshChange change = found.change;
+    const Projection projection(result.camera, scene_.image, world_from_object);
+    const std::vector<Chain>& chains = found.chains;
 
     // Visibility. Occluded parts are always found (the samples are classified anyway): the
     // stroke stage bridges short ones. Without lines.hidden they stay out of the output.
@@ -152,7 +229,7 @@ FrameResult FramePipeline::run(int frame) {
     if (change != MeshChange::kNone) stroke_normals_.clear();
     out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_, scene_.styles,
                                 [this](std::span<const uint32_t> edges) { return object_of(edges); }, &stroke_normals_);
-    if (contours) {
+    if (found.smooth_contours) {
         const glm::dmat4 object_from_world = glm::inverse(world_from_object);
         for (Stroke& stroke : out.strokes.strokes) {
             const StrokeGeometry& g = stroke.geometry;
@@ -197,30 +274,16 @@ FrameResult FramePipeline::run(int frame) {
         }
         tone_ms = step("tone");
     }
-    first_frame_ = false;
-
     FrameStats& stats = result.stats;
-    stats.faces = mesh.triangles.size();
-    stats.edges = table.edge_count();
-    stats.edges_tested = features.edges_tested;
-    stats.faces_tested = features.faces_tested;
-    stats.feature_edges = features.count_by_kind();
-    stats.intersections = crossings != nullptr;
-    if (crossings) stats.feature_edges[size_t(LineKind::kIntersection)] = intersections_->stats().segments;
-    if (contours) {
-        // Smooth contours: the faces whose corner signs were compared, and the faces crossed.
-        stats.faces_tested += smooth_->stats().faces_tested;
-        stats.feature_edges[size_t(LineKind::kSilhouette)] = smooth_->stats().segments;
-    }
-    stats.silhouette_edges = stats.feature_edges[size_t(LineKind::kSilhouette)];
+    stats = std::move(found.stats);
     stats.tracker = tracker_mode_name(tracker_mode_);
     stats.visibility = visibility_mode_name(occlusion_->mode());
     stats.visibility_reason = options_.visibility_reason;
     stats.gl_context = occlusion_->device();
     tally_visible_length(result);
-    stats.ms = {{"load", load_ms},
-                {"extract", extract_ms},
-                {"chain", chain_ms},
+    stats.ms = {{"load", found.load_ms},
+                {"extract", found.extract_ms},
+                {"chain", found.chain_ms},
                 {"visibility", visibility_ms},
                 {"strokes", strokes_ms}};
     if (scene_.tone.mode != ToneMode::kNone) stats.ms.emplace_back("tone", tone_ms);

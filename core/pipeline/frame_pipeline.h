@@ -12,6 +12,7 @@
 // output::tone_layer(result.tone, scene.tone) as its tone.
 #pragma once
 
+#include "core/lines/chaining.h"
 #include "core/lines/intersections.h"
 #include "core/lines/silhouette_tracker.h"
 #include "core/lines/smooth_contours.h"
@@ -28,6 +29,7 @@
 
 #include <array>
 #include <functional>
+#include <future>
 #include <span>
 #include <memory>
 #include <optional>
@@ -35,6 +37,10 @@
 #include <vector>
 
 namespace inkline::core {
+
+namespace internal {
+class Worker;
+}  // namespace internal
 
 struct PipelineOptions {
     TrackerMode tracker = TrackerMode::kIncremental;
@@ -50,7 +56,8 @@ struct PipelineOptions {
     // hierarchy, on the tracker's first frame), "extract", "chain", "occlusion" (prepare: a BVH
     // or tree built or refitted, a depth pass), "visibility", "strokes". For benchmarks that time
     // the steps with clocks of their own; FrameStats::ms counts the tracker build in "extract"
-    // and the occlusion step in "visibility".
+    // and the occlusion step in "visibility". With it set, every step runs in run() on the
+    // calling thread: no frame's lines are found ahead.
     std::function<void(const char* step)> step_done{};
 };
 
@@ -79,6 +86,8 @@ class FramePipeline {
     // Draws a frame. Stroke ids and coherence carry from one call to the next, so frames are
     // drawn in order (a chunk of a sequence replays the frames before it). Throws InputError
     // for a frame that cannot be drawn (its mesh file, its camera); the next call may go on.
+    // On a mesh that holds still, the next frame's lines are then found on a second thread
+    // while the caller uses this result (docs/pipeline.md).
     FrameResult run(int frame);
 
     // The extraction in use: options.tracker, or kBrute for a run of one frame.
@@ -86,6 +95,27 @@ class FramePipeline {
     const OcclusionSource& occlusion() const { return *occlusion_; }
 
   private:
+    // A frame's lines before visibility: its mesh and camera, and the chains of its feature
+    // edges, smooth contours and intersection lines, with what the stats need of them.
+    struct FoundLines {
+        int frame = 0;
+        const Mesh* mesh = nullptr;
+        glm::dmat4 world_from_object{1.0};
+        MeshChange change = MeshChange::kNone;
+        Camera camera;
+        std::vector<Chain> chains;
+        bool smooth_contours = false;
+        FrameStats stats;  // faces, edges, tested, feature edges
+        double load_ms = 0.0, extract_ms = 0.0, chain_ms = 0.0;
+        std::vector<std::string> warnings;
+    };
+    // Finds a frame's lines; the tracers' state moves on to that frame.
+    FoundLines find_lines(int frame);
+    // The frame's lines: found ahead, or found now.
+    FoundLines lines_of(int frame);
+    // Starts finding a frame's lines on another thread (where lines_ahead_ allows).
+    void find_lines_ahead(int frame);
+
     // The object of the first of these mesh edges; -1 without objects.
     int32_t object_of(std::span<const uint32_t> edges) const;
 
@@ -110,8 +140,15 @@ class FramePipeline {
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;
     bool trace_intersections_ = false;
-    bool first_frame_ = true;
+    bool first_lines_ = true;    // no frame's lines found yet
+    bool lines_ahead_ = false;   // the next frame's lines may be found while a frame is drawn
     bool warned_inside_ = false;
+    // The next frame's lines, being found while a frame is drawn, on a thread of the pipeline's
+    // own (started on the first frame found ahead). Last, so that the thread stops before the
+    // state it uses goes.
+    std::future<FoundLines> ahead_;
+    int ahead_frame_ = 0;
+    std::unique_ptr<internal::Worker> ahead_worker_;
 };
 
 }  // namespace inkline::core

@@ -347,5 +347,46 @@ TEST(FramePipeline, AFrameThatCannotBeReadThrowsAndTheNextFrameIsDrawn) {
     fs::remove_all(dir);
 }
 
+// On a mesh that holds still, run() finds the next frame's lines on a second thread while the
+// caller has this frame; a step_done callback turns that off. Both must draw the same, also when
+// the frames are asked for out of order (a frame found ahead and not asked for is dropped).
+TEST(FramePipeline, LinesFoundAheadDrawTheSameAsLinesFoundInTurn) {
+    const core::Mesh mesh = torus_behind_sphere(0.0f);
+    const core::Scene scene = turntable(mesh, 8);
+    core::MeshFrames ahead_meshes(mesh), in_turn_meshes(mesh);
+    core::FramePipeline ahead(scene, ahead_meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+    core::FramePipeline in_turn(scene, in_turn_meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact),
+                                {.step_done = [](const char*) {}});
+    for (const int frame : {1, 2, 3, 6, 4, 5, 8, 7}) {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        const core::FrameResult a = ahead.run(frame), b = in_turn.run(frame);
+        EXPECT_EQ(a.lines.frame, frame);
+        expect_same_lines(a.lines, b.lines);
+        expect_same_strokes(a.strokes, b.strokes);
+        EXPECT_EQ(a.lines.stats.feature_edges, b.lines.stats.feature_edges);
+        EXPECT_EQ(a.lines.camera.eye, b.lines.camera.eye);
+        EXPECT_EQ(a.mesh, &ahead_meshes.at(frame));
+    }
+}
+
+// A frame whose lines cannot be found (here: no camera for it) throws from its own run(), even
+// when they were looked for ahead, during the frame before; the frame after it is drawn.
+TEST(FramePipeline, AFrameWithoutACameraThrowsFromItsOwnRunAndTheNextIsDrawn) {
+    const core::Mesh mesh = test::cube(1.0);
+    core::Scene scene = test::scene_for(kView, mesh);
+    scene.last_frame = 4;
+    for (const int frame : {1, 2, 4}) {
+        scene.camera.per_frame[frame] = {.eye = kView.eye + glm::dvec3(0.1 * frame, 0.0, 0.0), .fov_y_deg = 40.0};
+    }
+    core::MeshFrames meshes(mesh);
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+    EXPECT_FALSE(pipeline.run(1).lines.polylines.empty());
+    EXPECT_FALSE(pipeline.run(2).lines.polylines.empty());
+    EXPECT_THROW(pipeline.run(3), InputError);
+    const core::FrameResult fourth = pipeline.run(4);
+    EXPECT_EQ(fourth.lines.frame, 4);
+    EXPECT_FALSE(fourth.lines.polylines.empty());
+}
+
 }  // namespace
 }  // namespace inkline

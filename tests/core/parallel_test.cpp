@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "core/internal/parallel.h"
+#include "core/internal/worker.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <future>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace inkline {
@@ -48,6 +51,41 @@ TEST(Parallel, AnExceptionOnAnyThreadReachesTheCaller) {
                                   if (end == 64 && begin < end) throw std::bad_alloc();
                               }),
                  std::bad_alloc);
+}
+
+TEST(Worker, RunsTasksInOrderOnOneThreadOfItsOwnAndHandsBackResultsAndErrors) {
+    core::internal::Worker worker;
+    std::vector<int> order;  // written by the worker's thread only
+    std::vector<std::future<std::thread::id>> ids;
+    for (int i = 0; i < 20; ++i) {
+        ids.push_back(worker.submit([&order, i] {
+            order.push_back(i);
+            return std::this_thread::get_id();
+        }));
+    }
+    std::future<int> failed = worker.submit([]() -> int { throw std::runtime_error("task failed"); });
+    const std::thread::id first = ids.front().get();
+    EXPECT_NE(first, std::this_thread::get_id());
+    for (size_t i = 1; i < ids.size(); ++i) EXPECT_EQ(ids[i].get(), first);
+    EXPECT_THROW(failed.get(), std::runtime_error);
+    std::vector<int> expected(20);
+    for (int i = 0; i < 20; ++i) expected[size_t(i)] = i;
+    EXPECT_EQ(order, expected);
+}
+
+TEST(Worker, FinishesTheTasksGivenBeforeItGoes) {
+    std::atomic<int> done{0};
+    {
+        core::internal::Worker worker;
+        for (int i = 0; i < 50; ++i) {
+            (void)worker.submit([&done] {
+                std::this_thread::yield();
+                ++done;
+            });
+        }
+    }
+    EXPECT_EQ(done.load(), 50);
+    core::internal::Worker unused;  // never started: nothing to join
 }
 
 }  // namespace
