@@ -12,7 +12,9 @@
 # turntable), or those an earlier run left in --work with --reuse.
 #
 # Per size: the median over frames 2.. of the per-frame stage times `render -v` prints (every
-# stage including the SVG file), the first frame (which builds the cone tree and the BVH), the
+# stage including the SVG file) and of the wall time from one frame's line to the next (where a
+# frame's work overlaps the frame before, as the next frame's lines found while a frame is
+# drawn do, this is what a frame costs the run, and the stage times add up to more), the first frame (which builds the cone tree and the BVH), the
 # whole run from process start to exit (reading the mesh included) and its frames per second,
 # CPU time, and the peak resident memory from wait4(), also net of the binary's own baseline
 # (shared libraries: the same command on a one-triangle mesh), against the mesh's own size
@@ -37,17 +39,33 @@ FRAME_LINE = re.compile(r"^frame (\d+): .*$", re.M)
 STAGE = re.compile(r", ([a-z_]+) ([0-9.]+) ms")
 
 
-def run(cmd, log_path):
-    """Runs cmd; returns (wall s, CPU s, peak RSS MB, output)."""
+def run(cmd, log_path, stamps=None):
+    """Runs cmd; returns (wall s, CPU s, peak RSS MB, output). With a list for stamps, the output
+    is read as it comes and each line's arrival time (s since the start) is appended to it."""
     start = time.perf_counter()
     with open(log_path, "w") as log:
-        proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
+        if stamps is None:
+            proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
+        else:
+            proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                    errors="replace", bufsize=1)
+            for line in proc.stdout:
+                stamps.append((time.perf_counter() - start, line))
+                log.write(line)
+            proc.stdout.close()
         _, status, usage = os.wait4(proc.pid, 0)
     wall = time.perf_counter() - start
     text = Path(log_path).read_text(errors="replace")
     if os.waitstatus_to_exitcode(status) != 0:
         sys.exit("scale.py: command failed: %s\n%s" % (" ".join(map(str, cmd)), text[-3000:]))
     return wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024.0, text
+
+
+def frame_intervals(stamps):
+    """Wall ms between one frame's line (`render -v`) and the next's, frames 2..: how often a
+    frame comes out, whatever of its work overlapped the frame before."""
+    times = [t for t, line in stamps if FRAME_LINE.match(line)]
+    return [1000.0 * (b - a) for a, b in zip(times, times[1:])]
 
 
 def mesh_counts(obj_path):
@@ -116,13 +134,15 @@ def main():
         per_run = []
         for r in range(args.runs):
             cmd = [str(inkline), "render", str(target), "--svg", str(work / "out" / "frame_%04d.svg"), "-v"] + frame_args + args.extra
-            wall, cpu, rss, text = run(cmd, work / "logs" / ("%s_%d.log" % (mesh.stem + str(faces), r)))
+            stamps = []
+            wall, cpu, rss, text = run(cmd, work / "logs" / ("%s_%d.log" % (mesh.stem + str(faces), r)), stamps)
             frames = {}
             for m in FRAME_LINE.finditer(text):
                 frames[int(m.group(1))] = sum(float(ms) for _, ms in STAGE.findall(m.group(0)))
             first = min(frames)
             per_run.append({"wall": wall, "cpu": cpu, "rss": rss, "first": frames[first],
                             "later": statistics.median(v for f, v in frames.items() if f != first),
+                            "interval": statistics.median(frame_intervals(stamps) or [0.0]),
                             "frames": len(frames)})
         cpu_per_frame = None
         if pipeline_bench.is_file() and str(target).endswith(".json"):
@@ -133,20 +153,22 @@ def main():
         med = lambda key: statistics.median(x[key] for x in per_run)
         rss = max(x["rss"] for x in per_run)
         n = per_run[0]["frames"]
-        rows.append((label, faces, mesh_mb, med("later"), cpu_per_frame, med("first"), med("wall"), n / med("wall"),
+        rows.append((label, faces, mesh_mb, med("later"), med("interval"), cpu_per_frame, med("first"), med("wall"),
+                     n / med("wall"),
                      med("cpu"), rss, rss - base_rss, (rss - base_rss) / mesh_mb, min(x["wall"] for x in per_run),
                      max(x["wall"] for x in per_run)))
         print("scale.py: %s done" % label, file=sys.stderr)
 
     print("\n%d frames at 1024x1024 with SVG, %d runs per size (medians); load average %.1f; binary baseline %.0f MB\n"
           % (args.frames, args.runs, os.getloadavg()[0], base_rss))
-    print("| mesh | triangles | mesh MB | ms/frame (frames 2..) | CPU ms/frame | frame 1 ms | whole run s (min-max) | "
-          "frames/s, whole run | CPU s, whole run | peak RSS MB | RSS - baseline MB | / mesh |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for (label, faces, mesh_mb, later, cpu_frame, first, wall, fps, cpu, rss, net, ratio, wall_min, wall_max) in rows:
-        print("| %s | %d | %.1f | %.1f | %s | %.0f | %.2f (%.2f-%.2f) | %.1f | %.2f | %.0f | %.0f | %.1fx |" % (
-            label, faces, mesh_mb, later, "-" if cpu_frame is None else "%.1f" % cpu_frame, first, wall, wall_min,
-            wall_max, fps, cpu, rss, net, ratio))
+    print("| mesh | triangles | mesh MB | ms/frame (frames 2..) | wall ms between frames | CPU ms/frame | frame 1 ms | "
+          "whole run s (min-max) | frames/s, whole run | CPU s, whole run | peak RSS MB | RSS - baseline MB | / mesh |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for (label, faces, mesh_mb, later, interval, cpu_frame, first, wall, fps, cpu, rss, net, ratio, wall_min,
+         wall_max) in rows:
+        print("| %s | %d | %.1f | %.1f | %.1f | %s | %.0f | %.2f (%.2f-%.2f) | %.1f | %.2f | %.0f | %.0f | %.1fx |" % (
+            label, faces, mesh_mb, later, interval, "-" if cpu_frame is None else "%.1f" % cpu_frame, first, wall,
+            wall_min, wall_max, fps, cpu, rss, net, ratio))
     return 0
 
 
