@@ -90,15 +90,24 @@ EdgeTable build_from_valid(const Mesh& mesh, std::vector<uint8_t> face_valid) {
     }
 
     t.edge_vertices.reserve(n_edges);
-    t.edge_face_offsets.reserve(n_edges + 1);
-    t.edge_faces.reserve(sides.size());
-    t.edge_face_offsets.push_back(0);
+    t.edge_faces.reserve(2 * n_edges);
+    t.many_face_offsets.push_back(0);
     for (uint32_t v = 0; v < n_vertices; ++v) {
         for (uint32_t i = bucket_offsets[v]; i < bucket_offsets[v + 1];) {
             const uint32_t other = sides[i].other;
             t.edge_vertices.emplace_back(v, other);
-            for (; i < bucket_offsets[v + 1] && sides[i].other == other; ++i) t.edge_faces.push_back(sides[i].face);
-            t.edge_face_offsets.push_back(uint32_t(t.edge_faces.size()));
+            uint32_t end = i;
+            while (end < bucket_offsets[v + 1] && sides[end].other == other) ++end;
+            if (end - i <= 2) {
+                t.edge_faces.push_back(sides[i].face);
+                t.edge_faces.push_back(end - i == 2 ? sides[i + 1].face : kNoIndex);
+            } else {
+                t.edge_faces.push_back(kNoIndex);
+                t.edge_faces.push_back(uint32_t(t.many_face_offsets.size() - 1));
+                for (uint32_t k = i; k < end; ++k) t.many_faces.push_back(sides[k].face);
+                t.many_face_offsets.push_back(uint32_t(t.many_faces.size()));
+            }
+            i = end;
         }
     }
     sides = std::vector<Side>();  // (not "= {}": that assigns an empty list and keeps the memory)

@@ -21,8 +21,12 @@ inline constexpr uint32_t kNoIndex = 0xffffffffu;
 // index can be recomputed from the mesh file alone.
 struct EdgeTable {
     std::vector<glm::uvec2> edge_vertices;     // #E, (v0, v1) with v0 < v1
-    std::vector<uint32_t> edge_face_offsets;   // #E+1, CSR offsets into edge_faces
-    std::vector<uint32_t> edge_faces;          // faces of each edge, ascending
+    // 2 per edge: its two faces, ascending; (face, kNoIndex) for an edge of one face; (kNoIndex,
+    // k) for an edge of three or more, whose faces are the k-th run of many_faces. Every edge has
+    // a face; no offsets are kept for the common cases (6 MB at 1.5M edges).
+    std::vector<uint32_t> edge_faces;
+    std::vector<uint32_t> many_face_offsets;   // CSR offsets into many_faces, one run per edge of 3+ faces
+    std::vector<uint32_t> many_faces;          // faces of those edges, ascending within a run
     std::vector<uint8_t> face_valid;           // #F, 0 for degenerate and duplicate faces (ignored everywhere)
     size_t duplicate_faces = 0;                // faces repeating an earlier face's three vertices
     std::vector<uint32_t> vertex_edge_offsets; // #V+1, CSR offsets into vertex_edges
@@ -30,8 +34,10 @@ struct EdgeTable {
 
     size_t edge_count() const { return edge_vertices.size(); }
     std::span<const uint32_t> faces_of(uint32_t edge) const {
-        return {edge_faces.data() + edge_face_offsets[edge],
-                edge_face_offsets[edge + 1] - edge_face_offsets[edge]};
+        const uint32_t* pair = edge_faces.data() + 2 * size_t(edge);
+        if (pair[0] != kNoIndex) return {pair, pair[1] == kNoIndex ? 1u : 2u};
+        const uint32_t run = pair[1];
+        return {many_faces.data() + many_face_offsets[run], many_face_offsets[run + 1] - many_face_offsets[run]};
     }
     std::span<const uint32_t> edges_around(uint32_t vertex) const {
         return {vertex_edges.data() + vertex_edge_offsets[vertex],
@@ -39,7 +45,8 @@ struct EdgeTable {
     }
     // An interior edge has exactly two faces; one or three and more count as boundary.
     bool is_interior(uint32_t edge) const {
-        return edge_face_offsets[edge + 1] - edge_face_offsets[edge] == 2;
+        const uint32_t* pair = edge_faces.data() + 2 * size_t(edge);
+        return pair[0] != kNoIndex && pair[1] != kNoIndex;
     }
     uint32_t other_vertex(uint32_t edge, uint32_t vertex) const {
         const glm::uvec2 v = edge_vertices[edge];
