@@ -35,8 +35,10 @@ FramePipeline::FramePipeline(const Scene& scene, MeshFrames& meshes, std::unique
     tracker_mode_ = frames > 1 ? options_.tracker : TrackerMode::kBrute;
     // The next frame's lines are found while a frame is drawn only where that cannot touch what
     // the frame reads: a mesh that holds still (a sequence's next file, a deforming animation's
-    // next positions would replace its mesh), and no caller timing the steps.
+    // next positions would replace its mesh), and no caller timing the steps. Their visibility
+    // too, unless it is a GL depth test, which runs where its context was made.
     lines_ahead_ = frames > 1 && !meshes_.deforming() && !options_.step_done;
+    visibility_ahead_ = occlusion_->mode() != VisibilityMode::kGl;
     for (const MeshObject& object : meshes_.objects()) object_kinds_.push_back(object_line_kinds(scene_, object.name));
     // Intersection lines need an object that draws them, and a second object or self intersections.
     bool any_crossing_object = object_kinds_.empty() && scene_.lines.intersection;
@@ -51,7 +53,7 @@ int32_t FramePipeline::object_of(std::span<const uint32_t> edges) const {
 
 FramePipeline::~FramePipeline() = default;
 
-FramePipeline::FoundLines FramePipeline::find_lines(int frame) {
+FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibility) {
     Stopwatch laps;
     const auto step = [&](const char* name) {
         const double ms = laps.lap_ms();
@@ -59,7 +61,9 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame) {
         return ms;
     };
     FoundLines found;
-    found.frame = frame;
+    found.lines.frame = frame;
+    found.lines.image = scene_.image;
+    found.lines.light = scene_.light;
     const Mesh& mesh = meshes_.at(frame);
     found.mesh = &mesh;
     found.load_ms = step("load");
@@ -74,8 +78,8 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame) {
     first_lines_ = false;
     if (found.change != MeshChange::kNone) object_bounds_ = bounds_of(mesh.positions);
     const Bounds& object_bounds = object_bounds_;
-    found.camera = camera_at(scene_, frame, transformed(object_bounds, found.world_from_object));
-    const Projection projection(found.camera, scene_.image, found.world_from_object);
+    found.lines.camera = camera_at(scene_, frame, transformed(object_bounds, found.world_from_object));
+    const Projection projection(found.lines.camera, scene_.image, found.world_from_object);
     if (!warned_inside_ && inside(object_bounds, projection.eye_object())) {
         warned_inside_ = true;
         found.warnings.push_back("frame " + std::to_string(frame) +
@@ -133,7 +137,7 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame) {
 
     // What the stats need of the tracers, read now: the next frame's lines may be traced while
     // this frame is drawn.
-    FrameStats& stats = found.stats;
+    FrameStats& stats = found.lines.stats;
     stats.faces = mesh.triangles.size();
     stats.edges = table.edge_count();
     stats.edges_tested = features.edges_tested;
@@ -148,7 +152,47 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame) {
     }
     stats.silhouette_edges = stats.feature_edges[size_t(LineKind::kSilhouette)];
     found.smooth_contours = contours != nullptr;
+    if (with_visibility) find_visible(found);
     return found;
+}
+
+void FramePipeline::find_visible(FoundLines& found) {
+    Stopwatch laps;
+    const auto step = [&](const char* name) {
+        const double ms = laps.lap_ms();
+        if (options_.step_done) options_.step_done(name);
+        return ms;
+    };
+    const Mesh& mesh = *found.mesh;
+    const EdgeTable& table = meshes_.edges();
+    FrameLines& result = found.lines;
+    const Projection projection(result.camera, scene_.image, found.world_from_object);
+
+    // Visibility. Occluded parts are always found (the samples are classified anyway): the
+    // stroke stage bridges short ones. Without lines.hidden they stay out of the output.
+    found.occlusion = &occlusion_->prepare(mesh, table, projection, found.change);
+    const double occlusion_ms = step("occlusion");
+    result.polylines = split_by_visibility(found.chains, mesh, table, projection, *found.occlusion, {.keep_hidden = true});
+    found.chains = std::vector<Chain>();
+    if (!object_kinds_.empty()) {
+        // Each line's object; holdouts and the kinds an object turns off draw nothing, though
+        // their faces still hide other lines.
+        result.objects = meshes_.objects();
+        for (Polyline& line : result.polylines) line.object = object_of(line.edges);
+        // An intersection line is drawn when both of its objects draw the kind.
+        const auto draws = [&](const Polyline& line) {
+            if (line.object < 0) return true;
+            const size_t kind = size_t(line.kind);
+            if (!object_kinds_[size_t(line.object)][kind]) return false;
+            return line.crossing_faces.empty() ||
+                   object_kinds_[meshes_.object_of_face(line.crossing_faces.front())][kind];
+        };
+        std::erase_if(result.polylines, [&](const Polyline& line) { return !draws(line); });
+        for (size_t i = 0; i < result.polylines.size(); ++i) result.polylines[i].id = uint32_t(i);
+    }
+    if (!scene_.lines.hidden) set_aside_occluded(result);
+    found.visibility_ms = occlusion_ms + step("visibility");
+    found.visible = true;
 }
 
 FramePipeline::FoundLines FramePipeline::lines_of(int frame) {
@@ -161,14 +205,14 @@ FramePipeline::FoundLines FramePipeline::lines_of(int frame) {
         } catch (...) {
         }
     }
-    return find_lines(frame);
+    return find_lines(frame, true);
 }
 
 void FramePipeline::find_lines_ahead(int frame) {
     if (!lines_ahead_ || frame > scene_.last_frame) return;
     try {
         if (!ahead_worker_) ahead_worker_ = std::make_unique<internal::Worker>();
-        ahead_ = ahead_worker_->submit([this, frame] { return find_lines(frame); });
+        ahead_ = ahead_worker_->submit([this, frame] { return find_lines(frame, visibility_ahead_); });
         ahead_frame_ = frame;
     } catch (const std::system_error&) {
         // No thread to be had (limits): the frame's lines are found when it is drawn.
@@ -189,41 +233,15 @@ FrameResult FramePipeline::run(int frame) {
     };
     FrameResult out;
     out.warnings = std::move(found.warnings);
+    if (!found.visible) find_visible(found);  // where it must run on this thread (a GL context)
+    out.lines = std::move(found.lines);
     FrameLines& result = out.lines;
-    result.frame = frame;
-    result.image = scene_.image;
-    result.light = scene_.light;
-    result.camera = found.camera;
     const Mesh& mesh = *found.mesh;
     const EdgeTable& table = meshes_.edges();
     const glm::dmat4& world_from_object = found.world_from_object;
     const MeshChange change = found.change;
     const Projection projection(result.camera, scene_.image, world_from_object);
-    const std::vector<Chain>& chains = found.chains;
-
-    // Visibility. Occluded parts are always found (the samples are classified anyway): the
-    // stroke stage bridges short ones. Without lines.hidden they stay out of the output.
-    const Occlusion& occlusion = occlusion_->prepare(mesh, table, projection, change);
-    const double occlusion_ms = step("occlusion");
-    result.polylines = split_by_visibility(chains, mesh, table, projection, occlusion, {.keep_hidden = true});
-    if (!object_kinds_.empty()) {
-        // Each line's object; holdouts and the kinds an object turns off draw nothing, though
-        // their faces still hide other lines.
-        result.objects = meshes_.objects();
-        for (Polyline& line : result.polylines) line.object = object_of(line.edges);
-        // An intersection line is drawn when both of its objects draw the kind.
-        const auto draws = [&](const Polyline& line) {
-            if (line.object < 0) return true;
-            const size_t kind = size_t(line.kind);
-            if (!object_kinds_[size_t(line.object)][kind]) return false;
-            return line.crossing_faces.empty() ||
-                   object_kinds_[meshes_.object_of_face(line.crossing_faces.front())][kind];
-        };
-        std::erase_if(result.polylines, [&](const Polyline& line) { return !draws(line); });
-        for (size_t i = 0; i < result.polylines.size(); ++i) result.polylines[i].id = uint32_t(i);
-    }
-    if (!scene_.lines.hidden) set_aside_occluded(result);
-    const double visibility_ms = occlusion_ms + step("visibility");
+    const Occlusion& occlusion = *found.occlusion;
 
     // Strokes, coherent with the last frame's.
     if (change != MeshChange::kNone) stroke_normals_.clear();
@@ -275,7 +293,6 @@ FrameResult FramePipeline::run(int frame) {
         tone_ms = step("tone");
     }
     FrameStats& stats = result.stats;
-    stats = std::move(found.stats);
     stats.tracker = tracker_mode_name(tracker_mode_);
     stats.visibility = visibility_mode_name(occlusion_->mode());
     stats.visibility_reason = options_.visibility_reason;
@@ -284,7 +301,7 @@ FrameResult FramePipeline::run(int frame) {
     stats.ms = {{"load", found.load_ms},
                 {"extract", found.extract_ms},
                 {"chain", found.chain_ms},
-                {"visibility", visibility_ms},
+                {"visibility", found.visibility_ms},
                 {"strokes", strokes_ms}};
     if (scene_.tone.mode != ToneMode::kNone) stats.ms.emplace_back("tone", tone_ms);
     return out;

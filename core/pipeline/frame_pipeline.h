@@ -95,23 +95,28 @@ class FramePipeline {
     const OcclusionSource& occlusion() const { return *occlusion_; }
 
   private:
-    // A frame's lines before visibility: its mesh and camera, and the chains of its feature
-    // edges, smooth contours and intersection lines, with what the stats need of them.
+    // A frame's lines: its mesh and camera, the chains of its feature edges, smooth contours and
+    // intersection lines, with what the stats need of them; then (visible) the polylines split
+    // by visibility, the chains dropped.
     struct FoundLines {
-        int frame = 0;
+        FrameLines lines;  // frame, image, light, camera, stats (faces, edges, tested, feature
+                           // edges); the polylines once visible
         const Mesh* mesh = nullptr;
         glm::dmat4 world_from_object{1.0};
         MeshChange change = MeshChange::kNone;
-        Camera camera;
         std::vector<Chain> chains;
         bool smooth_contours = false;
-        FrameStats stats;  // faces, edges, tested, feature edges
-        double load_ms = 0.0, extract_ms = 0.0, chain_ms = 0.0;
+        bool visible = false;
+        const Occlusion* occlusion = nullptr;  // the frame's occlusion test, once visible
+        double load_ms = 0.0, extract_ms = 0.0, chain_ms = 0.0, visibility_ms = 0.0;
         std::vector<std::string> warnings;
     };
-    // Finds a frame's lines; the tracers' state moves on to that frame.
-    FoundLines find_lines(int frame);
-    // The frame's lines: found ahead, or found now.
+    // Finds a frame's lines (and with_visibility, what of them is visible); the tracers' state
+    // moves on to that frame.
+    FoundLines find_lines(int frame, bool with_visibility);
+    // Splits the found lines by visibility.
+    void find_visible(FoundLines& found);
+    // The frame's lines: found ahead, or found now, visible or not.
     FoundLines lines_of(int frame);
     // Starts finding a frame's lines on another thread (where lines_ahead_ allows).
     void find_lines_ahead(int frame);
@@ -142,6 +147,7 @@ class FramePipeline {
     bool trace_intersections_ = false;
     bool first_lines_ = true;    // no frame's lines found yet
     bool lines_ahead_ = false;   // the next frame's lines may be found while a frame is drawn
+    bool visibility_ahead_ = false;  // ... and their visibility
     bool warned_inside_ = false;
     // The next frame's lines, being found while a frame is drawn, on a thread of the pipeline's
     // own (started on the first frame found ahead). Last, so that the thread stops before the
