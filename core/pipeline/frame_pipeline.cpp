@@ -24,6 +24,22 @@ bool inside(const Bounds& b, const glm::dvec3& p) {
     return glm::all(glm::greaterThanEqual(p, b.min)) && glm::all(glm::lessThanEqual(p, b.max));
 }
 
+// Times the steps of a run, one after another: each call returns the ms since the last (or since
+// construction) and tells PipelineOptions::step_done, when there is one, that the step ended.
+class StepClock {
+  public:
+    explicit StepClock(const std::function<void(const char*)>& done) : done_(done) {}
+    double operator()(const char* name) {
+        const double ms = laps_.lap_ms();
+        if (done_) done_(name);
+        return ms;
+    }
+
+  private:
+    Stopwatch laps_;
+    const std::function<void(const char*)>& done_;
+};
+
 }  // namespace
 
 FramePipeline::FramePipeline(const Scene& scene, MeshFrames& meshes, std::unique_ptr<OcclusionSource> occlusion,
@@ -54,12 +70,7 @@ int32_t FramePipeline::object_of(std::span<const uint32_t> edges) const {
 FramePipeline::~FramePipeline() = default;
 
 FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibility) {
-    Stopwatch laps;
-    const auto step = [&](const char* name) {
-        const double ms = laps.lap_ms();
-        if (options_.step_done) options_.step_done(name);
-        return ms;
-    };
+    StepClock step(options_.step_done);
     FoundLines found;
     found.lines.frame = frame;
     found.lines.image = scene_.image;
@@ -157,12 +168,7 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibil
 }
 
 void FramePipeline::find_visible(FoundLines& found) {
-    Stopwatch laps;
-    const auto step = [&](const char* name) {
-        const double ms = laps.lap_ms();
-        if (options_.step_done) options_.step_done(name);
-        return ms;
-    };
+    StepClock step(options_.step_done);
     const Mesh& mesh = *found.mesh;
     const EdgeTable& table = meshes_.edges();
     FrameLines& result = found.lines;
@@ -225,12 +231,7 @@ FrameResult FramePipeline::run(int frame) {
     FoundLines found = lines_of(frame);
     find_lines_ahead(frame + 1);
 
-    Stopwatch laps;
-    const auto step = [&](const char* name) {
-        const double ms = laps.lap_ms();
-        if (options_.step_done) options_.step_done(name);
-        return ms;
-    };
+    StepClock step(options_.step_done);
     FrameResult out;
     out.warnings = std::move(found.warnings);
     if (!found.visible) find_visible(found);  // where it must run on this thread (a GL context)
