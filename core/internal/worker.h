@@ -2,7 +2,14 @@
 // One thread that runs tasks in the order they come, kept for the life of the object: work handed
 // off frame after frame runs on the same thread, so its allocations come from one malloc arena
 // instead of a new thread's each time.
+//
+// A process forked after the thread started has no such thread (a Python program forking its
+// workers, say): there forked() is true, and the destructor neither waits for the thread nor
+// destroys what it shared with it (a condition variable that the thread was waiting on would
+// wait for it forever). The tasks it had are lost; their futures never become ready.
 #pragma once
+
+#include <unistd.h>
 
 #include <condition_variable>
 #include <deque>
@@ -24,13 +31,21 @@ class Worker {
     // Finishes the tasks already given, then stops the thread.
     ~Worker() {
         if (!thread_.joinable()) return;
-        {
-            const std::lock_guard lock(mutex_);
-            stop_ = true;
+        if (forked()) {
+            thread_.detach();
+            (void)shared_.release();  // left as the fork copied it
+            return;
         }
-        wake_.notify_one();
+        {
+            const std::lock_guard lock(shared_->mutex);
+            shared_->stop = true;
+        }
+        shared_->wake.notify_one();
         thread_.join();
     }
+
+    // True in a process forked from the one whose thread runs the tasks.
+    bool forked() const { return thread_.joinable() && getpid() != owner_; }
 
     // Queues task() for the thread, started on the first call; its result or exception comes
     // back through the future. Throws std::system_error when the thread cannot be started.
@@ -39,34 +54,43 @@ class Worker {
         auto job = std::make_shared<std::packaged_task<std::invoke_result_t<Task&>()>>(std::move(task));
         std::future<std::invoke_result_t<Task&>> result = job->get_future();
         {
-            const std::lock_guard lock(mutex_);
-            if (!thread_.joinable()) thread_ = std::thread([this] { serve(); });
-            tasks_.emplace_back([job] { (*job)(); });
+            const std::lock_guard lock(shared_->mutex);
+            if (!thread_.joinable()) {
+                thread_ = std::thread([shared = shared_.get()] { serve(*shared); });
+                owner_ = getpid();
+            }
+            shared_->tasks.emplace_back([job] { (*job)(); });
         }
-        wake_.notify_one();
+        shared_->wake.notify_one();
         return result;
     }
 
   private:
-    void serve() {
+    // What the caller and the thread share.
+    struct Shared {
+        std::mutex mutex;
+        std::condition_variable wake;
+        std::deque<std::function<void()>> tasks;
+        bool stop = false;
+    };
+
+    static void serve(Shared& shared) {
         for (;;) {
             std::function<void()> task;
             {
-                std::unique_lock lock(mutex_);
-                wake_.wait(lock, [this] { return stop_ || !tasks_.empty(); });
-                if (tasks_.empty()) return;  // stopped, nothing left
-                task = std::move(tasks_.front());
-                tasks_.pop_front();
+                std::unique_lock lock(shared.mutex);
+                shared.wake.wait(lock, [&] { return shared.stop || !shared.tasks.empty(); });
+                if (shared.tasks.empty()) return;  // stopped, nothing left
+                task = std::move(shared.tasks.front());
+                shared.tasks.pop_front();
             }
             task();
         }
     }
 
-    std::mutex mutex_;
-    std::condition_variable wake_;
-    std::deque<std::function<void()>> tasks_;
-    bool stop_ = false;
+    std::unique_ptr<Shared> shared_ = std::make_unique<Shared>();
     std::thread thread_;
+    pid_t owner_ = 0;  // the process the thread runs in
 };
 
 }  // namespace inkline::core::internal

@@ -202,6 +202,15 @@ void FramePipeline::find_visible(FoundLines& found) {
 }
 
 FramePipeline::FoundLines FramePipeline::lines_of(int frame) {
+    if (ahead_worker_ && ahead_worker_->forked()) {
+        // A forked process: the worker thread is not here, and what it was finding never comes.
+        // The tracers it may have been updating are built again.
+        ahead_ = {};
+        ahead_worker_.reset();
+        tracker_.reset();
+        smooth_.reset();
+        intersections_.reset();
+    }
     if (ahead_.valid()) {
         const int ahead_frame = ahead_frame_;
         std::future<FoundLines> ahead = std::move(ahead_);

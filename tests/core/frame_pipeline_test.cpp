@@ -13,6 +13,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -367,6 +371,40 @@ TEST(FramePipeline, LinesFoundAheadDrawTheSameAsLinesFoundInTurn) {
         EXPECT_EQ(a.lines.camera.eye, b.lines.camera.eye);
         EXPECT_EQ(a.mesh, &ahead_meshes.at(frame));
     }
+}
+
+// A process forked while the next frame's lines were being found (a Python program handing
+// frames to forked workers, say) has no worker thread: it must draw on, the same lines, not wait
+// for a thread that is not there.
+TEST(FramePipeline, AForkedProcessDrawsOnWithoutTheWorkerThread) {
+    const core::Mesh mesh = torus_behind_sphere(0.0f);
+    const core::Scene scene = turntable(mesh, 6);
+    core::MeshFrames reference_meshes(mesh);
+    const auto reference = run_all(scene, reference_meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact),
+                                   {.step_done = [](const char*) {}});
+    core::MeshFrames meshes(mesh);
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+    (void)pipeline.run(1);  // frame 2's lines are now being found ahead
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        alarm(60);  // a child that waits for the missing thread is killed, and the test fails
+        int wrong = 0;
+        for (int frame = 2; frame <= 4; ++frame) {
+            const core::FrameResult drawn = pipeline.run(frame);
+            const core::FrameLines& want = reference[size_t(frame - 1)].lines;
+            if (drawn.lines.polylines.size() != want.polylines.size()) ++wrong;
+            for (size_t i = 0; i < std::min(drawn.lines.polylines.size(), want.polylines.size()); ++i) {
+                wrong += drawn.lines.polylines[i].points_px != want.polylines[i].points_px;
+            }
+        }
+        _exit(wrong == 0 ? 0 : 1);
+    }
+    int status = 0;
+    ASSERT_EQ(waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status)) << "the forked process was stopped (signal " << WTERMSIG(status) << ")";
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "the forked process drew other lines";
+    expect_same_lines(pipeline.run(2).lines, reference[1].lines);  // the parent goes on as before
 }
 
 // A frame whose lines cannot be found (here: no camera for it) throws from its own run(), even
