@@ -18,7 +18,9 @@
 #   this shared machine falls on both alike.
 # - Start-up is excluded on both sides. inkline: the stage times `render -v` prints per frame
 #   (extract .. svg, every stage of the frame including the SVG file; mesh loading happens
-#   before the first frame and is reported apart). Blender: time_blender.py times frame_set
+#   before the first frame and is reported apart), and the wall time from one frame's `-v` line
+#   to the next (the next frame's lines are found while a frame is drawn, so the stage times of
+#   a frame overlap the frame before's and add up to more than a frame costs the run). Blender: time_blender.py times frame_set
 #   (Line Art's evaluation) + gpencil_export_svg per frame after the .blend is loaded.
 # - Per frame: the median over runs; the table gives the median over frames of those, the
 #   first frame (inkline builds its hierarchies there, once per mesh) and the whole run.
@@ -48,11 +50,20 @@ HERE = Path(__file__).resolve().parent
 REPO = HERE.parent.parent
 
 
-def run(cmd, log_path):
-    """Runs cmd; returns (wall s, CPU s, peak RSS in MB, stdout+stderr text)."""
+def run(cmd, log_path, stamps=None):
+    """Runs cmd; returns (wall s, CPU s, peak RSS in MB, stdout+stderr text). With a list for
+    stamps, the output is read as it comes and each line's arrival time (s) is appended to it."""
     start = time.perf_counter()
     with open(log_path, "w") as log:
-        proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
+        if stamps is None:
+            proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
+        else:
+            proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                                    errors="replace", bufsize=1)
+            for line in proc.stdout:
+                stamps.append((time.perf_counter() - start, line))
+                log.write(line)
+            proc.stdout.close()
         _, status, usage = os.wait4(proc.pid, 0)
         proc.returncode = os.waitstatus_to_exitcode(status)
     wall = time.perf_counter() - start
@@ -129,11 +140,16 @@ def main():
     def time_inkline(r):
         cmd = [str(inkline), "render", str(scene_dir / "scene.json"), "--svg",
                str(work / "inkline" / "frame_%04d.svg"), "-v"] + args.extra
-        wall, cpu, rss, text = run(cmd, work / "logs" / ("inkline_%d.log" % r))
+        stamps = []
+        wall, cpu, rss, text = run(cmd, work / "logs" / ("inkline_%d.log" % r), stamps)
         frames = inkline_frames(text)
         if len(frames) != scene["frames"][1] - scene["frames"][0] + 1:
             sys.exit("compare.py: could not read inkline's per-frame times from -v (see %s)" % (work / "logs"))
-        return {"frames": frames, "wall": wall, "cpu": cpu, "rss": rss}
+        # Wall time from one frame's line to the next: what a frame costs the run where its work
+        # overlaps the frame before's (the next frame's lines are found while a frame is drawn).
+        times = [t for t, line in stamps if FRAME_LINE.match(line)]
+        between = statistics.median(1000.0 * (b - a) for a, b in zip(times, times[1:]))
+        return {"frames": frames, "wall": wall, "cpu": cpu, "rss": rss, "between": between}
 
     def time_blender(mode, r, frames=None):
         result = work / "blender" / ("%s_%d.json" % (mode, r))
@@ -213,6 +229,10 @@ def main():
     if fs_line:
         row("Blender Freestyle + SVG add-on, minus render", summary(fs_line["frames"]), fs_line["cpu"], fs_line["rss"], [])
     print()
+    between = statistics.median(x["between"] for x in ink_runs)
+    print("inkline: %.1f ms wall between one frame and the next (median over runs of the median over frames "
+          "2..; a frame's stage times overlap the frame before's)%s" % (
+              between, "; Line Art's median frame is %.1fx that" % (la["median"] / between) if la_runs else ""))
     print("inkline whole runs: %s s wall (mesh loading and first-frame builds included), %s s CPU" % (
         ", ".join("%.2f" % x["wall"] for x in ink_runs), ", ".join("%.2f" % x["cpu"] for x in ink_runs)))
     if la_runs:
