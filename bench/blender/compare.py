@@ -35,45 +35,24 @@
 #   inkline binary's build folder, or given with --pipeline-bench; skipped when missing.
 
 import argparse
+import functools
 import json
 import os
 import re
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
+
+import measured_run
+from measured_run import FRAME_LINE, ms_between_frames
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent.parent
+run = functools.partial(measured_run.run, who="compare.py")
 
 
-def run(cmd, log_path, stamps=None):
-    """Runs cmd; returns (wall s, CPU s, peak RSS in MB, stdout+stderr text). With a list for
-    stamps, the output is read as it comes and each line's arrival time (s) is appended to it."""
-    start = time.perf_counter()
-    with open(log_path, "w") as log:
-        if stamps is None:
-            proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
-        else:
-            proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                    errors="replace", bufsize=1)
-            for line in proc.stdout:
-                stamps.append((time.perf_counter() - start, line))
-                log.write(line)
-            proc.stdout.close()
-        _, status, usage = os.wait4(proc.pid, 0)
-        proc.returncode = os.waitstatus_to_exitcode(status)
-    wall = time.perf_counter() - start
-    text = Path(log_path).read_text(errors="replace")
-    if proc.returncode != 0:
-        sys.exit("compare.py: command failed (%d): %s\n%s" % (proc.returncode, " ".join(map(str, cmd)), text[-3000:]))
-    return wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024.0, text
-
-
-FRAME_LINE = re.compile(r"^frame (\d+): .*$", re.M)
 STAGE = re.compile(r", ([a-z_]+) ([0-9.]+) ms")
 
 
@@ -145,11 +124,7 @@ def main():
         frames = inkline_frames(text)
         if len(frames) != scene["frames"][1] - scene["frames"][0] + 1:
             sys.exit("compare.py: could not read inkline's per-frame times from -v (see %s)" % (work / "logs"))
-        # Wall time from one frame's line to the next: what a frame costs the run where its work
-        # overlaps the frame before's (the next frame's lines are found while a frame is drawn).
-        times = [t for t, line in stamps if FRAME_LINE.match(line)]
-        between = statistics.median(1000.0 * (b - a) for a, b in zip(times, times[1:]))
-        return {"frames": frames, "wall": wall, "cpu": cpu, "rss": rss, "between": between}
+        return {"frames": frames, "wall": wall, "cpu": cpu, "rss": rss, "between": ms_between_frames(stamps)}
 
     def time_blender(mode, r, frames=None):
         result = work / "blender" / ("%s_%d.json" % (mode, r))

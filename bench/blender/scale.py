@@ -23,49 +23,22 @@
 # per frame (frames 2..) of the same stages, which the machine's load disturbs far less.
 
 import argparse
+import functools
 import os
 import re
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
+
+import measured_run
+from measured_run import FRAME_LINE, ms_between_frames
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent.parent
-FRAME_LINE = re.compile(r"^frame (\d+): .*$", re.M)
+run = functools.partial(measured_run.run, who="scale.py")
 STAGE = re.compile(r", ([a-z_]+) ([0-9.]+) ms")
-
-
-def run(cmd, log_path, stamps=None):
-    """Runs cmd; returns (wall s, CPU s, peak RSS MB, output). With a list for stamps, the output
-    is read as it comes and each line's arrival time (s since the start) is appended to it."""
-    start = time.perf_counter()
-    with open(log_path, "w") as log:
-        if stamps is None:
-            proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
-        else:
-            proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                    errors="replace", bufsize=1)
-            for line in proc.stdout:
-                stamps.append((time.perf_counter() - start, line))
-                log.write(line)
-            proc.stdout.close()
-        _, status, usage = os.wait4(proc.pid, 0)
-    wall = time.perf_counter() - start
-    text = Path(log_path).read_text(errors="replace")
-    if os.waitstatus_to_exitcode(status) != 0:
-        sys.exit("scale.py: command failed: %s\n%s" % (" ".join(map(str, cmd)), text[-3000:]))
-    return wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024.0, text
-
-
-def frame_intervals(stamps):
-    """Wall ms between one frame's line (`render -v`) and the next's, frames 2..: how often a
-    frame comes out, whatever of its work overlapped the frame before."""
-    times = [t for t, line in stamps if FRAME_LINE.match(line)]
-    return [1000.0 * (b - a) for a, b in zip(times, times[1:])]
 
 
 def mesh_counts(obj_path):
@@ -142,7 +115,7 @@ def main():
             first = min(frames)
             per_run.append({"wall": wall, "cpu": cpu, "rss": rss, "first": frames[first],
                             "later": statistics.median(v for f, v in frames.items() if f != first),
-                            "interval": statistics.median(frame_intervals(stamps) or [0.0]),
+                            "interval": ms_between_frames(stamps),
                             "frames": len(frames)})
         cpu_per_frame = None
         if pipeline_bench.is_file() and str(target).endswith(".json"):
