@@ -198,7 +198,6 @@ void FramePipeline::find_visible(FoundLines& found) {
     }
     if (!scene_.lines.hidden) set_aside_occluded(result);
     found.visibility_ms = occlusion_ms + step("visibility");
-    found.visible = true;
 }
 
 FramePipeline::FoundLines FramePipeline::lines_of(int frame) {
@@ -243,7 +242,7 @@ FrameResult FramePipeline::run(int frame) {
     StepClock step(options_.step_done);
     FrameResult out;
     out.warnings = std::move(found.warnings);
-    if (!found.visible) find_visible(found);  // where it must run on this thread (a GL context)
+    if (!found.occlusion) find_visible(found);  // where it must run on this thread (a GL context)
     out.lines = std::move(found.lines);
     FrameLines& result = out.lines;
     const Mesh& mesh = *found.mesh;

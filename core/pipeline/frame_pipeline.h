@@ -106,8 +106,7 @@ class FramePipeline {
         MeshChange change = MeshChange::kNone;
         std::vector<Chain> chains;
         bool smooth_contours = false;
-        bool visible = false;
-        const Occlusion* occlusion = nullptr;  // the frame's occlusion test, once visible
+        const Occlusion* occlusion = nullptr;  // the frame's occlusion test; null until visible
         double load_ms = 0.0, extract_ms = 0.0, chain_ms = 0.0, visibility_ms = 0.0;
         std::vector<std::string> warnings;
     };

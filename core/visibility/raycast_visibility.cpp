@@ -7,6 +7,7 @@
 #include "core/visibility/raycast_visibility.h"
 
 #include "core/error.h"
+#include "core/internal/float_round.h"
 #include "core/internal/parallel.h"
 #include "core/visibility/internal/face_tests.h"
 #include "core/visibility/internal/fan_index.h"
@@ -26,6 +27,9 @@
 
 namespace inkline::core {
 namespace {
+
+using internal::float_above;
+using internal::float_below;
 
 // Below this many queries a call runs on the calling thread; starting threads costs more.
 constexpr size_t kMinParallelQueries = 4096;
@@ -95,14 +99,6 @@ void reject_own_faces(const RTCFilterFunctionNArguments* args) {
 // a corner of the box can miss it by rounding. Neither can miss a box that is a little larger.
 constexpr double kFanBoxPad = 1e-6;
 
-float float_below(double x) {
-    const auto f = float(x);
-    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-float float_above(double x) {
-    const auto f = float(x);
-    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
 
 // Bounds of one fan (a user primitive), in the scaled frame: padded, then rounded outwards.
 void fan_bounds(const RTCBoundsFunctionArguments* args) {

@@ -2,6 +2,7 @@
 #include "core/lines/internal/cone_tree.h"
 
 #include "core/error.h"
+#include "core/internal/float_round.h"
 #include "core/internal/parallel.h"
 
 #include <glm/common.hpp>
@@ -35,12 +36,6 @@ constexpr double kCreaseMargin = 1e-6;
 // which cover that with room for the sums' own rounding.
 constexpr double kFloatNormalPad = 0x1p-22;
 constexpr double kFloatBoxPad = 0x1p-22;
-
-// The float just above (at or above) a double.
-float float_at_least(double x) {
-    const auto f = float(x);
-    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
 
 // Chord between two unit vectors at 90 degrees (sqrt 2): a cone this wide proves no facing.
 constexpr double kMaxSpread = 1.4142135623730951;
@@ -255,7 +250,7 @@ ConeTree::FaceCone ConeTree::face_cone(const Mesh& mesh, uint32_t face) {
     // (about 12 ulp of |b-a||c-a| per cross product, large for slivers), plus the rounding of
     // eye - centroid and of the dot product.
     const double edges2 = glm::dot(b - a, b - a) * glm::dot(c - a, c - a);
-    fc.error = float_at_least(std::min(1.0, 8.0 * kEpsilon * (std::sqrt(edges2) / len + 1.0)));
+    fc.error = float_above(std::min(1.0, 8.0 * kEpsilon * (std::sqrt(edges2) / len + 1.0)));
     return fc;
 }
 
@@ -276,7 +271,7 @@ ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, const CornerNormals& 
     // rounding (and that of corner - eye, which the box padding covers) is left.
     FaceCone fc{.centroid = glm::vec3(0.5 * (glm::dvec3(bounds.box_min) + glm::dvec3(bounds.box_max))),
                 .normal = glm::vec3(0.0f, 0.0f, 1.0f),
-                .error = float_at_least(8.0 * kEpsilon),
+                .error = float_above(8.0 * kEpsilon),
                 .face = face};
     bounds.spread = 2.0f;
     const double len = glm::length(sum);
@@ -288,7 +283,7 @@ ConeTree::FaceCone ConeTree::corner_cone(const Mesh& mesh, const CornerNormals& 
         const glm::dvec3 d = corner_normals.normals[corner[c]] - normal;
         spread2 = std::max(spread2, glm::dot(d, d));
     }
-    bounds.spread = float_at_least(std::sqrt(spread2));
+    bounds.spread = float_above(std::sqrt(spread2));
     return fc;
 }
 
