@@ -7,6 +7,7 @@
 #include "core/mesh/mesh_io.h"
 #include "core/mesh/topology.h"
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -57,7 +58,9 @@ class MeshFrames {
     MeshFrames(std::shared_ptr<const AnimatedMesh> animation, const std::filesystem::path& source);
 
     // The mesh at a frame; for a sequence this reads the frame's file and checks that its
-    // topology matches, throwing InputError naming the file when it does not.
+    // topology matches, throwing InputError naming the file when it does not. A deforming mesh
+    // is kept twice over: the mesh returned stays as it is until at() has returned the meshes of
+    // two other frames, so one frame's mesh can be drawn while the next one's is loaded.
     const Mesh& at(int frame);
 
     const EdgeTable& edges() const { return table_; }
@@ -77,8 +80,11 @@ class MeshFrames {
     MeshSource source_;
     std::shared_ptr<const AnimatedMesh> animation_;
     MeshLimits limits_;
-    Mesh mesh_;
-    int loaded_frame_;
+    // The frames' meshes: [current_] the last one returned; the other, of a deforming mesh, the
+    // one before it (empty until a second frame is loaded).
+    std::array<Mesh, 2> mesh_;
+    std::array<int, 2> loaded_frame_;
+    size_t current_ = 0;
     std::filesystem::path reference_file_;
     EdgeTable table_;
     std::vector<std::string> warnings_;

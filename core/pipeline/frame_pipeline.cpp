@@ -49,12 +49,14 @@ FramePipeline::FramePipeline(const Scene& scene, MeshFrames& meshes, std::unique
     const long long frames =
         options_.frame_count > 0 ? options_.frame_count : (long long)scene_.last_frame - scene_.first_frame + 1;
     tracker_mode_ = frames > 1 ? options_.tracker : TrackerMode::kBrute;
-    // The next frame's lines are found while a frame is drawn only where that cannot touch what
-    // the frame reads: a mesh that holds still (a sequence's next file, a deforming animation's
-    // next positions would replace its mesh), and no caller timing the steps. Their visibility
-    // too, unless it is a GL depth test, which runs where its context was made.
-    lines_ahead_ = frames > 1 && !meshes_.deforming() && !options_.step_done;
+    // The next frame's lines are found while a frame is drawn, unless a caller times the steps.
+    // That touches nothing the frame reads: a deforming mesh's next positions go to a second
+    // buffer (MeshFrames::at). Their visibility too, unless it is a GL depth test, which runs
+    // where its context was made; the occlusion test of a deforming mesh is brought up to date
+    // for the next frame, so there the tone, which queries it, comes first.
+    lines_ahead_ = frames > 1 && !options_.step_done;
     visibility_ahead_ = occlusion_->mode() != VisibilityMode::kGl;
+    ahead_after_tone_ = meshes_.deforming() && visibility_ahead_ && scene_.tone.mode != ToneMode::kNone;
     for (const MeshObject& object : meshes_.objects()) object_kinds_.push_back(object_line_kinds(scene_, object.name));
     // Intersection lines need an object that draws them, and a second object or self intersections.
     bool any_crossing_object = object_kinds_.empty() && scene_.lines.intersection;
@@ -237,7 +239,7 @@ void FramePipeline::find_lines_ahead(int frame) {
 
 FrameResult FramePipeline::run(int frame) {
     FoundLines found = lines_of(frame);
-    find_lines_ahead(frame + 1);
+    if (!ahead_after_tone_) find_lines_ahead(frame + 1);
 
     StepClock step(options_.step_done);
     FrameResult out;
@@ -301,6 +303,7 @@ FrameResult FramePipeline::run(int frame) {
         }
         tone_ms = step("tone");
     }
+    if (ahead_after_tone_) find_lines_ahead(frame + 1);
     FrameStats& stats = result.stats;
     stats.tracker = tracker_mode_name(tracker_mode_);
     stats.visibility = visibility_mode_name(occlusion_->mode());

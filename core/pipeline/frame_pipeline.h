@@ -86,8 +86,8 @@ class FramePipeline {
     // Draws a frame. Stroke ids and coherence carry from one call to the next, so frames are
     // drawn in order (a chunk of a sequence replays the frames before it). Throws InputError
     // for a frame that cannot be drawn (its mesh file, its camera); the next call may go on.
-    // On a mesh that holds still, the next frame's lines are then found on a second thread
-    // while the caller uses this result (docs/pipeline.md).
+    // The next frame's lines are then found on a second thread while the caller uses this
+    // result (docs/pipeline.md).
     FrameResult run(int frame);
 
     // The extraction in use: options.tracker, or kBrute for a run of one frame.
@@ -147,6 +147,7 @@ class FramePipeline {
     bool first_lines_ = true;    // no frame's lines found yet
     bool lines_ahead_ = false;   // the next frame's lines may be found while a frame is drawn
     bool visibility_ahead_ = false;  // ... and their visibility
+    bool ahead_after_tone_ = false;  // ... but only once the frame's tone is done
     bool warned_inside_ = false;
     // The next frame's lines, being found while a frame is drawn, on a thread of the pipeline's
     // own (started on the first frame found ahead). Last, so that the thread stops before the

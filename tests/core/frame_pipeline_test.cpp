@@ -373,6 +373,72 @@ TEST(FramePipeline, LinesFoundAheadDrawTheSameAsLinesFoundInTurn) {
     }
 }
 
+// A mesh that moves in memory, as a skinned glTF shot does: the sphere slides across the torus.
+class SlidingSphere final : public core::AnimatedMesh {
+  public:
+    static core::Mesh mesh_at(int frame) { return torus_behind_sphere(-0.9f + 0.3f * float(frame - 1)); }
+    const core::Mesh& rest() const override { return rest_; }
+    bool deforms() const override { return true; }
+    void positions_at(int frame, std::vector<glm::vec3>& r_positions) const override {
+        r_positions = mesh_at(frame).positions;
+    }
+
+  private:
+    core::Mesh rest_ = mesh_at(1);
+};
+
+// A moving mesh is kept twice over: the mesh of a frame stays as it was while the next frame's is
+// made, and is made again only after two other frames.
+TEST(MeshFrames, AMovingMeshKeepsTheFrameBeforeWhileTheNextIsMade) {
+    core::MeshFrames meshes(std::make_shared<SlidingSphere>(), "sliding");
+    const core::Mesh& first = meshes.at(1);
+    const core::Mesh& second = meshes.at(2);
+    EXPECT_NE(&first, &second);
+    EXPECT_EQ(first.positions, SlidingSphere::mesh_at(1).positions);
+    EXPECT_EQ(second.positions, SlidingSphere::mesh_at(2).positions);
+    EXPECT_EQ(first.triangles, second.triangles);
+    EXPECT_EQ(&meshes.at(1), &first) << "the frame before, asked again, is not made again";
+    EXPECT_EQ(&meshes.at(3), &second) << "a third frame takes the copy of the frame before the last asked";
+    EXPECT_EQ(first.positions, SlidingSphere::mesh_at(1).positions);
+    EXPECT_EQ(second.positions, SlidingSphere::mesh_at(3).positions);
+}
+
+// On a moving mesh too, the next frame's lines (and their visibility) are found while the caller
+// has this frame, into the second copy of the mesh: each frame draws what a pipeline finding
+// every frame in turn draws, and the frame's mesh is its own while the next frame's is made.
+// With a tone, which queries the frame's occlusion test, the next frame is looked for after it.
+TEST(FramePipeline, LinesFoundAheadOnAMovingMeshDrawTheSameAsLinesFoundInTurn) {
+    for (const bool tone : {false, true}) {
+        SCOPED_TRACE(tone ? "stippled" : "lines only");
+        core::Scene scene = turntable(SlidingSphere::mesh_at(1), 7);
+        if (tone) scene.tone = {.mode = core::ToneMode::kStipple, .max = 0.6};
+        for (const core::VisibilityMode mode : {core::VisibilityMode::kExact, core::VisibilityMode::kRaycast}) {
+            if (mode == core::VisibilityMode::kRaycast && !core::raycast_available()) continue;
+            SCOPED_TRACE(core::visibility_mode_name(mode));
+            core::MeshFrames ahead_meshes(std::make_shared<SlidingSphere>(), "sliding");
+            core::MeshFrames in_turn_meshes(std::make_shared<SlidingSphere>(), "sliding");
+            core::FramePipeline ahead(scene, ahead_meshes, core::make_cpu_occlusion(mode));
+            core::FramePipeline in_turn(scene, in_turn_meshes, core::make_cpu_occlusion(mode),
+                                        {.step_done = [](const char*) {}});
+            for (const int frame : {1, 2, 3, 6, 4, 5, 7}) {
+                SCOPED_TRACE("frame " + std::to_string(frame));
+                const core::FrameResult a = ahead.run(frame), b = in_turn.run(frame);
+                expect_same_lines(a.lines, b.lines);
+                expect_same_strokes(a.strokes, b.strokes);
+                ASSERT_EQ(a.tone.dots.size(), b.tone.dots.size());
+                for (size_t i = 0; i < a.tone.dots.size(); ++i) {
+                    EXPECT_EQ(a.tone.dots[i].sample, b.tone.dots[i].sample);
+                    EXPECT_EQ(a.tone.dots[i].point_px, b.tone.dots[i].point_px);
+                }
+                EXPECT_EQ(a.tone.dots.empty(), !tone);
+                ASSERT_NE(a.mesh, nullptr);
+                EXPECT_EQ(a.mesh->positions, SlidingSphere::mesh_at(frame).positions)
+                    << "the frame's mesh, while the next frame's is being made";
+            }
+        }
+    }
+}
+
 // A process forked while the next frame's lines were being found (a Python program handing
 // frames to forked workers, say) has no worker thread: it must draw on, the same lines, not wait
 // for a thread that is not there.
