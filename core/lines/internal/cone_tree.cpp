@@ -50,6 +50,8 @@ double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v
 // Below these sizes the build's loops run on the calling thread.
 constexpr size_t kMinParallelItems = 50000;
 constexpr size_t kMinParallelNodes = 4096;
+// The refit fetches a face's triangle twice this many faces ahead of its cone, and its corners this many.
+constexpr size_t kFetchAhead = 16;
 
 // Faces in the first child of a node of n > leaf_faces faces: half its leaves, rounded up, so that
 // every node starts at a multiple of leaf_faces and every leaf but the last is full.
@@ -241,16 +243,20 @@ ConeTree::FaceCone ConeTree::face_cone(const Mesh& mesh, uint32_t face) {
     // The same expressions as facing_value, so that the cones bound the values it computes.
     const glm::uvec3 t = mesh.triangles[face];
     const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), c(mesh.positions[t.z]);
-    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const glm::dvec3 ab = b - a, ac = c - a;
+    const glm::dvec3 n = glm::cross(ab, ac);
     const double len = glm::length(n);
-    FaceCone fc{.centroid = glm::vec3((a + b + c) / 3.0), .normal = glm::vec3(0.0f, 0.0f, 1.0f), .error = 1.0f, .face = face};
+    // The centroid and the normal are rounded to float, which the boxes' and spreads' padding
+    // covers; one division for the normal's three components.
+    FaceCone fc{.centroid = glm::vec3((a + b + c) * (1.0 / 3.0)), .normal = glm::vec3(0.0f, 0.0f, 1.0f), .error = 1.0f, .face = face};
     if (!(len > 0.0)) return fc;
-    fc.normal = glm::vec3(n / len);
+    const double inverse = 1.0 / len;
+    fc.normal = glm::vec3(n * inverse);
     // Relative error of facing_value's normal against this one, were they rounded differently
     // (about 12 ulp of |b-a||c-a| per cross product, large for slivers), plus the rounding of
     // eye - centroid and of the dot product.
-    const double edges2 = glm::dot(b - a, b - a) * glm::dot(c - a, c - a);
-    fc.error = float_above(std::min(1.0, 8.0 * kEpsilon * (std::sqrt(edges2) / len + 1.0)));
+    const double edges2 = glm::dot(ab, ab) * glm::dot(ac, ac);
+    fc.error = float_above(std::min(1.0, 8.0 * kEpsilon * (std::sqrt(edges2) * inverse + 1.0)));
     return fc;
 }
 
@@ -347,11 +353,20 @@ void ConeTree::refit(const Mesh& mesh, std::span<const glm::dvec3> normals, std:
     const CornerNormals corner_normals{normals, face_corners};
     cones_.resize(faces.size());
     if (over_corner_normals_) corners_.resize(mesh.triangles.size());
+    // Every face's cone in tree order. A cluster's faces lie together in the tree but anywhere
+    // in the mesh: each face's triangle is fetched ahead, and then its corners.
+    const size_t n = faces.size();
+    for (size_t k = 0; k < n; ++k) {
+        if (k + 2 * kFetchAhead < n) __builtin_prefetch(&mesh.triangles[faces[k + 2 * kFetchAhead]]);
+        if (k + kFetchAhead < n) {
+            const glm::uvec3 t = mesh.triangles[faces[k + kFetchAhead]];
+            for (int c = 0; c < 3; ++c) __builtin_prefetch(&mesh.positions[t[c]]);
+        }
+        cones_[k] = cone_of(mesh, corner_normals, faces[k]);
+    }
     for (size_t i = nodes.size(); i-- > 0;) {
         ConeNode& node = nodes[i];
         if (node.is_leaf()) {
-            // Each face belongs to one leaf: fit it while its cones are in cache.
-            for (uint32_t k = node.face_begin; k < node.face_end; ++k) cones_[k] = cone_of(mesh, corner_normals, faces[k]);
             fit_node(node);
             continue;
         }
