@@ -4,12 +4,17 @@
 # (visible lines, exact visibility, compare_lines.py) and against Line Art on the same .blend
 # (contour, crease and intersection on), per frame, side by side in one run.
 #
-#   bench/gltf/scale.py [--inkline build/cli/inkline] [--details 1,4,12,34] [--frames 12] [--work DIR]
+#   bench/gltf/scale.py [--inkline build/cli/inkline] [--details 1,2,4,12,34] [--frames 12] [--runs 3]
+#                       [--work DIR]
 #
-# Per detail: triangles; inkline's median ms per frame over frames 2..N (every stage and the
-# SVG, from `render -v`) and its peak resident memory; Line Art's median (evaluation + SVG export,
-# bench/blender/time_blender.py); the ratio; the worst precision and recall of visible length
-# against Blender's evaluation within 1 px. Needs `blender` on PATH; installs nothing.
+# Per detail: triangles; inkline's wall ms per frame: the median time from one frame's
+# `render -v` line to the next, over frames 2..N of --runs runs writing SVG (as Line Art's
+# figure exports SVG), which is what a frame costs the run now that the next frame's lines are
+# found while a frame is drawn; beside it the median of the stages' sum (each stage's own time,
+# so with overlapping work more than a frame's share); its peak resident memory; Line Art's
+# median (evaluation + SVG export, bench/blender/time_blender.py); the ratio of the two wall
+# times; the worst precision and recall of visible length against Blender's evaluation within
+# 1 px. Needs `blender` on PATH; installs nothing.
 import argparse
 import json
 import os
@@ -20,28 +25,29 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "bench", "blender"))
+import measured_run  # noqa: E402
 
 
-def run_measured(cmd):
-    """Runs cmd; returns its stderr."""
-    proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if proc.returncode != 0:
-        raise SystemExit("failed: %s\n%s" % (" ".join(cmd), proc.stderr))
-    return proc.stderr
-
-
-def inkline_frames(inkline, glb, frames, out):
-    cmd = ["/usr/bin/time", "-f", "peak_kb %M", inkline, "render", glb, "--frames", "1:%d" % frames, "-v",
-           "--svg", os.path.join(out, "svg", "%04d.svg"), "--json", os.path.join(out, "json", "%04d.json")]
-    err = run_measured(cmd)
-    per_frame = {}
-    for line in err.splitlines():
-        m = re.match(r"frame (\d+): .*?, (load .*)$", line)
-        if m:
-            per_frame[int(m.group(1))] = sum(float(x) for x in re.findall(r"([\d.]+) ms", m.group(2)))
-    peak = int(re.search(r"peak_kb (\d+)", err).group(1)) / 1024.0
-    faces = json.load(open(os.path.join(out, "json", "0001.json")))["stats"]["faces"]
-    return statistics.median(per_frame[f] for f in range(2, frames + 1)), peak, faces
+def inkline_frames(inkline, glb, frames, runs, out):
+    """(median wall ms between frames, median stage sum ms, peak RSS MB, faces) over `runs` runs."""
+    between, sums, peaks = [], [], []
+    os.makedirs(out, exist_ok=True)
+    for run in range(runs):
+        stamps = []
+        cmd = [inkline, "render", glb, "--frames", "1:%d" % frames, "-v", "--svg", os.path.join(out, "svg", "%04d.svg")]
+        _, _, peak, text = measured_run.run(cmd, os.path.join(out, "run%d.log" % run), stamps, who="inkline")
+        times = [t for t, line in stamps if measured_run.FRAME_LINE.match(line)]
+        between += [1000.0 * (b - a) for a, b in zip(times, times[1:])]
+        for m in re.finditer(r"^frame (\d+): .*?, (load .*)$", text, re.M):
+            if int(m.group(1)) >= 2:
+                sums.append(sum(float(x) for x in re.findall(r"([\d.]+) ms", m.group(2))))
+        peaks.append(peak)
+    one = os.path.join(out, "json", "0001.json")
+    subprocess.run([inkline, "render", glb, "--frames", "1:1", "--json", one], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    faces = json.load(open(one))["stats"]["faces"]
+    return statistics.median(between), statistics.median(sums), statistics.median(peaks), faces
 
 
 def lineart_frames(blend, frames, out):
@@ -56,12 +62,14 @@ def lineart_frames(blend, frames, out):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--inkline", default=os.path.join(ROOT, "build", "cli", "inkline"))
-    ap.add_argument("--details", default="1,4,12,34")
+    ap.add_argument("--details", default="1,2,4,12,34")
     ap.add_argument("--frames", type=int, default=12)
+    ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--work", default="/tmp/inkline_gltf_bench")
     args = ap.parse_args()
-    print("| triangles | inkline ms/frame | Line Art ms/frame | Line Art / inkline | inkline peak MB | precision | recall |")
-    print("|---:|---:|---:|---:|---:|---:|---:|")
+    print("| triangles | inkline ms/frame | stage sums | Line Art ms/frame | Line Art / inkline | inkline peak MB "
+          "| precision | recall |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|")
     for detail in (int(d) for d in args.details.split(",")):
         shot = os.path.join(args.work, "detail%d" % detail)
         subprocess.run(["blender", "-b", "--factory-startup", "--python", os.path.join(HERE, "build_shot.py"), "--", shot,
@@ -72,10 +80,11 @@ def main():
         worst = re.search(r"worst precision ([\d.]+), worst recall ([\d.]+)", check.stdout)
         if check.returncode != 0 or not worst:
             raise SystemExit("compare_lines.py failed (it needs numpy for %s):\n%s" % (sys.executable, check.stderr[-2000:]))
-        ink_ms, peak, faces = inkline_frames(args.inkline, os.path.join(shot, "shot.glb"), args.frames, os.path.join(shot, "ink"))
+        ink_ms, sums_ms, peak, faces = inkline_frames(args.inkline, os.path.join(shot, "shot.glb"), args.frames, args.runs,
+                                                      os.path.join(shot, "ink"))
         la_ms = lineart_frames(os.path.join(shot, "shot.blend"), args.frames, shot)
-        print("| %s | %.1f | %.1f | %.1fx | %.0f | %s | %s |" % (
-            format(faces, ","), ink_ms, la_ms, la_ms / ink_ms, peak, worst.group(1), worst.group(2)), flush=True)
+        print("| %s | %.1f | %.1f | %.1f | %.1fx | %.0f | %s | %s |" % (
+            format(faces, ","), ink_ms, sums_ms, la_ms, la_ms / ink_ms, peak, worst.group(1), worst.group(2)), flush=True)
 
 
 if __name__ == "__main__":
