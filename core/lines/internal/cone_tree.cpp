@@ -353,23 +353,26 @@ void ConeTree::refit(const Mesh& mesh, std::span<const glm::dvec3> normals, std:
     const CornerNormals corner_normals{normals, face_corners};
     cones_.resize(faces.size());
     if (over_corner_normals_) corners_.resize(mesh.triangles.size());
-    // Every face's cone in tree order. A cluster's faces lie together in the tree but anywhere
-    // in the mesh: each face's triangle is fetched ahead, and then its corners.
+    // The leaves first, in depth-first order, which is the order of their faces: each face's
+    // cone, then the leaf's while they are in cache. A cluster's faces lie together in the tree
+    // but anywhere in the mesh: each face's triangle is fetched ahead, and then its corners.
     const size_t n = faces.size();
-    for (size_t k = 0; k < n; ++k) {
-        if (k + 2 * kFetchAhead < n) __builtin_prefetch(&mesh.triangles[faces[k + 2 * kFetchAhead]]);
-        if (k + kFetchAhead < n) {
-            const glm::uvec3 t = mesh.triangles[faces[k + kFetchAhead]];
-            for (int c = 0; c < 3; ++c) __builtin_prefetch(&mesh.positions[t[c]]);
+    for (ConeNode& node : nodes) {
+        if (!node.is_leaf()) continue;
+        for (size_t k = node.face_begin; k < node.face_end; ++k) {
+            if (k + 2 * kFetchAhead < n) __builtin_prefetch(&mesh.triangles[faces[k + 2 * kFetchAhead]]);
+            if (k + kFetchAhead < n) {
+                const glm::uvec3 t = mesh.triangles[faces[k + kFetchAhead]];
+                for (int c = 0; c < 3; ++c) __builtin_prefetch(&mesh.positions[t[c]]);
+            }
+            cones_[k] = cone_of(mesh, corner_normals, faces[k]);
         }
-        cones_[k] = cone_of(mesh, corner_normals, faces[k]);
+        fit_node(node);
     }
+    // Then each inner node from its children, below it in the order.
     for (size_t i = nodes.size(); i-- > 0;) {
         ConeNode& node = nodes[i];
-        if (node.is_leaf()) {
-            fit_node(node);
-            continue;
-        }
+        if (node.is_leaf()) continue;
         const ConeNode& l = nodes[i + 1];
         const ConeNode& r = nodes[node.second_child];
         node.box_min = glm::min(l.box_min, r.box_min);
