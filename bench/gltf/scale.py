@@ -12,9 +12,10 @@
 # figure exports SVG), which is what a frame costs the run now that the next frame's lines are
 # found while a frame is drawn; beside it the median of the stages' sum (each stage's own time,
 # so with overlapping work more than a frame's share); its peak resident memory; Line Art's
-# median (evaluation + SVG export, bench/blender/time_blender.py); the ratio of the two wall
-# times; the worst precision and recall of visible length against Blender's evaluation within
-# 1 px. Needs `blender` on PATH; installs nothing.
+# median over as many runs (evaluation + SVG export, bench/blender/time_blender.py), each run
+# right after one of inkline's; the ratio of the two wall times; the worst precision and recall
+# of visible length against Blender's evaluation within 1 px. Needs `blender` on PATH; installs
+# nothing.
 import argparse
 import json
 import os
@@ -29,34 +30,33 @@ sys.path.insert(0, os.path.join(ROOT, "bench", "blender"))
 import measured_run  # noqa: E402
 
 
-def inkline_frames(inkline, glb, frames, runs, out):
-    """(median wall ms between frames, median stage sum ms, peak RSS MB, faces) over `runs` runs."""
-    between, sums, peaks = [], [], []
+def inkline_run(inkline, glb, frames, out, run):
+    """One run: (wall ms between frames, stage sums ms) of frames 2.., and its peak RSS MB."""
     os.makedirs(out, exist_ok=True)
-    for run in range(runs):
-        stamps = []
-        cmd = [inkline, "render", glb, "--frames", "1:%d" % frames, "-v", "--svg", os.path.join(out, "svg", "%04d.svg")]
-        _, _, peak, text = measured_run.run(cmd, os.path.join(out, "run%d.log" % run), stamps, who="inkline")
-        times = [t for t, line in stamps if measured_run.FRAME_LINE.match(line)]
-        between += [1000.0 * (b - a) for a, b in zip(times, times[1:])]
-        for m in re.finditer(r"^frame (\d+): .*?, (load .*)$", text, re.M):
-            if int(m.group(1)) >= 2:
-                sums.append(sum(float(x) for x in re.findall(r"([\d.]+) ms", m.group(2))))
-        peaks.append(peak)
+    stamps = []
+    cmd = [inkline, "render", glb, "--frames", "1:%d" % frames, "-v", "--svg", os.path.join(out, "svg", "%04d.svg")]
+    _, _, peak, text = measured_run.run(cmd, os.path.join(out, "run%d.log" % run), stamps, who="inkline")
+    times = [t for t, line in stamps if measured_run.FRAME_LINE.match(line)]
+    between = [1000.0 * (b - a) for a, b in zip(times, times[1:])]
+    sums = [sum(float(x) for x in re.findall(r"([\d.]+) ms", m.group(2)))
+            for m in re.finditer(r"^frame (\d+): .*?, (load .*)$", text, re.M) if int(m.group(1)) >= 2]
+    return between, sums, peak
+
+
+def faces_of(inkline, glb, out):
     one = os.path.join(out, "json", "0001.json")
     subprocess.run([inkline, "render", glb, "--frames", "1:1", "--json", one], check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    faces = json.load(open(one))["stats"]["faces"]
-    return statistics.median(between), statistics.median(sums), statistics.median(peaks), faces
+    return json.load(open(one))["stats"]["faces"]
 
 
-def lineart_frames(blend, frames, out):
+def lineart_run(blend, frames, out):
+    """One Line Art run: its ms per frame (evaluation + SVG export) of frames 2.."""
     result = os.path.join(out, "lineart.json")
     subprocess.run(["blender", "-b", blend, "--python", os.path.join(ROOT, "bench", "blender", "time_blender.py"), "--",
                     "lineart", result, "--frames", "1:%d" % frames, "--svg-dir", os.path.join(out, "lineart_svg")],
                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    records = json.load(open(result))["frames"]
-    return statistics.median(r["eval_ms"] + r["export_ms"] for r in records if r["frame"] >= 2)
+    return [r["eval_ms"] + r["export_ms"] for r in json.load(open(result))["frames"] if r["frame"] >= 2]
 
 
 def main():
@@ -80,9 +80,17 @@ def main():
         worst = re.search(r"worst precision ([\d.]+), worst recall ([\d.]+)", check.stdout)
         if check.returncode != 0 or not worst:
             raise SystemExit("compare_lines.py failed (it needs numpy for %s):\n%s" % (sys.executable, check.stderr[-2000:]))
-        ink_ms, sums_ms, peak, faces = inkline_frames(args.inkline, os.path.join(shot, "shot.glb"), args.frames, args.runs,
-                                                      os.path.join(shot, "ink"))
-        la_ms = lineart_frames(os.path.join(shot, "shot.blend"), args.frames, shot)
+        # inkline and Line Art take turns, so that both see the machine as it is.
+        between, sums, peaks, lineart = [], [], [], []
+        for run in range(args.runs):
+            b, s, peak = inkline_run(args.inkline, os.path.join(shot, "shot.glb"), args.frames, os.path.join(shot, "ink"), run)
+            between += b
+            sums += s
+            peaks.append(peak)
+            lineart += lineart_run(os.path.join(shot, "shot.blend"), args.frames, shot)
+        faces = faces_of(args.inkline, os.path.join(shot, "shot.glb"), os.path.join(shot, "ink"))
+        ink_ms, sums_ms, peak, la_ms = (statistics.median(between), statistics.median(sums), statistics.median(peaks),
+                                        statistics.median(lineart))
         print("| %s | %.1f | %.1f | %.1f | %.1fx | %.0f | %s | %s |" % (
             format(faces, ","), ink_ms, sums_ms, la_ms, la_ms / ink_ms, peak, worst.group(1), worst.group(2)), flush=True)
 
