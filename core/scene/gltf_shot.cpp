@@ -2,6 +2,7 @@
 #include "core/scene/gltf_shot.h"
 
 #include "core/error.h"
+#include "core/internal/key_table.h"
 #include "core/mesh/mesh_io.h"
 #include "core/scene/scene.h"
 
@@ -16,7 +17,6 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
-#include <unordered_map>
 
 namespace inkline::core {
 namespace {
@@ -711,12 +711,18 @@ void GltfShot::Impl::weld() {
             const glm::dvec3 q = glm::floor((p - b.min) / cell);
             return std::array<int64_t, 3>{int64_t(q.x), int64_t(q.y), int64_t(q.z)};
         };
-        struct KeyHash {
-            size_t operator()(const std::array<int64_t, 3>& k) const {
-                return size_t(k[0] * 73856093) ^ size_t(k[1] * 19349663) ^ size_t(k[2] * 83492791);
-            }
+        // A cell's key: its coordinates (0 .. 1 / kWeldFraction, and a neighbour's one beyond)
+        // in 21 bits each.
+        static_assert(1.0 / kWeldFraction + 2.0 < double(1 << 21));
+        const auto pack = [](int64_t x, int64_t y, int64_t z) {
+            return uint64_t(x + 1) | (uint64_t(y + 1) << 21) | (uint64_t(z + 1) << 42);
         };
-        std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, KeyHash> cells;
+        // Each cell's kept vertices in the order kept: the first and last, the others linked.
+        struct Kept {
+            uint32_t first = UINT32_MAX, last = UINT32_MAX;
+        };
+        internal::KeyTable<Kept> cells(g.positions.size());
+        std::vector<uint32_t> next_kept(g.positions.size(), UINT32_MAX);
         const auto same_motion = [&](uint32_t a, uint32_t c) {
             for (const auto& t : g.targets) {
                 if (glm::length(t[a] - t[c]) > cell) return false;
@@ -737,9 +743,9 @@ void GltfShot::Impl::weld() {
             for (int64_t dx = -1; dx <= 1 && found == UINT32_MAX; ++dx) {
                 for (int64_t dy = -1; dy <= 1 && found == UINT32_MAX; ++dy) {
                     for (int64_t dz = -1; dz <= 1 && found == UINT32_MAX; ++dz) {
-                        const auto it = cells.find({k[0] + dx, k[1] + dy, k[2] + dz});
-                        if (it == cells.end()) continue;
-                        for (const uint32_t u : it->second) {
+                        const Kept* kept = cells.find(pack(k[0] + dx, k[1] + dy, k[2] + dz));
+                        if (!kept) continue;
+                        for (uint32_t u = kept->first; u != UINT32_MAX; u = next_kept[u]) {
                             if (glm::length(g.positions[u] - g.positions[v]) <= cell && same_motion(u, v)) {
                                 found = u;
                                 break;
@@ -753,7 +759,9 @@ void GltfShot::Impl::weld() {
             } else {
                 weld_of[source_base[o] + v] = uint32_t(source_of.size());
                 source_of.push_back(uint32_t(source_base[o] + v));
-                cells[k].push_back(v);
+                Kept& kept = cells[pack(k[0], k[1], k[2])];
+                (kept.first == UINT32_MAX ? kept.first : next_kept[kept.last]) = v;
+                kept.last = v;
             }
         }
     }

@@ -5,7 +5,7 @@
 #include "core/random.h"
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
-#include "core/tone/internal/key_table.h"
+#include "core/internal/key_table.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

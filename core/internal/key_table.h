@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// An open-addressing hash from 64-bit keys to small values, for the tone's grids and edge points:
+// An open-addressing hash from 64-bit keys to small values (the tone's grids, the glTF weld's cells):
 // a slot holds its key and value together (one cache line per probe), linear probing, never more
 // than half full (it doubles as it fills).
 #pragma once
