@@ -712,10 +712,11 @@ void GltfShot::Impl::weld() {
             return std::array<int64_t, 3>{int64_t(q.x), int64_t(q.y), int64_t(q.z)};
         };
         // A cell's key: its coordinates (0 .. 1 / kWeldFraction, and a neighbour's one beyond)
-        // in 21 bits each.
+        // in 21 bits each; the top bit stays clear, so no key is KeyTable's empty one.
         static_assert(1.0 / kWeldFraction + 2.0 < double(1 << 21));
         const auto pack = [](int64_t x, int64_t y, int64_t z) {
-            return uint64_t(x + 1) | (uint64_t(y + 1) << 21) | (uint64_t(z + 1) << 42);
+            const auto part = [](int64_t v) { return uint64_t(v + 1) & 0x1fffffu; };
+            return part(x) | (part(y) << 21) | (part(z) << 42);
         };
         // Each cell's kept vertices in the order kept: the first and last, the others linked.
         struct Kept {
