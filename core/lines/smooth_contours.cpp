@@ -11,6 +11,8 @@
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
+#include <iterator>
+#include <span>
 
 namespace inkline::core {
 
@@ -22,6 +24,12 @@ glm::dvec3 contour_point_on_edge(const glm::dvec3& a, const glm::dvec3& b, doubl
     const double t = ga / (ga - gb);
     return a + (b - a) * std::clamp(t, 0.0, 1.0);
 }
+
+// Orders crease outline stretches, and finds them, by edge.
+struct EdgeOrder {
+    bool operator()(const CreaseOutline& a, uint32_t edge) const { return a.edge < edge; }
+    bool operator()(uint32_t edge, const CreaseOutline& a) const { return edge < a.edge; }
+};
 
 }  // namespace
 
@@ -47,6 +55,65 @@ std::vector<uint32_t> faces_crossed(const Mesh& mesh, const EdgeTable& table, st
     return out;
 }
 
+std::vector<Chain> cut_crease_outline(std::vector<Chain> creases, const std::vector<CreaseOutline>& outline,
+                                      const Mesh& mesh, const EdgeTable& table) {
+    if (outline.empty()) return creases;
+    auto stretches_of = [&](uint32_t edge) {
+        const auto [lo, hi] = std::equal_range(outline.begin(), outline.end(), edge, EdgeOrder{});
+        return std::span<const CreaseOutline>(lo, hi);
+    };
+    std::vector<Chain> out;
+    out.reserve(creases.size());
+    for (Chain& chain : creases) {
+        const bool cut = chain.kind == LineKind::kCrease && !chain.vertices.empty() &&
+                         std::any_of(chain.edges.begin(), chain.edges.end(),
+                                     [&](uint32_t e) { return !stretches_of(e).empty(); });
+        if (!cut) {
+            out.push_back(std::move(chain));
+            continue;
+        }
+        // The chain's points, with each stretch on the outline left out between two pieces.
+        std::vector<Chain> pieces;
+        Chain piece;
+        piece.kind = LineKind::kCrease;
+        piece.points.emplace_back(mesh.positions[chain.vertices.front()]);
+        auto end_piece = [&] {
+            if (piece.points.size() >= 2) pieces.push_back(std::move(piece));
+            piece = Chain{};
+            piece.kind = LineKind::kCrease;
+        };
+        auto reach = [&](const glm::dvec3& p, uint32_t edge) {
+            if (p == piece.points.back()) return;
+            piece.points.push_back(p);
+            piece.edges.push_back(edge);
+        };
+        for (size_t i = 0; i < chain.edges.size(); ++i) {
+            const uint32_t e = chain.edges[i];
+            const bool forward = chain.vertices[i] == table.edge_vertices[e].x;
+            const std::span<const CreaseOutline> stretches = stretches_of(e);
+            for (size_t k = 0; k < stretches.size(); ++k) {
+                const CreaseOutline& s = stretches[forward ? k : stretches.size() - 1 - k];
+                reach(forward ? s.p0 : s.p1, e);
+                end_piece();
+                piece.points.push_back(forward ? s.p1 : s.p0);
+            }
+            reach(glm::dvec3(mesh.positions[chain.vertices[i + 1]]), e);
+        }
+        end_piece();
+        // A loop cut away from its first vertex: its last piece runs on into its first.
+        const glm::dvec3 first(mesh.positions[chain.vertices.front()]);
+        if (chain.closed && pieces.size() >= 2 && pieces.front().points.front() == first &&
+            pieces.back().points.back() == first) {
+            Chain& last = pieces.back();
+            last.points.insert(last.points.end(), pieces.front().points.begin() + 1, pieces.front().points.end());
+            last.edges.insert(last.edges.end(), pieces.front().edges.begin(), pieces.front().edges.end());
+            pieces.erase(pieces.begin());
+        }
+        std::move(pieces.begin(), pieces.end(), std::back_inserter(out));
+    }
+    return out;
+}
+
 SmoothContourTracer::SmoothContourTracer(const Mesh& mesh, const EdgeTable& table, const SmoothContourOptions& options)
     : options_(options), face_edges_(face_edges(mesh, table)), face_used_(mesh.triangles.size(), 0) {}
 
@@ -60,6 +127,7 @@ void SmoothContourTracer::smooth_pieces(const Mesh& mesh, const EdgeTable& table
     // Corner 3f + c joins the corners of the same vertex in each face across a smooth edge.
     internal::UnionFind<uint32_t> corners(3 * n_faces);
     joined_.assign(n_faces, 0);
+    creases_.clear();
     for (uint32_t f = 0; f < n_faces; ++f) {
         if (!table.face_valid[f]) continue;
         const glm::uvec3 t = mesh.triangles[f];
@@ -67,7 +135,15 @@ void SmoothContourTracer::smooth_pieces(const Mesh& mesh, const EdgeTable& table
             const std::span<const uint32_t> faces = table.faces_of(face_edges_[f][k]);
             if (faces.size() != 2) continue;
             const uint32_t other = faces[0] == f ? faces[1] : faces[0];
-            if (is_crease(mesh, f, other, cos_crease)) continue;
+            if (is_crease(mesh, f, other, cos_crease)) {
+                if (other > f) {
+                    const uint32_t e = face_edges_[f][k];
+                    uint8_t j = 0;
+                    while (face_edges_[other][j] != e) ++j;
+                    creases_.push_back({e, {f, other}, {uint8_t(k), j}});
+                }
+                continue;
+            }
             joined_[f] |= uint8_t(1u << k);
             if (other < f) continue;  // joined from the lower face
             const glm::uvec3 o = mesh.triangles[other];
@@ -78,6 +154,7 @@ void SmoothContourTracer::smooth_pieces(const Mesh& mesh, const EdgeTable& table
             }
         }
     }
+    std::sort(creases_.begin(), creases_.end(), [](const CreaseEdge& a, const CreaseEdge& b) { return a.edge < b.edge; });
     // Groups numbered in order of their first corner; each group's normal sums its faces' normals
     // (area weighted) in face order.
     face_groups_.resize(n_faces);
@@ -131,12 +208,122 @@ const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const Edg
         mesh_ = &mesh;
         eye_ = eye_object;
         if (!tree_->nodes.empty()) search(0);
-        mesh_ = nullptr;
     }
     stats_.segments = contour_faces_.size();
     chain(mesh, table);
     for (const uint32_t f : contour_faces_) face_used_[f] = 0;
+    mesh_ = &mesh;
+    eye_ = eye_object;
+    trace_crease_outline(mesh, table);
+    mesh_ = nullptr;
     return chains_;
+}
+
+double SmoothContourTracer::value(uint32_t group) {
+    if (options_.mode != TrackerMode::kBrute) back(group);  // computed once a trace
+    return values_[group].g;
+}
+
+void SmoothContourTracer::trace_crease_outline(const Mesh& mesh, const EdgeTable& table) {
+    crease_outline_.clear();
+    for (const CreaseEdge& crease : creases_) {
+        const glm::uvec2 ends = table.edge_vertices[crease.edge];  // ends.x < ends.y
+        // g at the edge's two vertices on either side, from the corners of that side's face.
+        double g0[2], g1[2];
+        for (int s = 0; s < 2; ++s) {
+            const uint32_t f = crease.face[s], k = crease.side[s];
+            const glm::uvec3 groups = face_groups_[f];
+            const bool forward = mesh.triangles[f][k] == ends.x;
+            g0[s] = value(groups[forward ? k : (k + 1) % 3]);
+            g1[s] = value(groups[forward ? (k + 1) % 3 : k]);
+        }
+        // Where each side's g changes sign along the edge: the point its contour ends on, bit
+        // for bit (the same function and values as chain()'s).
+        const glm::dvec3 a(mesh.positions[ends.x]), b(mesh.positions[ends.y]);
+        struct Zero {
+            double t;
+            glm::dvec3 p;
+            int side;
+        };
+        Zero zeros[2];
+        int count = 0;
+        for (int s = 0; s < 2; ++s) {
+            if ((g0[s] > 0.0) == (g1[s] > 0.0)) continue;
+            zeros[count++] = {std::clamp(g0[s] / (g0[s] - g1[s]), 0.0, 1.0), contour_point_on_edge(a, b, g0[s], g1[s]), s};
+        }
+        if (count == 2 && zeros[1].t < zeros[0].t) std::swap(zeros[0], zeros[1]);
+        // From a to b: a stretch wherever the two sides face opposite ways.
+        bool back[2] = {g0[0] > 0.0, g0[1] > 0.0};
+        double t_from = 0.0;
+        glm::dvec3 p_from = a;
+        bool from_vertex = true;
+        auto stretch_to = [&](double t, const glm::dvec3& p, bool to_vertex) {
+            if (back[0] == back[1] || !(t > t_from) || p == p_from) return;
+            crease_outline_.push_back({.edge = crease.edge,
+                                       .t0 = t_from,
+                                       .t1 = t,
+                                       .p0 = p_from,
+                                       .p1 = p,
+                                       .vertex0 = from_vertex,
+                                       .vertex1 = to_vertex,
+                                       .face = crease.face[back[0] ? 1 : 0]});
+        };
+        for (int i = 0; i < count;) {
+            const Zero& zero = zeros[i];
+            stretch_to(zero.t, zero.p, false);
+            for (; i < count && zeros[i].t == zero.t; ++i) back[zeros[i].side] = !back[zeros[i].side];
+            t_from = zero.t, p_from = zero.p, from_vertex = false;
+        }
+        stretch_to(1.0, b, true);
+    }
+
+    // Stretches chained through the vertices where exactly two of them meet; a chain ends at a
+    // contour's end (a zero) or at a vertex of one stretch or of three and more.
+    const size_t n = crease_outline_.size();
+    std::vector<std::pair<uint32_t, uint32_t>> at_vertex;  // (vertex, 2 * stretch + end)
+    for (uint32_t i = 0; i < n; ++i) {
+        const glm::uvec2 ends = table.edge_vertices[crease_outline_[i].edge];
+        if (crease_outline_[i].vertex0) at_vertex.emplace_back(ends.x, 2 * i);
+        if (crease_outline_[i].vertex1) at_vertex.emplace_back(ends.y, 2 * i + 1);
+    }
+    std::sort(at_vertex.begin(), at_vertex.end());
+    std::vector<uint32_t> partner(2 * n, kNoIndex);
+    for (size_t i = 0; i < at_vertex.size();) {
+        size_t j = i;
+        while (j < at_vertex.size() && at_vertex[j].first == at_vertex[i].first) ++j;
+        if (j - i == 2) partner[at_vertex[i].second] = at_vertex[i + 1].second, partner[at_vertex[i + 1].second] = at_vertex[i].second;
+        i = j;
+    }
+    std::vector<uint8_t> used(n, 0);
+    auto point = [&](uint32_t end) { return end % 2 ? crease_outline_[end / 2].p1 : crease_outline_[end / 2].p0; };
+    // From stretch end `start` along its stretch, on through the vertices.
+    auto walk = [&](uint32_t start) {
+        Chain chain;
+        chain.kind = LineKind::kSilhouette;
+        chain.points.push_back(point(start));
+        for (uint32_t from = start;;) {
+            const CreaseOutline& stretch = crease_outline_[from / 2];
+            used[from / 2] = 1;
+            chain.edges.push_back(stretch.edge);
+            chain.faces.push_back(stretch.face);
+            const uint32_t to = from ^ 1u;
+            chain.points.push_back(point(to));
+            const uint32_t next = partner[to];
+            if (next == start) {
+                chain.closed = true;
+                break;
+            }
+            if (next == kNoIndex || used[next / 2]) break;
+            from = next;
+        }
+        chains_.push_back(std::move(chain));
+    };
+    for (uint32_t end = 0; end < 2 * n; ++end) {
+        if (!used[end / 2] && partner[end] == kNoIndex) walk(end);
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+        if (!used[i]) walk(2 * i);
+    }
 }
 
 void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object) {

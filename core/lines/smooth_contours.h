@@ -14,6 +14,13 @@
 // corners whose faces join without crossing a crease edge), and the contour of each piece ends
 // on the crease edges around it.
 //
+// Along a crease the outline passes from one piece to the other: where the pieces on its two
+// sides face opposite ways (g interpolated along the crease edge from each side's corners, as on
+// their faces), the crease edge is part of the outline, as a crease edge between a front and a
+// back face is a silhouette in mesh mode. Those stretches are traced too, as silhouette chains
+// that end exactly where the pieces' contours end on the crease, so that the stroke stage links
+// them into one outline; cut_crease_outline takes them out of the crease lines.
+//
 // Incremental tracing tests only the faces that a hierarchy of cones over the corner normals
 // cannot prove free of the contour (all corners of a cluster on one side); it gives the same
 // chains as testing every face.
@@ -55,6 +62,16 @@ struct SmoothContourStats {
     size_t nodes_visited = 0;  // cone tests (incremental)
 };
 
+// A stretch of a crease edge on the outline: between t0 and t1 (t0 < t1, along the edge from
+// its lower-numbered vertex) the smooth pieces on its two sides face opposite ways.
+struct CreaseOutline {
+    uint32_t edge = 0;
+    double t0 = 0.0, t1 = 1.0;
+    glm::dvec3 p0{0.0}, p1{0.0};  // object space: the edge's vertex at t 0 or 1, else where a side's g is zero
+    bool vertex0 = false, vertex1 = false;  // whether p0 (p1) is the edge's vertex
+    uint32_t face = 0;  // the face of the side that faces the eye there
+};
+
 // Traces the smooth contours of one frame's mesh seen from eye_object. Chains are silhouettes
 // (core/lines/chaining.h says how their points, edges and faces relate); deterministic: the
 // same mesh and eye give the same chains, points bit for bit, in either mode.
@@ -68,6 +85,8 @@ class SmoothContourTracer {
 
     const std::vector<Chain>& trace(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object);
     const SmoothContourStats& stats() const { return stats_; }
+    // The last trace's stretches of crease edges on the outline, by edge and then t0.
+    const std::vector<CreaseOutline>& crease_outline() const { return crease_outline_; }
 
   private:
     // The corner groups and their normals for the mesh's positions.
@@ -76,6 +95,10 @@ class SmoothContourTracer {
     void search(uint32_t node);        // the faces under a node the cones cannot rule out
     bool back(uint32_t group);         // g > 0, computed once a trace (incremental)
     void chain(const Mesh& mesh, const EdgeTable& table);
+    // g of a corner group this trace (incremental: computed where not yet).
+    double value(uint32_t group);
+    // The stretches of crease edges on the outline, and their chains.
+    void trace_crease_outline(const Mesh& mesh, const EdgeTable& table);
 
     SmoothContourOptions options_;
     std::vector<glm::uvec3> face_edges_;
@@ -84,6 +107,14 @@ class SmoothContourTracer {
     std::vector<glm::uvec3> face_groups_;
     std::vector<uint32_t> group_vertex_;
     std::vector<uint8_t> joined_;       // per face: bit k when edge k leads to a face of its groups
+    // The crease edges between two faces (not joined), each with the side it is of each face.
+    struct CreaseEdge {
+        uint32_t edge;
+        uint32_t face[2];
+        uint8_t side[2];
+    };
+    std::vector<CreaseEdge> creases_;   // by edge
+    std::vector<CreaseOutline> crease_outline_;
     std::vector<glm::dvec3> normals_;   // per group (incremental: of the last trace)
     std::unique_ptr<internal::ConeTree> tree_;  // incremental, from the first trace on
     // Per group: g, read once per trace where it is tested (incremental: valid where stamp holds
@@ -107,6 +138,12 @@ class SmoothContourTracer {
     std::vector<Chain> chains_;
     SmoothContourStats stats_;
 };
+
+// Crease chains (core/lines/chaining.h) with the stretches on the outline taken out: a chain
+// with none is kept as it is; one with some is cut into chains of points (`points` set, no
+// `vertices`) that end where the outline's stretches begin and end.
+std::vector<Chain> cut_crease_outline(std::vector<Chain> creases, const std::vector<CreaseOutline>& outline,
+                                      const Mesh& mesh, const EdgeTable& table);
 
 // The face each segment of a smooth contour line crosses, from the edge each segment starts on
 // (what a stroke keeps through the stroke stage): of that edge's faces, the one nearest the

@@ -144,6 +144,8 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibil
     }
     found.extract_ms = tracker_build_ms + step("extract");
     found.chains = chain_feature_edges(features, table);
+    // Crease edges on the outline are drawn with the smooth contours, not as creases.
+    if (contours) found.chains = cut_crease_outline(std::move(found.chains), smooth_->crease_outline(), mesh, table);
     if (contours) found.chains.insert(found.chains.end(), contours->begin(), contours->end());
     if (crossings) found.chains.insert(found.chains.end(), crossings->begin(), crossings->end());
     found.chain_ms = step("chain");

@@ -4,6 +4,9 @@
 // not hidden by the faces around it, raycast agrees with exact) and their strokes.
 #include "core/lines/smooth_contours.h"
 
+#include "core/lines/chaining.h"
+#include "core/lines/features.h"
+
 #include "core/mesh/mesh_frames.h"
 #include "core/pipeline/frame_pipeline.h"
 #include "core/scene/camera.h"
@@ -15,11 +18,13 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 namespace inkline {
@@ -278,9 +283,30 @@ core::Mesh closed_cylinder(uint32_t sides) {
     return m;
 }
 
+// Whether every point of a chain lies on one of the closed cylinder's rims.
+bool on_a_rim(const core::Chain& chain) {
+    return std::all_of(chain.points.begin(), chain.points.end(), [](const glm::dvec3& p) { return std::abs(p.y) == 1.0; });
+}
+
+// The ends of open chains, each once.
+std::vector<glm::dvec3> chain_ends(const std::vector<core::Chain>& chains) {
+    std::vector<glm::dvec3> ends;
+    for (const core::Chain& chain : chains) {
+        if (chain.closed) continue;
+        ends.push_back(chain.points.front());
+        ends.push_back(chain.points.back());
+    }
+    std::sort(ends.begin(), ends.end(), [](const glm::dvec3& a, const glm::dvec3& b) {
+        return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+    });
+    return ends;
+}
+
 TEST(SmoothContours, CreasesSplitTheNormalsAndEndTheContour) {
     // Seen from the side, a cylinder's contour runs up its side from rim to rim. With its rims as
-    // creases, each of the two lines is one open chain on the side, ending on the rims; with
+    // creases, each of the two lines is one open chain on the side, ending on the rims, and the
+    // outline goes on along the front half of each rim, where the side faces the eye and the cap
+    // away: a chain of the rim's edges from one contour's end to the other's, bit for bit. With
     // normals averaged across the rims, the contour runs on into the caps.
     const core::Mesh cylinder = closed_cylinder(48);
     const core::EdgeTable table = core::build_edge_table(cylinder);
@@ -289,14 +315,35 @@ TEST(SmoothContours, CreasesSplitTheNormalsAndEndTheContour) {
     auto radius = [](const glm::dvec3& p) { return std::hypot(p.x, p.z); };
     core::SmoothContourTracer split(cylinder, table, {.crease_angle_deg = 60.0});
     const std::vector<core::Chain>& chains = split.trace(cylinder, table, eye);
-    ASSERT_EQ(chains.size(), 2u);
+    ASSERT_EQ(chains.size(), 4u);
+    std::vector<core::Chain> contours, rims;
     for (const core::Chain& chain : chains) {
+        EXPECT_EQ(chain.kind, core::LineKind::kSilhouette);
         EXPECT_FALSE(chain.closed);
+        EXPECT_EQ(chain.faces.size(), chain.edges.size());
+        EXPECT_EQ(chain.points.size(), chain.edges.size() + 1);
+        (on_a_rim(chain) ? rims : contours).push_back(chain);
+    }
+    ASSERT_EQ(contours.size(), 2u);
+    for (const core::Chain& chain : contours) {
         EXPECT_NEAR(std::abs(chain.points.front().y), 1.0, 1e-6);
         EXPECT_NEAR(std::abs(chain.points.back().y), 1.0, 1e-6);
         EXPECT_NE(chain.points.front().y, chain.points.back().y) << "from one rim to the other";
         for (const glm::dvec3& p : chain.points) EXPECT_GE(radius(p), inner - 1e-6) << "on the side";
     }
+    // With radial normals, g on the side would be 1 - 5 z at a rim point (x, +-1, z): the side
+    // faces the eye for z > 0.2. The triangulated side's normals lean a little, so the contour
+    // meets the rims near z = 0.2, and the rims' vertices beyond are on the outline.
+    ASSERT_EQ(rims.size(), 2u);
+    for (const core::Chain& chain : rims) {
+        EXPECT_EQ(chain.points.front().y, chain.points.back().y) << "along one rim";
+        EXPECT_NEAR(chain.points.front().z, 0.2, 0.03);
+        EXPECT_NEAR(chain.points.back().z, 0.2, 0.03);
+        for (size_t i = 1; i + 1 < chain.points.size(); ++i) EXPECT_GT(chain.points[i].z, 0.2) << "round the front";
+        EXPECT_EQ(chain.points.size(), 23u) << "the 21 rim vertices with z > 0.2 and the two ends";
+    }
+    EXPECT_EQ(chain_ends(rims), chain_ends(contours)) << "the rims' stretches end where the contours end";
+    EXPECT_EQ(split.crease_outline().size(), rims[0].edges.size() + rims[1].edges.size());
     core::SmoothContourTracer averaged(cylinder, table, {.crease_angle_deg = 180.0});
     bool on_a_cap = false;
     for (const core::Chain& chain : averaged.trace(cylinder, table, eye)) {
@@ -305,6 +352,52 @@ TEST(SmoothContours, CreasesSplitTheNormalsAndEndTheContour) {
     EXPECT_TRUE(on_a_cap) << "the check can fail";
     core::SmoothContourTracer brute(cylinder, table, {.mode = core::TrackerMode::kBrute, .crease_angle_deg = 60.0});
     EXPECT_EQ(difference(brute.trace(cylinder, table, eye), chains), "");
+}
+
+TEST(SmoothContours, TheOutlineIsCutOutOfTheCreases) {
+    // The cylinder's rims as crease lines lose the stretches on the outline: each rim is left as
+    // one open chain round its back, of points, from one contour's end to the other's; with the
+    // stretches it covers each rim's edges once.
+    const core::Mesh cylinder = closed_cylinder(48);
+    const core::EdgeTable table = core::build_edge_table(cylinder);
+    const glm::dvec3 eye(0.0, 0.0, 5.0);
+    core::SmoothContourTracer tracer(cylinder, table, {.crease_angle_deg = 60.0});
+    const std::vector<core::Chain> contours = tracer.trace(cylinder, table, eye);
+    const core::LineOptions creases_only{.silhouette = false, .boundary = false, .crease_angle_deg = 60.0};
+    const std::vector<core::Chain> rims =
+        core::chain_feature_edges(core::extract_feature_edges(cylinder, table, eye, creases_only), table);
+    ASSERT_EQ(rims.size(), 2u);
+    for (const core::Chain& rim : rims) EXPECT_TRUE(rim.closed);
+    const std::vector<core::Chain> cut = core::cut_crease_outline(rims, tracer.crease_outline(), cylinder, table);
+    ASSERT_EQ(cut.size(), 2u);
+    std::vector<uint32_t> edges;
+    for (const core::Chain& chain : cut) {
+        EXPECT_EQ(chain.kind, core::LineKind::kCrease);
+        EXPECT_FALSE(chain.closed);
+        EXPECT_TRUE(chain.vertices.empty());
+        EXPECT_EQ(chain.points.size(), chain.edges.size() + 1);
+        EXPECT_TRUE(on_a_rim(chain));
+        EXPECT_EQ(chain.points.front().y, chain.points.back().y);
+        for (size_t i = 1; i + 1 < chain.points.size(); ++i) EXPECT_LT(chain.points[i].z, 0.2) << "round the back";
+        edges.insert(edges.end(), chain.edges.begin(), chain.edges.end());
+    }
+    std::vector<core::Chain> outline;
+    for (const core::Chain& chain : contours) {
+        if (on_a_rim(chain)) outline.push_back(chain);
+    }
+    EXPECT_EQ(chain_ends(cut), chain_ends(outline));
+    for (const core::CreaseOutline& stretch : tracer.crease_outline()) edges.push_back(stretch.edge);
+    std::sort(edges.begin(), edges.end());
+    EXPECT_EQ(edges.size(), 2u * 48u + 4u) << "every rim edge once, and the four cut in two twice";
+    std::vector<uint32_t> all;
+    for (const core::Chain& rim : rims) all.insert(all.end(), rim.edges.begin(), rim.edges.end());
+    std::sort(all.begin(), all.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    EXPECT_EQ(edges, all);
+    // A crease chain without a stretch on the outline stays as it was.
+    const std::vector<core::Chain> far = core::cut_crease_outline(rims, {}, cylinder, table);
+    ASSERT_EQ(far.size(), 2u);
+    EXPECT_EQ(far[0].vertices, rims[0].vertices);
 }
 
 // Frame 1 of `mesh` seen from `view` with smooth contours, under a visibility mode.
@@ -323,6 +416,46 @@ double visible_length(const core::FrameLines& lines) {
         if (line.visible) sum += line.length_px();
     }
     return sum;
+}
+
+TEST(SmoothContours, TheOutlineRunsOnAlongCreasesWithOrWithoutCreaseLines) {
+    // A closed cylinder seen from above: its outline is the back of the top rim, the two side
+    // contours and the front of the bottom rim, a crease edge between a face turned to the eye
+    // and one turned away being on the outline, as mesh mode draws it. With crease lines or
+    // without, smooth contours draw it whole, as one closed silhouette stroke as long as mesh
+    // mode's, and only the rims' other halves as creases.
+    const core::Mesh cylinder = closed_cylinder(96);
+    const test::View view{.eye = {0.0, 2.5, 4.0}};
+    for (const bool creases : {true, false}) {
+        double length[2] = {0.0, 0.0};
+        for (const core::ContourMode contour : {core::ContourMode::kMesh, core::ContourMode::kSmooth}) {
+            core::Scene scene = test::scene_for(view, cylinder);
+            scene.lines.contour = contour;
+            scene.lines.crease = creases;
+            core::MeshFrames meshes(cylinder);
+            core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+            const core::FrameResult r = pipeline.run(scene.first_frame);
+            size_t outline = 0, crease = 0;
+            for (const core::Stroke& stroke : r.strokes.strokes) {
+                if (!stroke.drawn) continue;
+                const core::LineKind kind = stroke.geometry.kind;
+                if (kind == core::LineKind::kSilhouette) {
+                    ++outline;
+                    length[contour == core::ContourMode::kSmooth] += stroke.geometry.length_px();
+                    if (contour == core::ContourMode::kSmooth) {
+                        EXPECT_TRUE(stroke.geometry.closed);
+                    }
+                }
+                crease += kind == core::LineKind::kCrease;
+            }
+            if (contour == core::ContourMode::kSmooth) {
+                EXPECT_EQ(outline, 1u) << "creases " << creases;
+                EXPECT_EQ(crease, creases ? 1u : 0u) << "the top rim's front";
+            }
+        }
+        EXPECT_GT(length[0], 1000.0);
+        EXPECT_NEAR(length[1], length[0], 0.01 * length[0]) << "creases " << creases;
+    }
 }
 
 TEST(SmoothContours, APointIsNotHiddenByTheFacesAroundIt) {
