@@ -43,33 +43,39 @@ glm::ivec3 cell_of(const glm::vec3& p, double cell) { return glm::ivec3(glm::flo
 
 // Grid cells in blocks of 8 x 8 x 8: a hash of the blocks (a surface meets few, so it stays in
 // cache) and each block's cells side by side, so that a cell's neighbours are near in memory
-// too. A cell's value is Value{} until set.
+// too, and the 2 x 2 x 2 cells around a point are mostly one block's. A cell's value is Value{}
+// until set.
 template <typename Value>
 class BlockedCells {
   public:
+    static constexpr size_t kCells = 512;
+
     explicit BlockedCells(size_t expected_cells) : blocks_(expected_cells / 32 + 16) {}
 
     Value& operator[](const glm::ivec3& c) {
-        uint32_t& block = blocks_[pack_cell(c >> kShift)];
+        uint32_t& block = blocks_[block_key(c)];
         if (block == 0) {
             values_.resize(values_.size() + kCells);
             block = uint32_t(values_.size() / kCells);
         }
         return values_[(block - 1) * kCells + local(c)];
     }
-    const Value* find(const glm::ivec3& c) const {
-        const uint32_t* block = blocks_.find(pack_cell(c >> kShift));
-        return block ? &values_[(*block - 1) * kCells + local(c)] : nullptr;
+    // A block's kCells values, in local() order; nullptr for a block with none set. Valid until
+    // a cell of a new block is set.
+    const Value* block(uint64_t key) const {
+        const uint32_t* block = blocks_.find(key);
+        return block ? &values_[(*block - 1) * kCells] : nullptr;
     }
+    // How many values the blocks hold: it grows when a block is added.
+    size_t size() const { return values_.size(); }
+
+    static uint64_t block_key(const glm::ivec3& c) { return pack_cell(c >> kShift); }
+    static size_t local(const glm::ivec3& c) { return size_t(((c.z & 7) << 6) | ((c.y & 7) << 3) | (c.x & 7)); }
     // Orders cells block by block, then within a block (the order of the values).
-    static std::pair<uint64_t, uint32_t> order(const glm::ivec3& c) {
-        return {pack_cell(c >> kShift), uint32_t(local(c))};
-    }
+    static std::pair<uint64_t, uint32_t> order(const glm::ivec3& c) { return {block_key(c), uint32_t(local(c))}; }
 
   private:
     static constexpr int kShift = 3;
-    static constexpr size_t kCells = 512;
-    static size_t local(const glm::ivec3& c) { return size_t(((c.z & 7) << 6) | ((c.y & 7) << 3) | (c.x & 7)); }
 
     internal::KeyTable<uint32_t> blocks_;  // block -> 1 + its index
     std::vector<Value> values_;
@@ -77,63 +83,62 @@ class BlockedCells {
 
 constexpr uint32_t kNoPoint = 0xffffffffu;
 
-// The points of one level as it is thrown, by grid cell: each cell's first point, the others
-// linked through `next`.
-class CellGrid {
+// The points a level's spacing test looks at, by grid cell: the earlier levels' points sorted by
+// cell (a cell's points side by side, and a block's cells too), and the level's own as they are
+// kept (each cell's last, the others linked through `next`), in one record a cell so that a cell
+// costs one lookup.
+class LevelCells {
   public:
-    CellGrid(double cell, size_t expected) : cell_(cell), heads_(expected) {}
-    double cell() const { return cell_; }
-    void insert(const glm::ivec3& c, uint32_t point, std::vector<uint32_t>& r_next) {
-        uint32_t& head = heads_[c].first;
-        r_next[point] = head;
-        head = point;
-    }
-    uint32_t head(const glm::ivec3& c) const {
-        const Head* head = heads_.find(c);
-        return head ? head->first : kNoPoint;
-    }
-
-  private:
-    struct Head {
-        uint32_t first = kNoPoint;
+    struct Cell {
+        uint32_t begin = 0, count = 0;  // the earlier points in it: earlier_[begin, begin + count)
+        uint32_t head = kNoPoint;       // this level's last point in it
     };
-    double cell_;
-    BlockedCells<Head> heads_;
-};
 
-// The points of earlier levels sorted by grid cell, for the spacing test: a cell's points lie
-// side by side, and a block's cells too.
-class SortedCells {
-  public:
-    SortedCells(std::span<const glm::vec3> points, double cell) : runs_(points.size()) {
-        std::vector<std::pair<std::pair<uint64_t, uint32_t>, uint32_t>> keyed(points.size());
-        std::vector<glm::ivec3> cells(points.size());
-        for (uint32_t i = 0; i < points.size(); ++i) {
-            cells[i] = cell_of(points[i], cell);
-            keyed[i] = {BlockedCells<Run>::order(cells[i]), i};
+    LevelCells(std::span<const glm::vec3> earlier, double cell, size_t expected)
+        : cell_(cell), cells_(earlier.size() + expected) {
+        std::vector<std::pair<std::pair<uint64_t, uint32_t>, uint32_t>> keyed(earlier.size());
+        std::vector<glm::ivec3> cells(earlier.size());
+        for (uint32_t i = 0; i < earlier.size(); ++i) {
+            cells[i] = cell_of(earlier[i], cell);
+            keyed[i] = {BlockedCells<Cell>::order(cells[i]), i};
         }
         std::sort(keyed.begin(), keyed.end());
-        points_.reserve(points.size());
+        earlier_.reserve(earlier.size());
         for (size_t i = 0; i < keyed.size();) {
             size_t j = i;
-            while (j < keyed.size() && keyed[j].first == keyed[i].first) points_.push_back(points[keyed[j++].second]);
-            runs_[cells[keyed[i].second]] = {uint32_t(i), uint32_t(j - i)};
+            while (j < keyed.size() && keyed[j].first == keyed[i].first) earlier_.push_back(earlier[keyed[j++].second]);
+            Cell& c = cells_[cells[keyed[i].second]];
+            c.begin = uint32_t(i), c.count = uint32_t(j - i);
             i = j;
         }
     }
-    // The points in a cell.
-    std::span<const glm::vec3> at(const glm::ivec3& c) const {
-        const Run* run = runs_.find(c);
-        if (!run) return {};
-        return {points_.data() + run->begin, run->count};
+    double cell() const { return cell_; }
+
+    // The cell record of c, or nullptr where no point lies in c's block. `cache` keeps the last
+    // block looked up (the 2 x 2 x 2 cells around a point are mostly one block's).
+    struct Cache {
+        uint64_t key = ~uint64_t(0);
+        size_t size = 0;
+        const Cell* block = nullptr;
+    };
+    const Cell* find(const glm::ivec3& c, Cache& r_cache) const {
+        const uint64_t key = BlockedCells<Cell>::block_key(c);
+        if (key != r_cache.key || r_cache.size != cells_.size()) r_cache = {key, cells_.size(), cells_.block(key)};
+        return r_cache.block ? r_cache.block + BlockedCells<Cell>::local(c) : nullptr;
+    }
+    std::span<const glm::vec3> earlier(const Cell& c) const { return {earlier_.data() + c.begin, c.count}; }
+
+    // Files this level's point `point` in cell c.
+    void insert(const glm::ivec3& c, uint32_t point, std::vector<uint32_t>& r_next) {
+        uint32_t& head = cells_[c].head;
+        r_next[point] = head;
+        head = point;
     }
 
   private:
-    struct Run {
-        uint32_t begin = 0, count = 0;
-    };
-    std::vector<glm::vec3> points_;
-    BlockedCells<Run> runs_;
+    double cell_;
+    std::vector<glm::vec3> earlier_;
+    BlockedCells<Cell> cells_;
 };
 
 // Mean weight of the dots asked for when each fades in over `fade` of its threshold: the
@@ -195,10 +200,10 @@ void SurfaceSamples::add_level() {
     const double per_area = kCandidatesPerSquare / (r * r);
     const size_t expected = size_t(std::ceil(per_area * area_ * 0.5)) + 16;
     // Cells twice the spacing: a ball of the spacing's radius meets at most two cells per axis.
-    // Earlier levels' points sorted by cell; this level's in a grid of their own as they come.
-    const SortedCells earlier(points_, 2.0 * r);
+    // Earlier levels' points sorted by cell; this level's filed in the same cells as they come.
     const size_t level_start = samples_.size();
-    CellGrid grid(2.0 * r, expected);
+    LevelCells grid(points_, 2.0 * r, expected);
+    LevelCells::Cache cache;
     std::vector<uint32_t> next(expected, kNoPoint);
 
     // Candidates face by face (nearby faces are near in memory too), as many per face as its
@@ -225,14 +230,16 @@ void SurfaceSamples::add_level() {
             bool near = false;
             for (int n = 0; n < 8 && !near; ++n) {
                 const glm::ivec3 at = cell + glm::ivec3(n & 1 ? step.x : 0, n & 2 ? step.y : 0, n & 4 ? step.z : 0);
-                for (const glm::vec3& q : earlier.at(at)) {
+                const LevelCells::Cell* near_cell = grid.find(at, cache);
+                if (!near_cell) continue;
+                for (const glm::vec3& q : grid.earlier(*near_cell)) {
                     const glm::vec3 d = q - p;
                     if (glm::dot(d, d) < r2) {
                         near = true;
                         break;
                     }
                 }
-                for (uint32_t q = grid.head(at); q != kNoPoint && !near; q = next[q]) {
+                for (uint32_t q = near_cell->head; q != kNoPoint && !near; q = next[q]) {
                     const glm::vec3 d = points_[level_start + q] - p;
                     if (glm::dot(d, d) < r2) near = true;
                 }
@@ -267,7 +274,10 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
                                    std::span<const uint8_t> shaded_faces) {
     stats_ = {};
     if (options_.mode != ToneMode::kStipple || mesh.triangles.empty()) return {};
-    if (!samples_ || topology_changed || samples_->faces() != mesh.triangles.size()) samples_.emplace(mesh, options_.seed);
+    if (!samples_ || topology_changed || samples_->faces() != mesh.triangles.size()) {
+        samples_.emplace(mesh, options_.seed);
+        face_edge_.clear();
+    }
 
     const glm::dmat4& m = projection.clip_from_object();
     const glm::dvec3 mx(m[0][0], m[1][0], m[2][0]), my(m[0][1], m[1][1], m[2][1]), mw(m[0][3], m[1][3], m[2][3]);
@@ -288,33 +298,46 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         const glm::dvec3 jy = (my - ndc_y * mw) * (half_h / clip.w);
         return std::abs(glm::dot(glm::cross(jx, jy), n));
     };
-    // cos(theta)^kForeshortening at p on a face of unit normal n.
-    const auto foreshortening = [&](const glm::dvec3& p, const glm::dvec3& n) {
-        const double cos_theta = std::abs(glm::dot(n, glm::normalize(eye - p)));
+    // cos(theta)^kForeshortening, and that at p on a face of unit normal n.
+    const auto shrink = [](double cos_theta) {
         if constexpr (kForeshortening == 0.5) return std::max(std::sqrt(cos_theta), 1e-6);
         return std::max(std::pow(cos_theta, kForeshortening), 1e-6);
     };
+    const auto foreshortening = [&](const glm::dvec3& p, const glm::dvec3& n) {
+        return shrink(std::abs(glm::dot(n, glm::normalize(eye - p))));
+    };
+    // (A directional light's direction, normalized once: the same bits as every time.)
+    const glm::dvec3 light_direction = glm::normalize(-light.direction);
     const auto tone_at = [&](const glm::dvec3& p, glm::dvec3 normal, const glm::dvec3& face_n) {
         if (glm::dot(normal, normal) == 0.0) normal = face_n;
         normal = glm::normalize(normal_matrix * normal);
-        const glm::dvec3 p_world(world_from_object * glm::dvec4(p, 1.0));
-        const glm::dvec3 to_light = light.is_point ? light.position - p_world : -light.direction;
-        return tone_of(glm::dot(normal, glm::normalize(to_light)), options_);
+        const glm::dvec3 to_light =
+            light.is_point ? glm::normalize(light.position - glm::dvec3(world_from_object * glm::dvec4(p, 1.0)))
+                           : light_direction;
+        return tone_of(glm::dot(normal, to_light), options_);
     };
 
-    // Per vertex, once each: its clip coordinates and its tone (the darkest without a normal).
+    // Per vertex, once each: its tone (the darkest without a normal) and what its faces' limits
+    // below read of it, as area_scale and foreshortening would compute them at the vertex.
     const double darkest = std::max(options_.min, options_.max);
     // (Kept from frame to frame: a new buffer's pages cost more than filling it.)
-    std::vector<glm::dvec4>& vertex_clip = vertex_clip_;
-    std::vector<double>& vertex_tone = vertex_tone_;
-    vertex_clip.resize(mesh.positions.size());
-    vertex_tone.resize(mesh.positions.size());
+    std::vector<VertexView>& vertex_view = vertex_view_;
+    vertex_view.resize(mesh.positions.size());
     internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
         for (size_t v = begin; v < end; ++v) {
             const glm::dvec3 p(mesh.positions[v]);
-            vertex_clip[v] = m * glm::dvec4(p, 1.0);
+            VertexView& view = vertex_view[v];
+            const glm::dvec4 clip = m * glm::dvec4(p, 1.0);
             const glm::dvec3& normal = normals[v];
-            vertex_tone[v] = glm::dot(normal, normal) == 0.0 ? darkest : tone_at(p, normal, normal);
+            view.tone = glm::dot(normal, normal) == 0.0 ? darkest : tone_at(p, normal, normal);
+            view.in_front = projection.in_front(clip);
+            if (!view.in_front) continue;
+            view.px = projection.pixel_from_clip(clip);
+            const double ndc_x = clip.x / clip.w, ndc_y = clip.y / clip.w;
+            const glm::dvec3 jx = (mx - ndc_x * mw) * (half_w / clip.w);
+            const glm::dvec3 jy = (my - ndc_y * mw) * (half_h / clip.w);
+            view.jacobian = glm::cross(jx, jy);
+            view.to_eye = glm::normalize(eye - p);
         }
     });
     // Per face, the most samples any point of it can ask for: the darkest tone of its corners
@@ -329,24 +352,22 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         for (size_t f = begin; f < end; ++f) {
             if (!table.face_valid[f] || (!shaded_faces.empty() && !shaded_faces[f])) continue;
             const glm::uvec3 t = mesh.triangles[f];
-            const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
-                                     glm::dvec3(mesh.positions[t.z])};
-            const glm::dvec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+            const glm::dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
+            const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
             const double n_len = glm::length(n);
-            if (!(n_len > 0.0) || glm::dot(n, eye - p[0]) <= 0.0) continue;
+            if (!(n_len > 0.0) || glm::dot(n, eye - p0) <= 0.0) continue;
             const glm::dvec3 unit_n = n / n_len;
             glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
             double scale = 0.0, tone = 0.0;
             bool in_front = true;
             for (int c = 0; c < 3 && in_front; ++c) {
-                const glm::dvec4& clip = vertex_clip[t[c]];
-                in_front = projection.in_front(clip);
+                const VertexView& view = vertex_view[t[c]];
+                in_front = view.in_front;
                 if (!in_front) break;
-                const glm::dvec2 q = projection.pixel_from_clip(clip);
-                lo = glm::min(lo, q);
-                hi = glm::max(hi, q);
-                scale = std::max(scale, area_scale(clip, unit_n) / foreshortening(p[c], unit_n));
-                tone = std::max(tone, vertex_tone[t[c]]);
+                lo = glm::min(lo, view.px);
+                hi = glm::max(hi, view.px);
+                scale = std::max(scale, std::abs(glm::dot(view.jacobian, unit_n)) / shrink(std::abs(glm::dot(unit_n, view.to_eye))));
+                tone = std::max(tone, view.tone);
             }
             if (!in_front || hi.x < 0.0 || hi.y < 0.0 || lo.x > image.width || lo.y > image.height) continue;
             face_limit[f] = dot_density(tone, radius) * kScaleMargin * scale * area / kappa;
@@ -382,8 +403,8 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
                 if (!projection.in_front(clip)) continue;
                 const glm::dvec2 px = projection.pixel_from_clip(clip);
                 if (!projection.inside_image(px)) continue;
-                const double shrink = foreshortening(p, unit_n);
-                const double scale = area_scale(clip, unit_n) / shrink;
+                const double shrunk = foreshortening(p, unit_n);
+                const double scale = area_scale(clip, unit_n) / shrunk;
                 const double tone = tone_at(p, b0 * normals[t.x] + b1 * normals[t.y] + b2 * normals[t.z], n);
                 const double threshold = dot_density(tone, radius) * scale * area / kappa;
                 const double rank = double(i);
@@ -399,7 +420,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
                                 .barycentric = {b0, b1, b2},
                                 .point_px = px,
                                 .point_world = glm::dvec3(world_from_object * glm::dvec4(p, 1.0)),
-                                .radius_px = radius * std::sqrt(weight * shrink),
+                                .radius_px = radius * std::sqrt(weight * shrunk),
                                 .tone = tone});
             }
         }
@@ -431,13 +452,16 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     // hiding it.
     std::vector<uint32_t> own(dots.size());
     std::vector<OcclusionQuery> queries(dots.size());
+    face_edge_.resize(mesh.triangles.size(), kNoIndex);
     for (size_t k = 0; k < dots.size(); ++k) {
         own[k] = dots[k].face;
         const glm::uvec3 t = mesh.triangles[dots[k].face];
         const glm::dvec3& b = dots[k].barycentric;
+        uint32_t& edge = face_edge_[dots[k].face];
+        if (edge == kNoIndex) edge = edge_of(table, t);
         queries[k] = {.p_object = b.x * glm::dvec3(mesh.positions[t.x]) + b.y * glm::dvec3(mesh.positions[t.y]) +
                                   b.z * glm::dvec3(mesh.positions[t.z]),
-                      .edge = edge_of(table, t),
+                      .edge = edge,
                       .own_faces = std::span<const uint32_t>(&own[k], 1)};
     }
     std::vector<uint8_t> occluded(dots.size(), 0);

@@ -119,11 +119,20 @@ class Stippler {
     ToneOptions options_;
     std::optional<SurfaceSamples> samples_;
     StippleStats stats_;
-    // A frame's scratch, kept for the next: per vertex its clip coordinates and tone, per face
+    // A frame's scratch, kept for the next: per vertex what its faces' limits read of it, per face
     // the most samples it can ask for.
-    std::vector<glm::dvec4> vertex_clip_;
-    std::vector<double> vertex_tone_;
+    struct VertexView {
+        glm::dvec2 px{0.0};
+        glm::dvec3 jacobian{0.0};  // the pixel Jacobian's rows, crossed: square pixels per unit area along a normal
+        glm::dvec3 to_eye{0.0};    // unit
+        double tone = 0.0;
+        bool in_front = false;
+    };
+    std::vector<VertexView> vertex_view_;
     std::vector<double> face_limit_;
+    // Per face, the edge its dots' occlusion queries seed their search at, once asked for
+    // (kNoIndex before); kept while the topology holds.
+    std::vector<uint32_t> face_edge_;
 };
 
 }  // namespace inkline::core
