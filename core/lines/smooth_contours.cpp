@@ -260,8 +260,6 @@ void SmoothContourTracer::trace_crease_outline(const Mesh& mesh, const EdgeTable
         auto stretch_to = [&](double t, const glm::dvec3& p, bool to_vertex) {
             if (back[0] == back[1] || !(t > t_from) || p == p_from) return;
             crease_outline_.push_back({.edge = crease.edge,
-                                       .t0 = t_from,
-                                       .t1 = t,
                                        .p0 = p_from,
                                        .p1 = p,
                                        .vertex0 = from_vertex,

@@ -62,12 +62,11 @@ struct SmoothContourStats {
     size_t nodes_visited = 0;  // cone tests (incremental)
 };
 
-// A stretch of a crease edge on the outline: between t0 and t1 (t0 < t1, along the edge from
-// its lower-numbered vertex) the smooth pieces on its two sides face opposite ways.
+// A stretch of a crease edge on the outline: from p0 to p1 (in the direction from the edge's
+// lower-numbered vertex) the smooth pieces on its two sides face opposite ways.
 struct CreaseOutline {
     uint32_t edge = 0;
-    double t0 = 0.0, t1 = 1.0;
-    glm::dvec3 p0{0.0}, p1{0.0};  // object space: the edge's vertex at t 0 or 1, else where a side's g is zero
+    glm::dvec3 p0{0.0}, p1{0.0};  // object space: an end of the edge, or where a side's g is zero
     bool vertex0 = false, vertex1 = false;  // whether p0 (p1) is the edge's vertex
     uint32_t face = 0;  // the face of the side that faces the eye there
 };
@@ -85,7 +84,8 @@ class SmoothContourTracer {
 
     const std::vector<Chain>& trace(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object);
     const SmoothContourStats& stats() const { return stats_; }
-    // The last trace's stretches of crease edges on the outline, by edge and then t0.
+    // The last trace's stretches of crease edges on the outline, by edge, and along each edge
+    // from its lower-numbered vertex.
     const std::vector<CreaseOutline>& crease_outline() const { return crease_outline_; }
 
   private:
