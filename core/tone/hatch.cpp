@@ -106,6 +106,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
     if (families_.empty() || topology_changed || faces_ != mesh.triangles.size()) {
         families_.clear();
         faces_ = mesh.triangles.size();
+        face_edges_ = face_edges(mesh, table);
         const size_t count = options_.mode == ToneMode::kCrosshatch ? 2 : 1;
         for (size_t f = 0; f < count; ++f) {
             const glm::dvec3 d = glm::normalize(f == 0 ? options_.direction : options_.cross_direction);
@@ -131,13 +132,16 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
     const ImageSize image = projection.image();
     const double width = options_.line_width_px;
 
-    // Tone at a point of the mesh with the (object-space) normal given.
+    // Tone at a point of the mesh with the (object-space) normal given. (A directional light's
+    // direction normalized once: the same bits as every time.)
+    const glm::dvec3 light_direction = glm::normalize(-light.direction);
     const auto tone_at = [&](const glm::dvec3& p, glm::dvec3 normal) {
         if (glm::dot(normal, normal) == 0.0) return 0.0;
         normal = glm::normalize(normal_matrix * normal);
-        const glm::dvec3 p_world(world_from_object * glm::dvec4(p, 1.0));
-        const glm::dvec3 to_light = light.is_point ? light.position - p_world : -light.direction;
-        return tone_of(glm::dot(normal, glm::normalize(to_light)), options_);
+        const glm::dvec3 to_light =
+            light.is_point ? glm::normalize(light.position - glm::dvec3(world_from_object * glm::dvec4(p, 1.0)))
+                           : light_direction;
+        return tone_of(glm::dot(normal, to_light), options_);
     };
 
     // Per vertex, once a frame: the tone (0 without a normal) and the clip coordinates.
@@ -211,8 +215,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                 for (int k = 0; k < 3 && found < 2; ++k) {
                     const int l = (k + 1) % 3;
                     if ((h[k] >= c) == (h[l] >= c)) continue;
-                    const uint32_t edge = find_edge(table, t[k], t[l]);
-                    if (edge == kNoIndex) break;
+                    const uint32_t edge = face_edges_[face][k];  // the side (t[k], t[l])
                     // From the side's own first vertex: both of its faces compute the same point.
                     const glm::uvec2 ends = table.edge_vertices[edge];
                     const double h0 = family.h[ends.x], h1 = family.h[ends.y];

@@ -76,6 +76,7 @@ class Hatcher {
 
     ToneOptions options_;
     std::vector<Family> families_;
+    std::vector<glm::uvec3> face_edges_;  // per face, the edge of each side (face_edges), with families_
     size_t faces_ = 0;
     HatchStats stats_;
     // A frame's scratch, kept for the next: per vertex its tone and clip coordinates.
