@@ -4,6 +4,7 @@
 #include "core/internal/parallel.h"
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
+#include "core/tone/internal/tone_light.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -128,20 +129,13 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
 
     const glm::dvec3 eye = projection.eye_object();
     const glm::dmat4& world_from_object = projection.world_from_object();
-    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(world_from_object)));
     const ImageSize image = projection.image();
     const double width = options_.line_width_px;
 
-    // Tone at a point of the mesh with the (object-space) normal given. (A directional light's
-    // direction normalized once: the same bits as every time.)
-    const glm::dvec3 light_direction = glm::normalize(-light.direction);
-    const auto tone_at = [&](const glm::dvec3& p, glm::dvec3 normal) {
-        if (glm::dot(normal, normal) == 0.0) return 0.0;
-        normal = glm::normalize(normal_matrix * normal);
-        const glm::dvec3 to_light =
-            light.is_point ? glm::normalize(light.position - glm::dvec3(world_from_object * glm::dvec4(p, 1.0)))
-                           : light_direction;
-        return tone_of(glm::dot(normal, to_light), options_);
+    // Tone at a point of the mesh with the (object-space) normal given; 0 without one.
+    const internal::ToneLight lit(world_from_object, light, options_);
+    const auto tone_at = [&](const glm::dvec3& p, const glm::dvec3& normal) {
+        return glm::dot(normal, normal) == 0.0 ? 0.0 : lit.at(p, normal);
     };
 
     // Per vertex, once a frame: the tone (0 without a normal) and the clip coordinates.

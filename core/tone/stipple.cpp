@@ -5,6 +5,7 @@
 #include "core/random.h"
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
+#include "core/tone/internal/tone_light.h"
 #include "core/internal/key_table.h"
 
 #include <glm/geometric.hpp>
@@ -284,7 +285,6 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     const ImageSize image = projection.image();
     const double half_w = 0.5 * image.width, half_h = 0.5 * image.height;
     const glm::dmat4& world_from_object = projection.world_from_object();
-    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(world_from_object)));
     const glm::dvec3 eye = projection.eye_object();
     const double radius = options_.dot_radius_px;
     const double kappa = fade_weight(options_.fade);
@@ -306,15 +306,9 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     const auto foreshortening = [&](const glm::dvec3& p, const glm::dvec3& n) {
         return shrink(std::abs(glm::dot(n, glm::normalize(eye - p))));
     };
-    // (A directional light's direction, normalized once: the same bits as every time.)
-    const glm::dvec3 light_direction = glm::normalize(-light.direction);
-    const auto tone_at = [&](const glm::dvec3& p, glm::dvec3 normal, const glm::dvec3& face_n) {
-        if (glm::dot(normal, normal) == 0.0) normal = face_n;
-        normal = glm::normalize(normal_matrix * normal);
-        const glm::dvec3 to_light =
-            light.is_point ? glm::normalize(light.position - glm::dvec3(world_from_object * glm::dvec4(p, 1.0)))
-                           : light_direction;
-        return tone_of(glm::dot(normal, to_light), options_);
+    const internal::ToneLight lit(world_from_object, light, options_);
+    const auto tone_at = [&](const glm::dvec3& p, const glm::dvec3& normal, const glm::dvec3& face_n) {
+        return lit.at(p, glm::dot(normal, normal) == 0.0 ? face_n : normal);
     };
 
     // Per vertex, once each: its tone (the darkest without a normal) and what its faces' limits
