@@ -18,11 +18,14 @@ namespace inkline::core {
 
 namespace {
 
+// Where along an edge, from its end with value ga, g is zero (ga and gb of different signs, one
+// may be zero): a fraction of the edge.
+double zero_along(double ga, double gb) { return std::clamp(ga / (ga - gb), 0.0, 1.0); }
+
 // The zero of g on the edge (a, b) with values ga and gb of different signs (one may be zero).
 // Called with a the edge's lower-numbered vertex, so that both faces of an edge agree bit for bit.
 glm::dvec3 contour_point_on_edge(const glm::dvec3& a, const glm::dvec3& b, double ga, double gb) {
-    const double t = ga / (ga - gb);
-    return a + (b - a) * std::clamp(t, 0.0, 1.0);
+    return a + (b - a) * zero_along(ga, gb);
 }
 
 // Orders crease outline stretches, and finds them, by edge.
@@ -249,7 +252,7 @@ void SmoothContourTracer::trace_crease_outline(const Mesh& mesh, const EdgeTable
         int count = 0;
         for (int s = 0; s < 2; ++s) {
             if ((g0[s] > 0.0) == (g1[s] > 0.0)) continue;
-            zeros[count++] = {std::clamp(g0[s] / (g0[s] - g1[s]), 0.0, 1.0), contour_point_on_edge(a, b, g0[s], g1[s]), s};
+            zeros[count++] = {zero_along(g0[s], g1[s]), contour_point_on_edge(a, b, g0[s], g1[s]), s};
         }
         if (count == 2 && zeros[1].t < zeros[0].t) std::swap(zeros[0], zeros[1]);
         // From a to b: a stretch wherever the two sides face opposite ways.
