@@ -290,13 +290,16 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     const double kappa = fade_weight(options_.fade);
     const double fade = options_.fade;
 
-    // Square pixels per unit of area, at p (clip: its clip coordinates), of the plane with
-    // normal n (unit): the pixel Jacobian's rows, crossed, along n.
-    const auto area_scale = [&](const glm::dvec4& clip, const glm::dvec3& n) {
+    // The pixel Jacobian's rows, crossed, at p (clip: its clip coordinates); along a unit normal
+    // n, the square pixels per unit of area of the plane with that normal there.
+    const auto jacobian = [&](const glm::dvec4& clip) {
         const double ndc_x = clip.x / clip.w, ndc_y = clip.y / clip.w;
         const glm::dvec3 jx = (mx - ndc_x * mw) * (half_w / clip.w);
         const glm::dvec3 jy = (my - ndc_y * mw) * (half_h / clip.w);
-        return std::abs(glm::dot(glm::cross(jx, jy), n));
+        return glm::cross(jx, jy);
+    };
+    const auto area_scale = [&](const glm::dvec4& clip, const glm::dvec3& n) {
+        return std::abs(glm::dot(jacobian(clip), n));
     };
     // cos(theta)^kForeshortening, and that at p on a face of unit normal n.
     const auto shrink = [](double cos_theta) {
@@ -327,10 +330,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             view.in_front = projection.in_front(clip);
             if (!view.in_front) continue;
             view.px = projection.pixel_from_clip(clip);
-            const double ndc_x = clip.x / clip.w, ndc_y = clip.y / clip.w;
-            const glm::dvec3 jx = (mx - ndc_x * mw) * (half_w / clip.w);
-            const glm::dvec3 jy = (my - ndc_y * mw) * (half_h / clip.w);
-            view.jacobian = glm::cross(jx, jy);
+            view.jacobian = jacobian(clip);
             view.to_eye = glm::normalize(eye - p);
         }
     });
