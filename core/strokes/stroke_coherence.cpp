@@ -34,20 +34,6 @@ using internal::TracedSample;
 // never reads samples it would pass over (crowds of another kind, or of strokes already matched).
 size_t class_of(LineKind kind, bool visible) { return 2 * size_t(kind) + (visible ? 1 : 0); }
 
-// The samples of the traces `use` accepts, a tree for each class_of.
-template <typename Use>
-std::vector<SampleTree> class_trees(const std::vector<StrokeTrace>& traces, Use use) {
-    std::vector<std::vector<TracedSample>> samples(2 * kLineKindCount);
-    for (size_t t = 0; t < traces.size(); ++t) {
-        if (!use(t)) continue;
-        std::vector<TracedSample>& to = samples[class_of(traces[t].kind, traces[t].visible)];
-        for (size_t s = 0; s < traces[t].samples_px.size(); ++s) to.push_back({traces[t].samples_px[s], t, s});
-    }
-    std::vector<SampleTree> trees;
-    for (std::vector<TracedSample>& of_class : samples) trees.emplace_back(std::move(of_class));
-    return trees;
-}
-
 // The way a trace runs at a sample: from the sample before to the one after (zero for a trace
 // of one sample).
 glm::dvec2 tangent(const StrokeTrace& trace, size_t s) {
@@ -55,16 +41,22 @@ glm::dvec2 tangent(const StrokeTrace& trace, size_t s) {
     return q[std::min(s + 1, q.size() - 1)] - q[s > 0 ? s - 1 : 0];
 }
 
-// The samples of the visible traces of a kind, with the angle of their tangent when asked.
-SampleTree visible_tree(const std::vector<StrokeTrace>& traces, LineKind kind, bool with_angles) {
-    std::vector<TracedSample> samples;
+// The samples of the traces `use` accepts, a tree for each class_of, with the angle of each
+// sample's tangent when asked.
+template <typename Use>
+std::vector<SampleTree> class_trees(const std::vector<StrokeTrace>& traces, Use use, bool with_angles) {
+    std::vector<std::vector<TracedSample>> samples(2 * kLineKindCount);
     for (size_t t = 0; t < traces.size(); ++t) {
-        if (!traces[t].visible || traces[t].kind != kind) continue;
+        if (!use(t)) continue;
+        std::vector<TracedSample>& to = samples[class_of(traces[t].kind, traces[t].visible)];
         for (size_t s = 0; s < traces[t].samples_px.size(); ++s) {
-            samples.push_back({traces[t].samples_px[s], t, s, with_angles ? internal::line_angle(tangent(traces[t], s)) : NAN});
+            to.push_back(
+                {traces[t].samples_px[s], t, s, with_angles ? internal::line_angle(tangent(traces[t], s)) : NAN});
         }
     }
-    return SampleTree(std::move(samples));
+    std::vector<SampleTree> trees;
+    for (std::vector<TracedSample>& of_class : samples) trees.emplace_back(std::move(of_class));
+    return trees;
 }
 
 // Strokes of one kind match; a hidden part that comes into view (or a visible one that goes
@@ -234,19 +226,23 @@ void propagate(const StrokeCandidate& cand, const StrokeTrace& trace, double rad
 
 }  // namespace
 
-StrokeCoherence::StrokeCoherence(std::vector<StrokeTrace> traces, uint32_t next_id)
-    : traces_(std::move(traces)), next_id_(next_id) {}
+StrokeCoherence::StrokeCoherence() : StrokeCoherence({}, 0) {}
+
+StrokeCoherence::StrokeCoherence(std::vector<StrokeTrace> traces, uint32_t next_id) {
+    remember(std::move(traces), next_id);
+}
 
 void StrokeCoherence::remember(std::vector<StrokeTrace> traces, uint32_t next_id) {
     traces_ = std::move(traces);
     next_id_ = next_id;
+    trees_ = std::make_shared<const std::vector<SampleTree>>(class_trees(traces_, [](size_t) { return true; }, true));
 }
 
 std::vector<StrokeCoherence::Nearest> StrokeCoherence::nearest_visible(const std::vector<glm::dvec2>& points_px,
                                                                        LineKind kind) const {
     std::vector<Nearest> out(points_px.size());
     if (traces_.empty()) return out;
-    const SampleTree tree = visible_tree(traces_, kind, false);
+    const SampleTree& tree = (*trees_)[class_of(kind, true)];
     for (size_t i = 0; i < points_px.size(); ++i) {
         const SampleTree::Hit hit = tree.nearest(points_px[i], kMatchRadiusPx);
         if (hit.trace == size_t(-1)) continue;
@@ -317,10 +313,8 @@ std::vector<std::vector<SideMemory>> StrokeCoherence::side_memory(const std::vec
                                                                   const std::vector<LineKind>& kinds) const {
     std::vector<std::vector<SideMemory>> out(sides.size());
     if (traces_.empty()) return out;
-    std::vector<std::optional<SampleTree>> trees(kLineKindCount);  // visible_tree of each kind, once asked
     for (size_t i = 0; i < sides.size(); ++i) {
-        std::optional<SampleTree>& tree = trees[size_t(kinds[i])];
-        if (!tree) tree = visible_tree(traces_, kinds[i], true);
+        const SampleTree& tree = (*trees_)[class_of(kinds[i], true)];
         // The nearest sample for each point, in order from the end inward.
         std::vector<SampleTree::Hit> hits;
         std::map<int64_t, size_t> votes;
@@ -337,7 +331,7 @@ std::vector<std::vector<SideMemory>> StrokeCoherence::side_memory(const std::vec
         std::optional<internal::AngleCone> cone;
         if (reach >= kSideDirectionPx) cone = {internal::line_angle(along), std::acos(kSideAlongCos)};
         for (const glm::dvec2& p : sides[i]) {
-            hits.push_back(tree->nearest(p, kMatchRadiusPx, along_side, cone));
+            hits.push_back(tree.nearest(p, kMatchRadiusPx, along_side, cone));
             if (hits.back().trace != size_t(-1)) ++votes[traces_[hits.back().trace].id];
         }
         for (const auto& [id, n] : votes) {
@@ -375,17 +369,23 @@ std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidat
     const bool mixed =
         std::any_of(candidates.begin(), candidates.end(), [](const StrokeCandidate& c) { return !c.geometry.visible; }) ||
         std::any_of(traces_.begin(), traces_.end(), [](const StrokeTrace& t) { return !t.visible; });
-    // The traces not yet taken, searched by class; built again once a round takes any.
-    std::vector<SampleTree> trees;
-    bool stale = true;
+    // The traces not yet taken, searched by class: all of them at first, built again once a
+    // round takes any.
+    const std::vector<SampleTree>* trees = trees_.get();
+    std::vector<SampleTree> untaken;
+    bool stale = false;
     for (const bool cross : {false, true}) {
         if (cross && !mixed) break;
         for (int round = 0; round < kMatchRounds; ++round) {
             const double radius = kMatchRadiusPx * double(1 << round);
-            if (stale) trees = class_trees(traces_, [&](size_t t) { return !trace_taken[t]; }), stale = false;
+            if (stale) {
+                untaken = class_trees(traces_, [&](size_t t) { return !trace_taken[t]; }, false);
+                trees = &untaken;
+                stale = false;
+            }
             // Largest overlaps first; ties by candidate, then trace, so the result is
             // deterministic.
-            std::vector<Pair> pairs = overlaps(candidates, traces_, trees, radius, cross, candidate_done, trace_taken);
+            std::vector<Pair> pairs = overlaps(candidates, traces_, *trees, radius, cross, candidate_done, trace_taken);
             if (!cross) std::erase_if(pairs, [](const Pair& p) { return p.cross; });
             std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
                 return std::tie(a.cross, b.score, a.candidate, a.trace) < std::tie(b.cross, a.score, b.candidate, b.trace);

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <glm/vec2.hpp>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -18,6 +19,9 @@
 #include "core/strokes/stroke_geometry.h"
 
 namespace inkline::core {
+namespace internal {
+class SampleTree;
+}
 
 // Strokes move less than this (px) between frames; samples farther apart never match.
 // A 3-degree turn of an object filling a 1024 px frame moves its outline by up to ~25 px, but
@@ -98,7 +102,7 @@ std::optional<double> continuation_fit(const std::vector<SideMemory>& a, const s
 
 class StrokeCoherence {
   public:
-    StrokeCoherence() = default;
+    StrokeCoherence();
     // The state after a frame, rebuilt from what that frame remembered and its next free id.
     StrokeCoherence(std::vector<StrokeTrace> traces, uint32_t next_id);
 
@@ -134,6 +138,9 @@ class StrokeCoherence {
   private:
     std::vector<StrokeTrace> traces_;
     uint32_t next_id_ = 0;
+    // traces_' samples in a tree per kind and visibility, with their angles: built once with
+    // the traces, read by every search of the frame.
+    std::shared_ptr<const std::vector<internal::SampleTree>> trees_;
 };
 
 }  // namespace inkline::core
