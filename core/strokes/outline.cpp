@@ -11,6 +11,8 @@
 #include <numbers>
 #include <optional>
 
+#include "core/strokes/stroke_path.h"
+
 namespace inkline::core {
 namespace {
 
@@ -23,6 +25,11 @@ constexpr double kSimplifyWidthFraction = 0.02;
 // edges_meet files at most this many cells, and tests at most this many edge pairs, per edge
 // before leaving the ring to is_simple.
 constexpr size_t kEdgePairsPerEdge = 16;
+// simplify_ring bounds the distances of runs of this many points together.
+constexpr size_t kSimplifyBlock = 8;
+// A run is passed over when it stays nearer the chord than a point found by more than this
+// (px): far more than rounding can move a distance.
+constexpr double kSimplifyBoundMarginPx = 1e-9;
 // Folds are looked for this far (px of centerline, beyond the widest width) ahead of a segment.
 constexpr double kFoldReachPx = 2.0;
 
@@ -328,6 +335,19 @@ Ring simplify_ring(const Ring& ring, double tolerance) {
         const double d = glm::length(ring[i] - ring[0]);
         if (d > far_d) far_d = d, far = i;
     }
+    // Runs of kSimplifyBlock points, each within `bend` of the segment between its first and
+    // last point: the distance to a chord is convex and grows no faster than the point moves, so
+    // no point of a run lies farther from it than the farther of those two plus the bend. The
+    // farthest point lies in a run that may reach at least as far as a point found already; the
+    // other runs are passed over.
+    const size_t blocks = n / kSimplifyBlock;
+    std::vector<double> bend(blocks, 0.0), block_reach(blocks);
+    for (size_t b = 0; b < blocks; ++b) {
+        const glm::dvec2 first = ring[b * kSimplifyBlock], last = ring[(b + 1) * kSimplifyBlock - 1];
+        for (size_t i = b * kSimplifyBlock + 1; i + 1 < (b + 1) * kSimplifyBlock; ++i) {
+            bend[b] = std::max(bend[b], distance_to_segment(ring[i], first, last));
+        }
+    }
     std::vector<uint8_t> keep(n, 0);
     keep[0] = keep[far] = 1;
     auto point = [&](size_t i) { return ring[i < n ? i : i - n]; };  // hi may be n: the first point again
@@ -339,17 +359,44 @@ Ring simplify_ring(const Ring& ring, double tolerance) {
         const glm::dvec2 a = point(lo), b = point(hi);
         const glm::dvec2 ab = b - a;
         const double len2 = glm::dot(ab, ab);
-        size_t worst = 0;
-        double worst_d = -1.0, worst_d2 = -1.0;
-        for (size_t i = lo + 1; i < hi; ++i) {
-            const glm::dvec2 p = point(i);
+        auto distance2 = [&](const glm::dvec2& p) {
             const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
             const glm::dvec2 off = p - (a + ab * t);
-            // sqrt is monotone: a squared distance no larger than the worst's cannot beat it.
-            const double d2 = glm::dot(off, off);
-            if (d2 <= worst_d2) continue;
-            const double d = std::sqrt(d2);
-            if (d > worst_d) worst_d = d, worst_d2 = d2, worst = i;
+            return glm::dot(off, off);
+        };
+        // The farthest point, the first of equals, as one pass in order finds it.
+        size_t worst = 0;
+        double worst_d = -1.0, worst_d2 = -1.0;
+        auto visit = [&](size_t first, size_t last) {
+            for (size_t i = first; i < last; ++i) {
+                // sqrt is monotone: a squared distance no larger than the worst's cannot beat it.
+                const double d2 = distance2(point(i));
+                if (d2 <= worst_d2) continue;
+                const double d = std::sqrt(d2);
+                if (d > worst_d) worst_d = d, worst_d2 = d2, worst = i;
+            }
+        };
+        // Whole runs strictly inside (lo, hi); a point of each gives a distance the farthest
+        // reaches at least.
+        const size_t first_block = (lo + 1 + kSimplifyBlock - 1) / kSimplifyBlock;
+        const size_t end_block = std::max(first_block, hi / kSimplifyBlock);
+        double reached = -1.0;
+        for (size_t k = first_block; k < end_block; ++k) {
+            const double ends =
+                std::sqrt(std::max(distance2(ring[k * kSimplifyBlock]), distance2(ring[(k + 1) * kSimplifyBlock - 1])));
+            block_reach[k] = ends + bend[k];
+            reached = std::max(reached, ends);
+        }
+        if (first_block == end_block) {
+            visit(lo + 1, hi);
+        } else {
+            visit(lo + 1, first_block * kSimplifyBlock);
+            for (size_t k = first_block; k < end_block; ++k) {
+                // Rounding moves a distance by far less than the margin.
+                if (block_reach[k] + kSimplifyBoundMarginPx < std::max(reached, worst_d)) continue;
+                visit(k * kSimplifyBlock, (k + 1) * kSimplifyBlock);
+            }
+            visit(end_block * kSimplifyBlock, hi);
         }
         if (worst_d > tolerance) {
             keep[worst % n] = 1;

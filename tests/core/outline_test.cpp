@@ -3,10 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -188,6 +191,70 @@ TEST(Outline, SimplifyKeepsShapeWithinTolerance) {
     const core::Ring simple = core::simplify_ring(ring, 0.05);
     EXPECT_LT(simple.size(), ring.size() / 2);
     EXPECT_NEAR(core::signed_area(simple), core::signed_area(ring), 0.01 * core::signed_area(ring));
+}
+
+// Douglas-Peucker as written plainly: every point of a chord's span measured, in order.
+core::Ring plain_simplify(const core::Ring& ring, double tolerance) {
+    const size_t n = ring.size();
+    if (n < 4) return ring;
+    size_t far = 0;
+    double far_d = -1.0;
+    for (size_t i = 1; i < n; ++i) {
+        const double d = glm::length(ring[i] - ring[0]);
+        if (d > far_d) far_d = d, far = i;
+    }
+    std::vector<uint8_t> keep(n, 0);
+    keep[0] = keep[far] = 1;
+    std::vector<std::pair<size_t, size_t>> stack = {{0, far}, {far, n}};
+    while (!stack.empty()) {
+        const auto [lo, hi] = stack.back();
+        stack.pop_back();
+        const dvec2 a = ring[lo], b = ring[hi % n], ab = b - a;
+        const double len2 = glm::dot(ab, ab);
+        size_t worst = 0;
+        double worst_d = -1.0;
+        for (size_t i = lo + 1; i < hi; ++i) {
+            const double t = len2 > 0.0 ? std::clamp(glm::dot(ring[i] - a, ab) / len2, 0.0, 1.0) : 0.0;
+            const dvec2 off = ring[i] - (a + ab * t);
+            const double d = std::sqrt(glm::dot(off, off));
+            if (d > worst_d) worst_d = d, worst = i;
+        }
+        if (worst_d > tolerance) {
+            keep[worst] = 1;
+            stack.emplace_back(lo, worst);
+            stack.emplace_back(worst, hi);
+        }
+    }
+    core::Ring out;
+    for (size_t i = 0; i < n; ++i) {
+        if (keep[i]) out.push_back(ring[i]);
+    }
+    return out;
+}
+
+// The search passes over runs of points by their boxes; it keeps exactly the points that
+// measuring every point keeps, ties (points at the same distance, repeated points, straight
+// runs) to the first, on rings of every size.
+TEST(Outline, SimplifyKeepsWhatMeasuringEveryPointKeeps) {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int round = 0; round < 300; ++round) {
+        SCOPED_TRACE(round);
+        const size_t n = 4 + size_t(round) * 7 % 900;
+        core::Ring ring;
+        for (size_t i = 0; i < n; ++i) {
+            const double a = 2.0 * std::numbers::pi * double(i) / double(n);
+            double r = 40.0 + 3.0 * std::sin(7.0 * a) + (round % 3 == 0 ? unit(random) : 0.0);
+            dvec2 p = r * dvec2(std::cos(a), std::sin(a));
+            if (round % 5 == 1) p = glm::round(p);                                                    // ties on a grid
+            if (round % 7 == 2 && i % 9 < 4) p = dvec2(40.0, 0.0) + dvec2(0.0, 0.5 * double(i % 9));  // repeats, lines
+            ring.push_back(p);
+        }
+        for (const double tolerance : {0.01, 0.05, 0.5, 3.0}) {
+            EXPECT_EQ(core::simplify_ring(ring, tolerance), plain_simplify(ring, tolerance))
+                << "tolerance " << tolerance;
+        }
+    }
 }
 
 // An open stroke that comes round to overlap its own start (a silhouette cut just past where it
