@@ -10,6 +10,14 @@
 namespace inkline::core {
 namespace {
 
+// A function compiled twice on x86-64, once for AVX2 and once for the baseline, the one to run
+// chosen where the program loads (GCC and Clang).
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define INKLINE_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define INKLINE_AVX2_CLONES
+#endif
+
 // Points closer than this (px) are the same point: visibility cuts land a hair from a vertex.
 constexpr double kSamePointPx = 1e-6;
 // Gaussian kernels are cut at this many sigmas (the tail weighs below 1.2%).
@@ -22,6 +30,19 @@ std::vector<double> gaussian_weights(double sigma, std::ptrdiff_t radius) {
     std::vector<double> weight(size_t(radius) + 1);
     for (std::ptrdiff_t k = 0; k <= radius; ++k) weight[size_t(k)] = std::exp(-0.5 * double(k * k) / (sigma * sigma));
     return weight;
+}
+
+// out[j] = c[j] w[0] + (c[j - 1] + c[j + 1]) w[1] + ... + (c[j - r] + c[j + r]) w[r] for j in [0, m),
+// each sum added in order of k, a pass per k over all j so that the additions of different j
+// overlap. c must reach r values before its first and after its last. The wider registers of
+// AVX2, where the processor has them, do the same additions in the same order per j.
+INKLINE_AVX2_CLONES void symmetric_sums(const double* c, size_t m, std::span<const double> w, double* out) {
+    for (size_t j = 0; j < m; ++j) out[j] = c[j] * w[0];
+    for (size_t k = 1; k < w.size(); ++k) {
+        const double wk = w[k];
+        const double *left = c - k, *right = c + k;
+        for (size_t j = 0; j < m; ++j) out[j] += (left[j] + right[j]) * wk;
+    }
 }
 
 // Cumulative arc length of a polyline.
@@ -221,24 +242,11 @@ StrokePath build_stroke_path(std::span<const glm::dvec2> points, bool closed, co
         }
         double total = weight[0];
         for (std::ptrdiff_t k = 1; k <= radius; ++k) total += 2.0 * weight[size_t(k)];
-        // Each sample's sum adds its terms in order of k, as one loop over k per sample would, but
-        // a pass per k over all samples lets the additions of different samples overlap.
         std::vector<double> sx(static_cast<size_t>(n)), sy(static_cast<size_t>(n));
         std::vector<double> px(padded.size()), py(padded.size());
         for (size_t j = 0; j < padded.size(); ++j) px[j] = padded[j].x, py[j] = padded[j].y;
-        for (std::ptrdiff_t i = 0; i < n; ++i) {
-            sx[size_t(i)] = px[size_t(i + radius)] * weight[0];
-            sy[size_t(i)] = py[size_t(i + radius)] * weight[0];
-        }
-        for (std::ptrdiff_t k = 1; k <= radius; ++k) {
-            const double w = weight[size_t(k)];
-            const double *xl = &px[size_t(radius - k)], *xr = &px[size_t(radius + k)];
-            const double *yl = &py[size_t(radius - k)], *yr = &py[size_t(radius + k)];
-            for (std::ptrdiff_t i = 0; i < n; ++i) {
-                sx[size_t(i)] += (xl[i] + xr[i]) * w;
-                sy[size_t(i)] += (yl[i] + yr[i]) * w;
-            }
-        }
+        symmetric_sums(px.data() + radius, size_t(n), weight, sx.data());
+        symmetric_sums(py.data() + radius, size_t(n), weight, sy.data());
         for (std::ptrdiff_t i = 0; i < n; ++i) smooth[size_t(i)] = glm::dvec2(sx[size_t(i)], sy[size_t(i)]) / total;
     }
 
@@ -308,13 +316,7 @@ std::vector<double> smooth_samples(std::span<const double> values, double step_p
     for (std::ptrdiff_t k = 1; k <= radius; ++k) full += 2.0 * weight[size_t(k)];
     // Samples whose kernel lies inside: a pass per k over them all, each sum in order of k.
     const std::ptrdiff_t inner_begin = radius, inner_end = std::max(radius, n - radius);
-    for (std::ptrdiff_t i = inner_begin; i < inner_end; ++i) out[size_t(i)] = values[size_t(i)] * weight[0];
-    for (std::ptrdiff_t k = 1; k <= radius; ++k) {
-        const double w = weight[size_t(k)];
-        for (std::ptrdiff_t i = inner_begin; i < inner_end; ++i) {
-            out[size_t(i)] += (values[size_t(i - k)] + values[size_t(i + k)]) * w;
-        }
-    }
+    symmetric_sums(values.data() + inner_begin, size_t(inner_end - inner_begin), weight, out.data() + inner_begin);
     for (std::ptrdiff_t i = inner_begin; i < inner_end; ++i) out[size_t(i)] /= full;
     // Near an end: a loop wraps around; an open path's kernel is cut there.
     auto near_end = [&](std::ptrdiff_t i) {
