@@ -349,6 +349,7 @@ std::vector<Chain> link_segments(const Mesh& mesh, const EdgeTable& table, std::
             c.points.push_back(seg.ends[1 - at].point);
             c.edges.push_back(named_edge(mesh, table, face_edges, seg));
             c.crossing_faces.push_back(seg.other);
+            c.first_faces.push_back(seg.first);
             const uint32_t next = link[2 * s + (1 - at)];
             if (next == kNone) break;
             if (next / 2 == start) {

@@ -34,6 +34,32 @@ struct EdgeOrder {
     bool operator()(uint32_t edge, const CreaseOutline& a) const { return edge < a.edge; }
 };
 
+// Per face: whether its connected part of the mesh (faces joined through edges of two faces) has
+// no edge of one face, nor of three and more, nor an invalid face.
+std::vector<uint8_t> closed_parts(const Mesh& mesh, const EdgeTable& table, std::span<const glm::uvec3> face_edges) {
+    const auto n = uint32_t(mesh.triangles.size());
+    internal::UnionFind<uint32_t> parts(n);
+    std::vector<uint8_t> open(n, 0);
+    for (uint32_t f = 0; f < n; ++f) {
+        if (!table.face_valid[f]) {
+            open[f] = 1;
+            continue;
+        }
+        for (int k = 0; k < 3; ++k) {
+            const std::span<const uint32_t> faces = table.faces_of(face_edges[f][k]);
+            if (faces.size() == 2) {
+                parts.unite(faces[0], faces[1]);
+            } else {
+                open[f] = 1;
+            }
+        }
+    }
+    std::vector<uint8_t> open_part(n, 0), closed(n);
+    for (uint32_t f = 0; f < n; ++f) open_part[parts.find(f)] |= open[f];
+    for (uint32_t f = 0; f < n; ++f) closed[f] = !open_part[parts.find(f)];
+    return closed;
+}
+
 }  // namespace
 
 std::vector<uint32_t> faces_crossed(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> points_object,
@@ -118,7 +144,10 @@ std::vector<Chain> cut_crease_outline(std::vector<Chain> creases, const std::vec
 }
 
 SmoothContourTracer::SmoothContourTracer(const Mesh& mesh, const EdgeTable& table, const SmoothContourOptions& options)
-    : options_(options), face_edges_(face_edges(mesh, table)), face_used_(mesh.triangles.size(), 0) {}
+    : options_(options),
+      face_edges_(face_edges(mesh, table)),
+      closed_(closed_parts(mesh, table, face_edges_)),
+      face_used_(mesh.triangles.size(), 0) {}
 
 SmoothContourTracer::~SmoothContourTracer() = default;
 SmoothContourTracer::SmoothContourTracer(SmoothContourTracer&&) noexcept = default;
@@ -328,6 +357,7 @@ void SmoothContourTracer::trace_crease_outline(const Mesh& mesh, const EdgeTable
 }
 
 void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object) {
+    eye_ = eye_object;
     smooth_pieces(mesh, table);
     values_.resize(normals_.size());
     for (size_t group = 0; group < normals_.size(); ++group) {
@@ -340,6 +370,24 @@ void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& tab
         const bool b = values_[t.x].back();
         if (values_[t.y].back() != b || values_[t.z].back() != b) contour_faces_.push_back(f);
     }
+}
+
+double SmoothContourTracer::facing(const Mesh& mesh, uint32_t face, const glm::dvec3& p) const {
+    if (face >= face_groups_.size() || !closed_[face]) return NAN;  // before a trace, or not closed
+    const glm::uvec3 t = mesh.triangles[face], groups = face_groups_[face];
+    // Barycentric coordinates of p (on the face's plane) from the normal equations.
+    const glm::dvec3 a(mesh.positions[t.x]), v0 = glm::dvec3(mesh.positions[t.y]) - a,
+        v1 = glm::dvec3(mesh.positions[t.z]) - a, v2 = p - a;
+    const double d00 = glm::dot(v0, v0), d01 = glm::dot(v0, v1), d11 = glm::dot(v1, v1);
+    const double d20 = glm::dot(v2, v0), d21 = glm::dot(v2, v1);
+    const double det = d00 * d11 - d01 * d01;
+    if (!(det > 0.0)) return NAN;
+    const double u = (d11 * d20 - d01 * d21) / det, v = (d00 * d21 - d01 * d20) / det;
+    // The same expression as back() and test_every_face give each corner.
+    auto g = [&](uint32_t group) {
+        return glm::dot(normals_[group], glm::dvec3(mesh.positions[group_vertex_[group]]) - eye_);
+    };
+    return (1.0 - u - v) * g(groups.x) + u * g(groups.y) + v * g(groups.z);
 }
 
 bool SmoothContourTracer::back(uint32_t group) {

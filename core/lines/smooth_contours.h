@@ -87,6 +87,12 @@ class SmoothContourTracer {
     // The last trace's stretches of crease edges on the outline, by edge, and along each edge
     // from its lower-numbered vertex.
     const std::vector<CreaseOutline>& crease_outline() const { return crease_outline_; }
+    // How the smooth surface faces the last trace's eye at p (object space) on face `face` of
+    // the last trace's mesh: g interpolated over the face from its corners' values, which the
+    // contour crosses where it is zero (> 0: turned away). NaN where the face is degenerate, or
+    // where its connected part of the mesh is not closed (has an edge of one face, or of three
+    // and more), as a sheet whose back hides nothing behind it.
+    double facing(const Mesh& mesh, uint32_t face, const glm::dvec3& p) const;
 
   private:
     // The corner groups and their normals for the mesh's positions.
@@ -107,6 +113,7 @@ class SmoothContourTracer {
     std::vector<glm::uvec3> face_groups_;
     std::vector<uint32_t> group_vertex_;
     std::vector<uint8_t> joined_;       // per face: bit k when edge k leads to a face of its groups
+    std::vector<uint8_t> closed_;       // per face: its connected part of the mesh is closed
     // The crease edges between two faces (not joined), each with the side it is of each face.
     struct CreaseEdge {
         uint32_t edge;

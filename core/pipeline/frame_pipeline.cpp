@@ -147,7 +147,23 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibil
     // Crease edges on the outline are drawn with the smooth contours, not as creases.
     if (contours) found.chains = cut_crease_outline(std::move(found.chains), smooth_->crease_outline(), mesh, table);
     if (contours) found.chains.insert(found.chains.end(), contours->begin(), contours->end());
-    if (crossings) found.chains.insert(found.chains.end(), crossings->begin(), crossings->end());
+    if (crossings) {
+        const size_t first = found.chains.size();
+        found.chains.insert(found.chains.end(), crossings->begin(), crossings->end());
+        // With smooth contours, the back of a closed surface hides the intersection lines on it
+        // where its contour says it turns away, so that they end where that contour crosses them.
+        if (contours) {
+            for (size_t c = first; c < found.chains.size(); ++c) {
+                Chain& chain = found.chains[c];
+                for (size_t i = 0; i < chain.edges.size(); ++i) {
+                    const glm::dvec3 &p0 = chain.points[i], &p1 = chain.points[i + 1];
+                    const uint32_t a = chain.first_faces[i], b = chain.crossing_faces[i];
+                    chain.facing.push_back({{smooth_->facing(mesh, a, p0), smooth_->facing(mesh, a, p1)},
+                                            {smooth_->facing(mesh, b, p0), smooth_->facing(mesh, b, p1)}});
+                }
+            }
+        }
+    }
     found.chain_ms = step("chain");
 
     // What the stats need of the tracers, read now: the next frame's lines may be traced while

@@ -18,6 +18,9 @@ enum class State : uint8_t { kVisible, kOccluded, kOutside };
 // Bisection stops after this many halvings even if the pixel bracket is still wide, which only
 // happens when a bracket end lies behind the camera.
 constexpr int kMaxBisections = 48;
+// An intersection point drawn with smooth contours, where a closed surface it lies on faces the
+// eye, is hidden only by what lies farther than this many of that surface's edges in front of it.
+constexpr double kSurfaceBiasEdges = 2.0;
 
 // The faces that cannot hide a smooth contour's segment (the face it crosses and those around its
 // corners, ascending), listed when a query first asks: on a fine mesh most segments get none.
@@ -76,6 +79,39 @@ class ChainGeometry {
                 own_.at(chain_, index_, s)};
     }
     uint32_t face_at(double g) const { return chain_.faces[segment_of(g)]; }
+    // Whether the point at g lies on the back of a closed surface as the smooth contour takes it
+    // (an intersection chain with `facing`): that surface hides it. Each surface's g is linear
+    // along a segment, which lies on one of its faces.
+    bool behind_surface(double g) const {
+        if (chain_.facing.empty()) return false;
+        const size_t s = segment_of(g);
+        const double t = g - double(s);
+        const SegmentFacing& f = chain_.facing[s];
+        for (const std::array<double, 2>& side : {f.first, f.other}) {
+            if (side[0] + (side[1] - side[0]) * t > 0.0) return true;  // false for NaN: not closed
+        }
+        return false;
+    }
+    // How far in front of the point at g its occluders must lie (object units): on an
+    // intersection chain with `facing`, kSurfaceBiasEdges times the longest edge of each face it
+    // lies on of a closed surface, where the polygons may bulge over the smooth surface near its
+    // contour (the faces around the point lie within that, as the faces around a contour point
+    // are its own); 0 elsewhere.
+    double surface_bias(double g) const {
+        if (chain_.facing.empty()) return 0.0;
+        const size_t s = segment_of(g);
+        double bias = 0.0;
+        auto add = [&](const std::array<double, 2>& facing, uint32_t face) {
+            if (std::isnan(facing[0])) return;  // not closed
+            const glm::uvec3 t = mesh_.triangles[face];
+            const glm::dvec3 a(mesh_.positions[t.x]), b(mesh_.positions[t.y]), c(mesh_.positions[t.z]);
+            const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+            bias = std::max(bias, kSurfaceBiasEdges * longest);
+        };
+        add(chain_.facing[s].first, chain_.first_faces[s]);
+        add(chain_.facing[s].other, chain_.crossing_faces[s]);
+        return bias;
+    }
     bool smooth() const { return !chain_.faces.empty(); }
     uint32_t crossing_face_at(double g) const { return chain_.crossing_faces[segment_of(g)]; }
     bool crossing() const { return !chain_.crossing_faces.empty(); }
@@ -114,8 +150,10 @@ class Splitter {
                 const glm::dvec3 p = geom.point(g);
                 if (outside(p)) {
                     states[c][i] = State::kOutside;
+                } else if (geom.behind_surface(g)) {
+                    states[c][i] = State::kOccluded;
                 } else {
-                    queries.push_back(geom.query_at(g, p));
+                    queries.push_back(query(geom, g, p));
                     query_owner.emplace_back(c, i);
                 }
             }
@@ -138,6 +176,16 @@ class Splitter {
     bool outside(const glm::dvec3& p_object) const {
         const glm::dvec4 clip = projection_.clip(p_object);
         return !projection_.in_front(clip) || !projection_.inside_image(projection_.pixel_from_clip(clip));
+    }
+
+    // The query for the point p at g, tested from surface_bias nearer the eye.
+    OcclusionQuery query(const ChainGeometry& geom, double g, const glm::dvec3& p) const {
+        OcclusionQuery q = geom.query_at(g, p);
+        const double bias = geom.surface_bias(g);
+        const glm::dvec3 to_eye = projection_.eye_object() - p;
+        const double distance = glm::length(to_eye);
+        if (bias > 0.0 && distance > bias) q.p_object = p + to_eye * (bias / distance);
+        return q;
     }
 
     // Where the state changes between neighbouring samples, located to options_.bisection_px:
@@ -181,8 +229,10 @@ class Splitter {
                 const glm::dvec3 p = geom.point(mid);
                 if (outside(p)) {
                     halve(b, mid, State::kOutside);
+                } else if (geom.behind_surface(mid)) {
+                    halve(b, mid, State::kOccluded);
                 } else {
-                    queries.push_back(geom.query_at(mid, p));
+                    queries.push_back(query(geom, mid, p));
                     asked.push_back(k);
                 }
             }

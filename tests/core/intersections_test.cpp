@@ -227,6 +227,50 @@ TEST(Intersections, SphereAndPlaneDrawWithinAQuarterPixelOfTheCircle) {
     }
 }
 
+// Where a ball's outline goes into the ground, the intersection line with the ground goes behind
+// the ball: the two meet in one point. Smooth contours lie off the facets' own outline, so the
+// intersection line is hidden by the smooth surface's back as its contour takes it, and by
+// nothing within two of its edges in front of it: on a coarse ball (48 x 24) both lines end in
+// the same place, and the strokes end there as junctions, not tapered. (Before, the
+// intersection line ended where the facets hid it, 1-2 px short, on a real shot too.)
+TEST(Intersections, WithSmoothContoursTheLinesMeetWhereTheOutlineGoesIntoTheGround) {
+    const double h = 0.3;
+    const test::View view{.eye = {0.0, -2.2, 3.4}, .fov_y_deg = 40.0, .size = 1024};
+    std::vector<core::VisibilityMode> modes = {core::VisibilityMode::kExact};
+    if (core::raycast_available()) modes.push_back(core::VisibilityMode::kRaycast);
+    for (const core::VisibilityMode mode : modes) {
+        SCOPED_TRACE(int(mode));
+        const core::FrameResult frame = draw_parts(
+            {{"Ball", test::uv_sphere(48, 24, 1.0)}, {"Ground", moved(test::grid(8, 2.0), {0.0, 0.0, h})}}, view,
+            [&](core::Scene& s) { s.lines.contour = core::ContourMode::kSmooth; }, mode);
+        const auto crossings = of_kind(frame.lines.polylines, core::LineKind::kIntersection);
+        const auto outline = of_kind(frame.lines.polylines, core::LineKind::kSilhouette);
+        ASSERT_FALSE(crossings.empty());
+        // Each end of a visible intersection line is an end of a visible outline.
+        size_t ends = 0;
+        for (const core::Polyline& l : crossings) {
+            if (!l.visible || l.closed) continue;
+            for (const glm::dvec2& end : {l.points_px.front(), l.points_px.back()}) {
+                double nearest = HUGE_VAL;
+                for (const core::Polyline& o : outline) {
+                    if (!o.visible) continue;
+                    nearest = std::min(
+                        {nearest, glm::length(o.points_px.front() - end), glm::length(o.points_px.back() - end)});
+                }
+                EXPECT_LE(nearest, 0.25);
+                ++ends;
+            }
+        }
+        EXPECT_EQ(ends, 2u);
+        // And the strokes end there as junctions, not tapered.
+        for (const core::Stroke& s : frame.strokes.strokes) {
+            if (s.geometry.kind != core::LineKind::kIntersection || !s.geometry.visible) continue;
+            EXPECT_EQ(s.geometry.ends[0], core::StrokeEnd::kJunction);
+            EXPECT_EQ(s.geometry.ends[1], core::StrokeEnd::kJunction);
+        }
+    }
+}
+
 TEST(Intersections, CrossingTubesDrawWithinAQuarterPixelOfTheirCurve) {
     const double r1 = 0.5, r2 = 0.8;
     const test::View view{.eye = {1.4, 2.2, 3.0}, .fov_y_deg = 40.0, .size = 1024};

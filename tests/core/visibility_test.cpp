@@ -48,7 +48,7 @@ core::Projection front_view() {
 TEST(Visibility, HairpinHiddenRunIsMeasuredAlongTheChain) {
     core::Mesh mesh;
     mesh.positions = {{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.0003f, 0.0f}};
-    const core::Chain hairpin{.kind = core::LineKind::kSilhouette, .closed = false, .vertices = {0, 1, 2}, .edges = {0, 1}, .points = {}, .crossing_faces = {}, .faces = {}};
+    const core::Chain hairpin{.kind = core::LineKind::kSilhouette, .closed = false, .vertices = {0, 1, 2}, .edges = {0, 1}, .points = {}, .crossing_faces = {}, .faces = {}, .first_faces = {}, .facing = {}};
     core::VisibilityOptions options;
     options.keep_hidden = true;
     const auto lines = core::split_by_visibility({hairpin}, mesh, front_view(), HideBeyondX(0.9), options);
@@ -66,7 +66,7 @@ TEST(Visibility, ShortRunsBelowTheBisectionPrecisionMerge) {
     // A straight chain hidden only within 0.05 px of its end keeps one visible run.
     core::Mesh mesh;
     mesh.positions = {{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}};
-    const core::Chain line{.kind = core::LineKind::kCrease, .closed = false, .vertices = {0, 1}, .edges = {0}, .points = {}, .crossing_faces = {}, .faces = {}};
+    const core::Chain line{.kind = core::LineKind::kCrease, .closed = false, .vertices = {0, 1}, .edges = {0}, .points = {}, .crossing_faces = {}, .faces = {}, .first_faces = {}, .facing = {}};
     const double px_per_unit = 512.0 / (4.0 * std::tan(glm::radians(17.5)));
     const auto lines = core::split_by_visibility({line}, mesh, front_view(), HideBeyondX(1.0 - 0.05 / px_per_unit),
                                                  {.keep_hidden = true});
