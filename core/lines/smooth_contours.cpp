@@ -360,9 +360,7 @@ void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& tab
     eye_ = eye_object;
     smooth_pieces(mesh, table);
     values_.resize(normals_.size());
-    for (size_t group = 0; group < normals_.size(); ++group) {
-        values_[group].g = glm::dot(normals_[group], glm::dvec3(mesh.positions[group_vertex_[group]]) - eye_object);
-    }
+    for (size_t group = 0; group < normals_.size(); ++group) values_[group].g = corner_value(mesh, uint32_t(group));
     for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
         if (!table.face_valid[f]) continue;
         ++stats_.faces_tested;
@@ -383,19 +381,29 @@ double SmoothContourTracer::facing(const Mesh& mesh, uint32_t face, const glm::d
     const double det = d00 * d11 - d01 * d01;
     if (!(det > 0.0)) return NAN;
     const double u = (d11 * d20 - d01 * d21) / det, v = (d00 * d21 - d01 * d20) / det;
-    // The same expression as back() and test_every_face give each corner.
-    auto g = [&](uint32_t group) {
-        return glm::dot(normals_[group], glm::dvec3(mesh.positions[group_vertex_[group]]) - eye_);
-    };
-    return (1.0 - u - v) * g(groups.x) + u * g(groups.y) + v * g(groups.z);
+    return (1.0 - u - v) * corner_value(mesh, groups.x) + u * corner_value(mesh, groups.y) +
+           v * corner_value(mesh, groups.z);
+}
+
+void SmoothContourTracer::set_facing(const Mesh& mesh, Chain& r_chain) const {
+    r_chain.facing.clear();
+    for (size_t i = 0; i < r_chain.edges.size(); ++i) {
+        const glm::dvec3 &p0 = r_chain.points[i], &p1 = r_chain.points[i + 1];
+        const uint32_t a = r_chain.first_faces[i], b = r_chain.crossing_faces[i];
+        r_chain.facing.push_back(
+            {{facing(mesh, a, p0), facing(mesh, a, p1)}, {facing(mesh, b, p0), facing(mesh, b, p1)}});
+    }
+}
+
+double SmoothContourTracer::corner_value(const Mesh& mesh, uint32_t group) const {
+    return glm::dot(normals_[group], glm::dvec3(mesh.positions[group_vertex_[group]]) - eye_);
 }
 
 bool SmoothContourTracer::back(uint32_t group) {
     VertexValue& value = values_[group];
     if (value.stamp != frame_) {
         value.stamp = frame_;
-        // The same expression as test_every_face, on the same normals: the same bits.
-        value.g = glm::dot(normals_[group], glm::dvec3(mesh_->positions[group_vertex_[group]]) - eye_);
+        value.g = corner_value(*mesh_, group);
     }
     return value.back();
 }

@@ -93,6 +93,8 @@ class SmoothContourTracer {
     // where its connected part of the mesh is not closed (has an edge of one face, or of three
     // and more), as a sheet whose back hides nothing behind it.
     double facing(const Mesh& mesh, uint32_t face, const glm::dvec3& p) const;
+    // Fills an intersection chain's `facing` (core/lines/chaining.h) from the last trace.
+    void set_facing(const Mesh& mesh, Chain& r_chain) const;
 
   private:
     // The corner groups and their normals for the mesh's positions.
@@ -100,6 +102,9 @@ class SmoothContourTracer {
     void test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object);
     void search(uint32_t node);        // the faces under a node the cones cannot rule out
     bool back(uint32_t group);         // g > 0, computed once a trace (incremental)
+    // g of a corner group at the last trace's eye: the one expression every test of a corner
+    // uses, so that the contour and `facing` agree bit for bit.
+    double corner_value(const Mesh& mesh, uint32_t group) const;
     void chain(const Mesh& mesh, const EdgeTable& table);
     // g of a corner group this trace (incremental: computed where not yet).
     double value(uint32_t group);

@@ -153,15 +153,7 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibil
         // With smooth contours, the back of a closed surface hides the intersection lines on it
         // where its contour says it turns away, so that they end where that contour crosses them.
         if (contours) {
-            for (size_t c = first; c < found.chains.size(); ++c) {
-                Chain& chain = found.chains[c];
-                for (size_t i = 0; i < chain.edges.size(); ++i) {
-                    const glm::dvec3 &p0 = chain.points[i], &p1 = chain.points[i + 1];
-                    const uint32_t a = chain.first_faces[i], b = chain.crossing_faces[i];
-                    chain.facing.push_back({{smooth_->facing(mesh, a, p0), smooth_->facing(mesh, a, p1)},
-                                            {smooth_->facing(mesh, b, p0), smooth_->facing(mesh, b, p1)}});
-                }
-            }
+            for (size_t c = first; c < found.chains.size(); ++c) smooth_->set_facing(mesh, found.chains[c]);
         }
     }
     found.chain_ms = step("chain");
