@@ -188,6 +188,47 @@ TEST_F(Gltf, ObjectsThatCrossDrawIntersectionLinesInTheirOwnLayer) {
     EXPECT_GT(c["stats"]["visible_length_px"]["intersection"].get<double>(), 10.0);
 }
 
+// A coarse ball sunk into the ground, drawn with smooth contours: in every visibility mode the
+// intersection line ends where the ball's outline goes into the ground, so both strokes end there
+// as junctions (docs/contours.md, "Intersection lines"), and the modes agree on its length.
+TEST_F(Gltf, SmoothOutlinesMeetTheGroundInEveryVisibilityMode) {
+    std::string obj = "o Ball\n";
+    const core::Mesh ball = test::uv_sphere(48, 24, 1.0);
+    for (const glm::vec3& p : ball.positions) {
+        obj += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    }
+    for (const glm::uvec3& t : ball.triangles) {
+        obj += "f " + std::to_string(t.x + 1) + " " + std::to_string(t.y + 1) + " " + std::to_string(t.z + 1) + "\n";
+    }
+    obj += "o Ground\nv -3 -3 0.3\nv 3 -3 0.3\nv 3 3 0.3\nv -3 3 0.3\n";
+    const auto v = [&](int k) { return std::to_string(ball.positions.size() + size_t(k)); };
+    obj += "f " + v(1) + " " + v(2) + " " + v(3) + "\nf " + v(1) + " " + v(3) + " " + v(4) + "\n";
+    test::write_text(dir / "contact.obj", obj);
+    test::write_text(dir / "contact.json", R"({"mesh": "contact.obj", "frames": [1, 1], "image": {"width": 1024, "height": 1024},
+        "camera": {"eye": [0, -2.2, 3.4], "target": [0, 0, 0], "up": [0, 0, 1], "fov_y_deg": 40}})");
+    std::vector<double> lengths;
+    for (const std::string mode : {"exact", "raycast", "gl"}) {
+        SCOPED_TRACE(mode);
+        const fs::path out = dir / mode;
+        const auto r = test::run_inkline("render " + (dir / "contact.json").string() + " --contour smooth --visibility " +
+                                         mode + " --json " + (out / "%04d.json").string() + " -q");
+        ASSERT_EQ(r.code, 0) << r.output;
+        const nlohmann::json doc = nlohmann::json::parse(test::read_text(out / "0001.json"));
+        size_t ends = 0;
+        for (const auto& s : doc["strokes"]) {
+            if (s["kind"] != "intersection") continue;
+            for (const auto& end : s["ends"]) {
+                EXPECT_EQ(end, "C");
+                ++ends;
+            }
+        }
+        EXPECT_EQ(ends, 2u);
+        lengths.push_back(doc["stats"]["visible_length_px"]["intersection"].get<double>());
+    }
+    EXPECT_GT(lengths[0], 500.0);
+    for (const double length : lengths) EXPECT_NEAR(length, lengths[0], 0.005 * lengths[0]);
+}
+
 // --layers object: a layer per object, its kind layers inside, every path in its object's layer.
 TEST_F(Gltf, LayersByObjectNestKindLayersInObjectLayers) {
     test::GltfBuilder b = moving_cube();
