@@ -3,6 +3,7 @@
 
 #include "core/internal/point_grid.h"
 #include "core/internal/union_find.h"
+#include "core/strokes/stroke_path.h"
 
 #include <glm/geometric.hpp>
 
@@ -75,9 +76,40 @@ std::vector<std::vector<uint32_t>> touching_strokes(std::span<const Stroke> stro
     return touches;
 }
 
+namespace {
+
+// Whether an end of a lies within max_px of b's polyline, or an end of b of a's.
+bool ends_near(const std::vector<glm::dvec2>& a, const std::vector<glm::dvec2>& b, double max_px) {
+    auto end_near = [max_px](const glm::dvec2& end, const std::vector<glm::dvec2>& line) {
+        if (line.size() == 1) return glm::distance(end, line[0]) <= max_px;
+        for (size_t k = 0; k + 1 < line.size(); ++k) {
+            if (distance_to_segment(end, line[k], line[k + 1]) <= max_px) return true;
+        }
+        return false;
+    };
+    return !a.empty() && !b.empty() &&
+           (end_near(a.front(), b) || end_near(a.back(), b) || end_near(b.front(), a) || end_near(b.back(), a));
+}
+
+}  // namespace
+
 void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
     const size_t n = r_strokes.size();
-    const std::vector<std::vector<uint32_t>> touches = touching_strokes(r_strokes, options_.junction_px);
+    std::vector<std::vector<uint32_t>> touches = touching_strokes(r_strokes, options_.junction_px);
+    // A stroke and last frame's parent still touch while their ends stay near.
+    if (!last_parent_.empty()) {
+        std::unordered_map<uint32_t, uint32_t> index_of;
+        for (uint32_t i = 0; i < n; ++i) index_of.emplace(r_strokes[i].id, i);
+        for (uint32_t i = 0; i < n; ++i) {
+            const auto lp = last_parent_.find(r_strokes[i].id);
+            const auto p = lp == last_parent_.end() ? index_of.end() : index_of.find(lp->second);
+            if (p == index_of.end() || std::binary_search(touches[i].begin(), touches[i].end(), p->second)) continue;
+            if (!ends_near(r_strokes[i].geometry.points_px, r_strokes[p->second].geometry.points_px, options_.keep_parent_px)) continue;
+            touches[i].insert(std::upper_bound(touches[i].begin(), touches[i].end(), p->second), p->second);
+            std::vector<uint32_t>& back = touches[p->second];
+            back.insert(std::upper_bound(back.begin(), back.end(), i), i);
+        }
+    }
     std::vector<double> length(n);
     for (size_t i = 0; i < n; ++i) length[i] = r_strokes[i].geometry.length_px();
     constexpr uint32_t kNew = std::numeric_limits<uint32_t>::max();
@@ -107,67 +139,48 @@ void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
         groups[group_of_root[root]].push_back(i);
     }
 
-    // The main stroke of each group.
-    auto longer = [&](uint32_t a, uint32_t b) {
-        return length[a] > length[b] || (length[a] == length[b] && r_strokes[a].id < r_strokes[b].id);
-    };
-    std::vector<uint32_t> mains;
-    for (const std::vector<uint32_t>& g : groups) {
-        const uint32_t longest = *std::min_element(g.begin(), g.end(), longer);
-        // The longest of last frame's main strokes that are long enough still, else the longest.
-        uint32_t kept = kNew;
-        for (const uint32_t i : g) {
-            const auto it = last_level_.find(r_strokes[i].id);
-            if (it == last_level_.end() || it->second != 0 || length[i] < options_.keep_main_share * length[longest]) continue;
-            if (kept == kNew || longer(i, kept)) kept = i;
-        }
-        mains.push_back(kept == kNew ? longest : kept);
-    }
-    std::vector<uint32_t> group_order(groups.size());
-    for (uint32_t g = 0; g < groups.size(); ++g) group_order[g] = g;
-    std::sort(group_order.begin(), group_order.end(), [&](uint32_t a, uint32_t b) { return earlier(mains[a], mains[b]); });
-
-    // Levels: each stroke keeps last frame's level where a stroke it touches is one level up
-    // (last frame's parent first), taken level by level from the main strokes down; the others
-    // hang from the nearest stroke already placed, breadth first.
     constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
-    std::vector<uint32_t> level(n, kUnset), parent(n, kUnset);
-    for (const uint32_t m : mains) level[m] = 0;
     auto last_level = [&](uint32_t i) {
         const auto it = last_level_.find(r_strokes[i].id);
         return it == last_level_.end() ? kUnset : it->second;
     };
-    std::vector<uint32_t> keeping;
-    for (uint32_t i = 0; i < n; ++i) {
-        if (level[i] == kUnset && last_level(i) != kUnset && last_level(i) > 0) keeping.push_back(i);
-    }
-    std::sort(keeping.begin(), keeping.end(), [&](uint32_t a, uint32_t b) {
-        return std::make_tuple(last_level(a), last_order(a), r_strokes[a].id) < std::make_tuple(last_level(b), last_order(b), r_strokes[b].id);
-    });
-    for (const uint32_t t : keeping) {
-        const uint32_t want = last_level(t);
-        const auto lp = last_parent_.find(r_strokes[t].id);
-        uint32_t best = kUnset;
-        for (const uint32_t x : touches[t]) {
-            if (level[x] != want - 1) continue;
-            if (lp != last_parent_.end() && r_strokes[x].id == lp->second) {
-                best = x;
-                break;
+    // The levels of a group's strokes under a main stroke: each stroke keeps last frame's level
+    // where a stroke it touches is one level up (last frame's parent first), taken level by
+    // level from the main stroke down; the others hang from the nearest stroke already placed,
+    // breadth first. Returns how many strokes keep last frame's level.
+    std::vector<uint32_t> level(n, kUnset), parent(n, kUnset);
+    std::vector<uint32_t> keeping, heap;
+    auto place = [&](const std::vector<uint32_t>& group, uint32_t main) {
+        for (const uint32_t i : group) level[i] = parent[i] = kUnset;
+        level[main] = 0;
+        keeping.clear();
+        for (const uint32_t i : group) {
+            if (i != main && last_level(i) != kUnset && last_level(i) > 0) keeping.push_back(i);
+        }
+        std::sort(keeping.begin(), keeping.end(), [&](uint32_t a, uint32_t b) {
+            return std::make_tuple(last_level(a), last_order(a), r_strokes[a].id) < std::make_tuple(last_level(b), last_order(b), r_strokes[b].id);
+        });
+        for (const uint32_t t : keeping) {
+            const uint32_t want = last_level(t);
+            const auto lp = last_parent_.find(r_strokes[t].id);
+            uint32_t best = kUnset;
+            for (const uint32_t x : touches[t]) {
+                if (level[x] != want - 1) continue;
+                if (lp != last_parent_.end() && r_strokes[x].id == lp->second) {
+                    best = x;
+                    break;
+                }
+                if (best == kUnset || earlier(x, best)) best = x;
             }
-            if (best == kUnset || earlier(x, best)) best = x;
+            if (best != kUnset) {
+                level[t] = want;
+                parent[t] = best;
+            }
         }
-        if (best != kUnset) {
-            level[t] = want;
-            parent[t] = best;
-        }
-    }
-    // The rest, nearest first from what is placed (a queue by level, then drawing order).
-    {
-        auto later = [&](uint32_t a, uint32_t b) {
-            return level[a] != level[b] ? level[a] > level[b] : earlier(b, a);
-        };
-        std::vector<uint32_t> heap;
-        for (uint32_t i = 0; i < n; ++i) {
+        // The rest, nearest first from what is placed (a queue by level, then drawing order).
+        auto later = [&](uint32_t a, uint32_t b) { return level[a] != level[b] ? level[a] > level[b] : earlier(b, a); };
+        heap.clear();
+        for (const uint32_t i : group) {
             if (level[i] != kUnset) heap.push_back(i);
         }
         std::make_heap(heap.begin(), heap.end(), later);
@@ -183,7 +196,45 @@ void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
                 std::push_heap(heap.begin(), heap.end(), later);
             }
         }
+        size_t kept = 0;
+        for (const uint32_t i : group) kept += level[i] == last_level(i) ? 1 : 0;
+        return kept;
+    };
+
+    // The main stroke of each group: of its strokes at least keep_main_share as long as its
+    // longest (the longest main_candidates of them, last frame's main strokes first), the one
+    // under which the most strokes keep last frame's level; a tie goes to last frame's main
+    // stroke, then to the longer. In a first frame that is the longest.
+    auto longer = [&](uint32_t a, uint32_t b) {
+        return length[a] > length[b] || (length[a] == length[b] && r_strokes[a].id < r_strokes[b].id);
+    };
+    std::vector<uint32_t> mains, candidates;
+    for (const std::vector<uint32_t>& group : groups) {
+        const uint32_t longest = *std::min_element(group.begin(), group.end(), longer);
+        candidates.clear();
+        for (const uint32_t i : group) {
+            if (length[i] >= options_.keep_main_share * length[longest]) candidates.push_back(i);
+        }
+        std::sort(candidates.begin(), candidates.end(), [&](uint32_t a, uint32_t b) {
+            const bool main_a = last_level(a) == 0, main_b = last_level(b) == 0;
+            return main_a != main_b ? main_a : longer(a, b);
+        });
+        const bool seen = std::any_of(group.begin(), group.end(), [&](uint32_t i) { return last_level(i) != kUnset; });
+        candidates.resize(seen ? std::min(candidates.size(), options_.main_candidates) : 1);
+        uint32_t main = candidates.front();
+        size_t most = place(group, main);
+        for (size_t c = 1; c < candidates.size(); ++c) {
+            if (const size_t kept = place(group, candidates[c]); kept > most) {
+                most = kept;
+                main = candidates[c];
+            }
+        }
+        if (main != candidates.back()) place(group, main);
+        mains.push_back(main);
     }
+    std::vector<uint32_t> group_order(groups.size());
+    for (uint32_t g = 0; g < groups.size(); ++g) group_order[g] = g;
+    std::sort(group_order.begin(), group_order.end(), [&](uint32_t a, uint32_t b) { return earlier(mains[a], mains[b]); });
 
     // The order a fresh frame would have: group after group, level after level, each level by
     // its parents' order, then as `earlier` says.

@@ -24,9 +24,15 @@ struct DrawingOrderOptions {
     // joined through them split and merge (docs/strokes.md). Rounding only: both strokes take a
     // shared point from the same mesh point.
     double junction_px = 1e-3;
-    // Last frame's main stroke of a group stays main while it is at least this share of the
-    // group's longest stroke; below it the longest stroke takes over.
-    double keep_main_share = 0.9;
+    // A stroke and last frame's parent still touch while an end of one lies within this (image
+    // px) of the other's polyline: a junction that opens by a pixel as the strokes move does not
+    // split their group.
+    double keep_parent_px = 1.0;
+    // A group's main stroke is one at least this share of the group's longest stroke (the one
+    // under which most strokes keep last frame's level), chosen among the longest
+    // main_candidates of them.
+    double keep_main_share = 0.5;
+    size_t main_candidates = 16;
 };
 
 // Which strokes touch which (an end of one within junction_px of a point of the other): for
@@ -42,10 +48,13 @@ class DrawingOrder {
 
     // Sets every stroke's group, level, parent and order (a permutation of 0 .. n-1), and
     // remembers them for the next frame:
-    // - group: the strokes it is connected with through touching strokes, named by the id of
-    //   the group's main stroke;
-    // - main stroke (level 0): the group's longest (exact length; the lower id on a tie), unless
-    //   last frame's main stroke is in the group and at least keep_main_share of the longest;
+    // - group: the strokes it is connected with through touching strokes (a stroke and last
+    //   frame's parent touching while keep_parent_px apart), named by the id of the group's
+    //   main stroke;
+    // - main stroke (level 0): in a first frame the group's longest (exact length; the lower id
+    //   on a tie); after that, of the strokes at least keep_main_share of the longest, the one
+    //   under which the most strokes keep last frame's level (last frame's main stroke, then the
+    //   longer, on a tie);
     // - a tree per group from the main stroke, each stroke hanging from one it touches (its
     //   parent, at the level above): last frame's parent while the two still touch in one group,
     //   else the stroke that reaches it first, breadth first from the main stroke;

@@ -36,8 +36,34 @@ bool touch(const core::Stroke& a, const core::Stroke& b) {
     return near(p.front(), q) || near(p.back(), q) || near(q.front(), p) || near(q.back(), p);
 }
 
+// Whether an end of a lies within max_px of b's polyline, or an end of b of a's.
+bool ends_within(const core::Stroke& a, const core::Stroke& b, double max_px) {
+    auto near = [&](const glm::dvec2& p, const std::vector<glm::dvec2>& line) {
+        for (size_t k = 0; k + 1 < line.size(); ++k) {
+            const glm::dvec2 d = line[k + 1] - line[k];
+            const double t = std::clamp(glm::dot(p - line[k], d) / std::max(glm::dot(d, d), 1e-300), 0.0, 1.0);
+            if (glm::distance(p, line[k] + t * d) <= max_px) return true;
+        }
+        return false;
+    };
+    const auto& p = a.geometry.points_px;
+    const auto& q = b.geometry.points_px;
+    return near(p.front(), q) || near(p.back(), q) || near(q.front(), p) || near(q.back(), p);
+}
+
+// Stroke id -> its parent's id, for the strokes that have one.
+std::map<uint32_t, int64_t> parents_of(const std::vector<core::Stroke>& strokes) {
+    std::map<uint32_t, int64_t> parents;
+    for (const core::Stroke& s : strokes) {
+        if (s.parent >= 0) parents[s.id] = s.parent;
+    }
+    return parents;
+}
+
 // The hierarchy's rules on a frame's strokes; with `fresh`, level 0 is the longest of its group.
-void expect_hierarchy(const std::vector<core::Stroke>& strokes, bool fresh) {
+// A stroke touches its parent, or one of the two was the other's parent last frame
+// (`last_parents`) and their ends lie within 1 px (DrawingOrderOptions::keep_parent_px).
+void expect_hierarchy(const std::vector<core::Stroke>& strokes, bool fresh, const std::map<uint32_t, int64_t>& last_parents = {}) {
     std::map<uint32_t, const core::Stroke*> by_id;
     for (const core::Stroke& s : strokes) by_id[s.id] = &s;
     std::set<uint32_t> orders;
@@ -54,7 +80,12 @@ void expect_hierarchy(const std::vector<core::Stroke>& strokes, bool fresh) {
         const core::Stroke& parent = *by_id.at(uint32_t(s.parent));
         EXPECT_EQ(parent.level + 1, s.level) << "stroke " << s.id;
         EXPECT_EQ(parent.group, s.group) << "stroke " << s.id;
-        EXPECT_TRUE(touch(s, parent)) << "stroke " << s.id << " does not touch its parent " << parent.id;
+        auto was_parent = [&](const core::Stroke& child, const core::Stroke& of) {
+            const auto last = last_parents.find(child.id);
+            return last != last_parents.end() && last->second == int64_t(of.id);
+        };
+        const bool kept = (was_parent(s, parent) || was_parent(parent, s)) && ends_within(s, parent, 1.0);
+        EXPECT_TRUE(touch(s, parent) || kept) << "stroke " << s.id << " does not touch its parent " << parent.id;
         EXPECT_LT(parent.order, s.order) << "a parent is drawn first";
     }
     EXPECT_EQ(orders.size(), strokes.size()) << "orders are a permutation";
@@ -99,8 +130,9 @@ TEST(DrawingOrder, ATreeOfStrokesHasItsLongestStrokeFirstAndLevelsByTouch) {
     EXPECT_EQ(strokes[3].order, 4u);
 }
 
-TEST(DrawingOrder, TheMainStrokeStaysWhileItIsNearlyTheLongest) {
-    // Two strokes meeting end to end; the second grows past the first by 5%, then by 20%.
+TEST(DrawingOrder, TheMainStrokeStaysWhileItIsAtLeastHalfTheLongest) {
+    // Two strokes meeting end to end; the second grows past the first, to 1.9 times its length,
+    // then to 2.1 times.
     auto frame = [](double second) {
         return std::vector<core::Stroke>{stroke(1, {{0, 0}, {100, 0}}), stroke(2, {{100, 0}, {100, second}})};
     };
@@ -108,11 +140,11 @@ TEST(DrawingOrder, TheMainStrokeStaysWhileItIsNearlyTheLongest) {
     std::vector<core::Stroke> strokes = frame(90.0);
     order.assign(strokes);
     EXPECT_EQ(strokes[0].level, 0u);
-    strokes = frame(105.0);
+    strokes = frame(190.0);
     order.assign(strokes);
-    EXPECT_EQ(strokes[0].level, 0u) << "kept: at least 90% of the longest";
+    EXPECT_EQ(strokes[0].level, 0u) << "kept: at least half the longest";
     EXPECT_EQ(strokes[1].order, 1u);
-    strokes = frame(120.0);
+    strokes = frame(210.0);
     order.assign(strokes);
     EXPECT_EQ(strokes[1].level, 0u) << "the longest takes over";
     EXPECT_EQ(strokes[0].parent, 2);
@@ -128,7 +160,7 @@ TEST(DrawingOrder, TheMainStrokeStaysWhileItIsNearlyTheLongest) {
     EXPECT_EQ(strokes[0].level, 2u);
     // A new frame order: a fresh DrawingOrder takes the longest at once.
     core::DrawingOrder fresh;
-    strokes = frame(105.0);
+    strokes = frame(190.0);
     fresh.assign(strokes);
     EXPECT_EQ(strokes[1].level, 0u);
 }
@@ -193,6 +225,63 @@ TEST(DrawingOrder, AMergeAndASplitLeaveTheMainStrokesTreeAsItWas) {
     }
 }
 
+TEST(DrawingOrder, AGroupThatSplitsOffKeepsTheLevelsItCan) {
+    // A main stroke M with A hanging from its end, and B, C and D from A's other end. M moves
+    // 10 px away: A, B, C and D are a group of their own. Its main is B, under which A keeps
+    // level 1 and C and D level 2; under A, the longest, none would keep theirs.
+    std::vector<core::Stroke> strokes = {
+        stroke(1, {{0, 0}, {200, 0}}),     // M
+        stroke(2, {{200, 0}, {200, 50}}),  // A
+        stroke(3, {{200, 50}, {240, 50}}),  // B
+        stroke(4, {{200, 50}, {200, 80}}),  // C
+        stroke(5, {{200, 50}, {179, 71}}),  // D
+    };
+    core::DrawingOrder order;
+    order.assign(strokes);
+    expect_hierarchy(strokes, true);
+    ASSERT_EQ(strokes[1].level, 1u);
+    ASSERT_EQ(strokes[2].level, 2u);
+    const std::map<uint32_t, int64_t> last_parents = parents_of(strokes);
+    strokes[0].geometry.points_px = {{0, -10}, {200, -10}};
+    order.assign(strokes);
+    expect_hierarchy(strokes, false, last_parents);
+    EXPECT_EQ(strokes[0].group, 1u);
+    EXPECT_EQ(strokes[2].level, 0u) << "B is main";
+    EXPECT_EQ(strokes[1].group, 3u);
+    EXPECT_EQ(strokes[1].level, 1u);
+    EXPECT_EQ(strokes[3].level, 2u);
+    EXPECT_EQ(strokes[4].level, 2u);
+    EXPECT_EQ(strokes[3].parent, 2);
+}
+
+TEST(DrawingOrder, AStrokeStaysWithItsParentWhileTheirEndsAreWithinAPixel) {
+    // B hangs from A's end; then B's end draws back 0.6 px from A's, then 2 px.
+    auto frame = [](double gap) {
+        return std::vector<core::Stroke>{stroke(1, {{0, 0}, {100, 0}}), stroke(2, {{100, gap}, {100, 40}})};
+    };
+    core::DrawingOrder order;
+    std::vector<core::Stroke> strokes = frame(0.0);
+    order.assign(strokes);
+    ASSERT_EQ(strokes[1].parent, 1);
+    std::map<uint32_t, int64_t> last_parents = parents_of(strokes);
+    strokes = frame(0.6);
+    order.assign(strokes);
+    expect_hierarchy(strokes, false, last_parents);
+    EXPECT_EQ(strokes[1].parent, 1) << "still touching: 0.6 px apart";
+    EXPECT_EQ(strokes[1].group, 1u);
+    last_parents = parents_of(strokes);
+    strokes = frame(2.0);
+    order.assign(strokes);
+    expect_hierarchy(strokes, false, last_parents);
+    EXPECT_EQ(strokes[1].group, 2u) << "apart at 2 px";
+    EXPECT_EQ(strokes[1].level, 0u);
+    // Strokes 0.6 px apart in a first frame do not touch: only a pair that touched holds on.
+    core::DrawingOrder fresh;
+    strokes = frame(0.6);
+    fresh.assign(strokes);
+    EXPECT_EQ(strokes[1].group, 2u);
+}
+
 // Over a turntable, the share of strokes that keep their ids whose level, and whose place among
 // those strokes, are the same as last frame.
 struct Steadiness {
@@ -211,9 +300,11 @@ Steadiness turntable_steadiness(const core::Mesh& mesh, int frames, double degre
     core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
     std::map<uint32_t, std::pair<uint32_t, uint32_t>> last;  // id -> (level, order)
     size_t kept = 0, same_level = 0, same_order = 0;
+    std::map<uint32_t, int64_t> last_parents;
     for (int f = 1; f <= frames; ++f) {
         const core::FrameResult r = pipeline.run(f);
-        expect_hierarchy(r.strokes.strokes, f == 1);
+        expect_hierarchy(r.strokes.strokes, f == 1, last_parents);
+        last_parents = parents_of(r.strokes.strokes);
         std::map<uint32_t, std::pair<uint32_t, uint32_t>> now;
         for (const core::Stroke& s : r.strokes.strokes) now[s.id] = {s.level, s.order};
         // The strokes in both frames, ranked by order in each.
@@ -244,7 +335,7 @@ TEST(DrawingOrder, LevelsAndOrderHoldOverATorusTurntableAtThreeDegreesAFrame) {
 
 TEST(DrawingOrder, TheHierarchyHoldsOnEveryFrameOfABumpySphereTurntable) {
     // The rules on every frame; steadiness below the torus's where strokes grow and shrink
-    // past junctions (docs/strokes.md measures scanned meshes). Measured: 95.5% and 98.2%.
+    // past junctions (docs/strokes.md measures scanned meshes). Measured: 95.5% and 96.4%.
     const core::Mesh mesh = test::bumpy_sphere(test::icosphere(4), {.count = 30, .height_max = 0.1});
     const Steadiness s = turntable_steadiness(mesh, 30, 3.0);
     std::printf("bumpy sphere: %zu kept strokes, same level %.4f, same place %.4f\n", s.kept, s.level, s.order);
