@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 #include <tuple>
 #include <utility>
 
@@ -259,14 +260,28 @@ void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
         }
     }
     // The order: parents before their strokes; among the strokes whose parents are drawn, those
-    // of last frame in last frame's order, the new ones at their place in the fresh order.
+    // of last frame in last frame's order, the new ones just before the first stroke of last
+    // frame that hangs from them, else at their place in the fresh order.
     std::vector<std::vector<uint32_t>> children(n);
     for (uint32_t i = 0; i < n; ++i) {
         if (parent[i] != kUnset) children[parent[i]].push_back(i);
     }
+    // A new stroke from which strokes of last frame hang is drawn just before the first of them
+    // (as their parent it comes before them anyway), so they keep their order.
+    std::vector<uint32_t> first_kept(n, kNew);  // the least order last frame in each stroke's subtree
+    {
+        std::vector<uint32_t> deepest_first(n);
+        std::iota(deepest_first.begin(), deepest_first.end(), 0u);
+        std::sort(deepest_first.begin(), deepest_first.end(), [&](uint32_t a, uint32_t b) { return level[a] > level[b]; });
+        for (const uint32_t i : deepest_first) {
+            first_kept[i] = std::min(first_kept[i], last_order(i));
+            if (parent[i] != kUnset) first_kept[parent[i]] = std::min(first_kept[parent[i]], first_kept[i]);
+        }
+    }
     auto key = [&](uint32_t i) {
         const uint32_t last = last_order(i);
-        return std::make_tuple(last != kNew ? double(last) : double(fresh[i]) - 0.5, r_strokes[i].id);
+        const double at = last != kNew ? double(last) : double(first_kept[i] != kNew ? first_kept[i] : fresh[i]) - 0.5;
+        return std::make_tuple(at, r_strokes[i].id);
     };
     auto after = [&](uint32_t a, uint32_t b) { return key(a) > key(b); };
     std::vector<uint32_t> ready(mains.begin(), mains.end());

@@ -59,8 +59,9 @@ class DrawingOrder {
     //   parent, at the level above): last frame's parent while the two still touch in one group,
     //   else the stroke that reaches it first, breadth first from the main stroke;
     // - order: groups one after another, each level after level; strokes that were drawn last
-    //   frame keep their order among themselves (groups by their main stroke), then the others
-    //   longest first (lower id on a tie).
+    //   frame keep their order among themselves (groups by their main stroke); a new stroke
+    //   from which some of them hang comes just before the first of those, the others longest
+    //   first (lower id on a tie).
     void assign(std::vector<Stroke>& r_strokes);
 
   private:

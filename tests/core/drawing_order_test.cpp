@@ -254,6 +254,32 @@ TEST(DrawingOrder, AGroupThatSplitsOffKeepsTheLevelsItCan) {
     EXPECT_EQ(strokes[3].parent, 2);
 }
 
+TEST(DrawingOrder, ANewStrokeIsDrawnJustBeforeTheStrokesOfLastFrameThatHangFromIt) {
+    // P with C1 and C2 hanging from its ends, drawn first; A with three strokes hanging from it.
+    // Then P's line comes back as a new stroke N: C1 and C2 hang from it and are still drawn
+    // first, N just before them.
+    auto frame = [](uint32_t first_id) {
+        return std::vector<core::Stroke>{
+            stroke(first_id, {{0, 0}, {200, 0}}),             // P, then N
+            stroke(2, {{200, 0}, {200, 40}}),                 // C1
+            stroke(3, {{0, 0}, {0, 40}}),                     // C2
+            stroke(4, {{0, 100}, {75, 100}, {150, 100}}),     // A
+            stroke(5, {{150, 100}, {150, 130}}),              // A1
+            stroke(6, {{0, 100}, {0, 130}}),                  // A2
+            stroke(7, {{75, 100}, {75, 130}}),                // A3
+        };
+    };
+    core::DrawingOrder order;
+    std::vector<core::Stroke> strokes = frame(1);
+    order.assign(strokes);
+    expect_hierarchy(strokes, true);
+    for (uint32_t i = 0; i < strokes.size(); ++i) ASSERT_EQ(strokes[i].order, i) << "stroke " << strokes[i].id;
+    strokes = frame(9);
+    order.assign(strokes);
+    expect_hierarchy(strokes, false);
+    for (uint32_t i = 0; i < strokes.size(); ++i) EXPECT_EQ(strokes[i].order, i) << "stroke " << strokes[i].id;
+}
+
 TEST(DrawingOrder, AStrokeStaysWithItsParentWhileTheirEndsAreWithinAPixel) {
     // B hangs from A's end; then B's end draws back 0.6 px from A's, then 2 px.
     auto frame = [](double gap) {
