@@ -92,25 +92,31 @@ bool ends_near(const std::vector<glm::dvec2>& a, const std::vector<glm::dvec2>& 
            (end_near(a.front(), b) || end_near(a.back(), b) || end_near(b.front(), a) || end_near(b.back(), a));
 }
 
+// Adds to `r_touches` each stroke and last frame's parent (`last_parent`: id -> parent id) that
+// no longer touch but whose ends lie within max_px; the lists stay ascending.
+void keep_parents_touching(std::span<const Stroke> strokes, const std::unordered_map<uint32_t, uint32_t>& last_parent,
+                           double max_px, std::vector<std::vector<uint32_t>>& r_touches) {
+    if (last_parent.empty()) return;
+    std::unordered_map<uint32_t, uint32_t> index_of;
+    for (uint32_t i = 0; i < strokes.size(); ++i) index_of.emplace(strokes[i].id, i);
+    auto insert = [](std::vector<uint32_t>& list, uint32_t v) { list.insert(std::upper_bound(list.begin(), list.end(), v), v); };
+    for (uint32_t i = 0; i < strokes.size(); ++i) {
+        const auto lp = last_parent.find(strokes[i].id);
+        const auto p = lp == last_parent.end() ? index_of.end() : index_of.find(lp->second);
+        if (p == index_of.end() || std::binary_search(r_touches[i].begin(), r_touches[i].end(), p->second)) continue;
+        if (!ends_near(strokes[i].geometry.points_px, strokes[p->second].geometry.points_px, max_px)) continue;
+        insert(r_touches[i], p->second);
+        insert(r_touches[p->second], i);
+    }
+}
+
 }  // namespace
 
 void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
     const size_t n = r_strokes.size();
     std::vector<std::vector<uint32_t>> touches = touching_strokes(r_strokes, options_.junction_px);
     // A stroke and last frame's parent still touch while their ends stay near.
-    if (!last_parent_.empty()) {
-        std::unordered_map<uint32_t, uint32_t> index_of;
-        for (uint32_t i = 0; i < n; ++i) index_of.emplace(r_strokes[i].id, i);
-        for (uint32_t i = 0; i < n; ++i) {
-            const auto lp = last_parent_.find(r_strokes[i].id);
-            const auto p = lp == last_parent_.end() ? index_of.end() : index_of.find(lp->second);
-            if (p == index_of.end() || std::binary_search(touches[i].begin(), touches[i].end(), p->second)) continue;
-            if (!ends_near(r_strokes[i].geometry.points_px, r_strokes[p->second].geometry.points_px, options_.keep_parent_px)) continue;
-            touches[i].insert(std::upper_bound(touches[i].begin(), touches[i].end(), p->second), p->second);
-            std::vector<uint32_t>& back = touches[p->second];
-            back.insert(std::upper_bound(back.begin(), back.end(), i), i);
-        }
-    }
+    keep_parents_touching(r_strokes, last_parent_, options_.keep_parent_px, touches);
     std::vector<double> length(n);
     for (size_t i = 0; i < n; ++i) length[i] = r_strokes[i].geometry.length_px();
     constexpr uint32_t kNew = std::numeric_limits<uint32_t>::max();
