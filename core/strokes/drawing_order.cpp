@@ -112,11 +112,35 @@ void keep_parents_touching(std::span<const Stroke> strokes, const std::unordered
 
 }  // namespace
 
+void DrawingOrder::hold_back_joins(std::span<const Stroke> strokes, std::vector<std::vector<uint32_t>>& r_touches) {
+    std::unordered_map<uint64_t, uint32_t> held;
+    std::vector<std::pair<uint32_t, uint32_t>> dropped;
+    for (uint32_t i = 0; i < strokes.size() && options_.join_after_frames > 1; ++i) {
+        const auto group_i = last_group_.find(strokes[i].id);
+        if (group_i == last_group_.end()) continue;
+        for (const uint32_t j : r_touches[i]) {
+            const auto group_j = j > i ? last_group_.find(strokes[j].id) : last_group_.end();
+            if (group_j == last_group_.end() || group_j->second == group_i->second) continue;
+            const uint64_t pair = (uint64_t(std::min(strokes[i].id, strokes[j].id)) << 32) | std::max(strokes[i].id, strokes[j].id);
+            const auto before = held_.find(pair);
+            const uint32_t frames = held[pair] = (before == held_.end() ? 0 : before->second) + 1;
+            if (frames < options_.join_after_frames) dropped.emplace_back(i, j);
+        }
+    }
+    for (const auto& [i, j] : dropped) {
+        std::erase(r_touches[i], j);
+        std::erase(r_touches[j], i);
+    }
+    held_ = std::move(held);
+}
+
 void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
     const size_t n = r_strokes.size();
     std::vector<std::vector<uint32_t>> touches = touching_strokes(r_strokes, options_.junction_px);
     // A stroke and last frame's parent still touch while their ends stay near.
     keep_parents_touching(r_strokes, last_parent_, options_.keep_parent_px, touches);
+    // Last frame's groups join only through a touch that has held join_after_frames frames.
+    hold_back_joins(r_strokes, touches);
     std::vector<double> length(n);
     for (size_t i = 0; i < n; ++i) length[i] = r_strokes[i].geometry.length_px();
     constexpr uint32_t kNew = std::numeric_limits<uint32_t>::max();
@@ -130,7 +154,7 @@ void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
                std::make_tuple(last_order(b), -length[b], r_strokes[b].id);
     };
 
-    // Groups: connected sets of touching strokes, members ascending.
+    // Groups: connected sets of touching strokes (the joins held back aside), members ascending.
     internal::UnionFind<uint32_t> sets(n);
     for (uint32_t i = 0; i < n; ++i) {
         for (const uint32_t j : touches[i]) sets.unite(i, j);
@@ -315,9 +339,11 @@ void DrawingOrder::assign(std::vector<Stroke>& r_strokes) {
     last_order_.clear();
     last_level_.clear();
     last_parent_.clear();
+    last_group_.clear();
     for (const Stroke& st : r_strokes) {
         last_order_[st.id] = st.order;
         last_level_[st.id] = st.level;
+        last_group_[st.id] = st.group;
         if (st.parent >= 0) last_parent_[st.id] = uint32_t(st.parent);
     }
 }

@@ -3,7 +3,8 @@
 // linking): strokes connected through junctions (points they share) form a group; each group
 // has a main stroke (level 0), its level-1 strokes touch the main stroke, level-2 strokes touch
 // a level-1 stroke, and so on; a frame is drawn group after group, each level after the one
-// before. The groups, levels and order stay as they were last frame where the strokes persist.
+// before. The groups, levels and order stay as they were last frame where the strokes persist;
+// two groups of last frame that come to touch join only once the touch has held a few frames.
 #pragma once
 
 #include "core/strokes/strokes.h"
@@ -33,6 +34,11 @@ struct DrawingOrderOptions {
     // main_candidates of them.
     double keep_main_share = 0.5;
     size_t main_candidates = 16;
+    // Two of last frame's groups join only once a touch between their strokes has held this many
+    // frames in a row (a third of a second at 24 frames/s): on a turning scanned mesh most
+    // touches between groups last a frame or two, and each join and split would move every
+    // level of the smaller group. New strokes join what they touch at once. 1: at once.
+    uint32_t join_after_frames = 8;
 };
 
 // Which strokes touch which (an end of one within junction_px of a point of the other): for
@@ -49,8 +55,9 @@ class DrawingOrder {
     // Sets every stroke's group, level, parent and order (a permutation of 0 .. n-1), and
     // remembers them for the next frame:
     // - group: the strokes it is connected with through touching strokes (a stroke and last
-    //   frame's parent touching while keep_parent_px apart), named by the id of the group's
-    //   main stroke;
+    //   frame's parent touching while keep_parent_px apart; two strokes of different groups of
+    //   last frame only once they have touched join_after_frames frames in a row), named by the
+    //   id of the group's main stroke;
     // - main stroke (level 0): in a first frame the group's longest (exact length; the lower id
     //   on a tie); after that, of the strokes at least keep_main_share of the longest, the one
     //   under which the most strokes keep last frame's level (last frame's main stroke, then the
@@ -65,10 +72,18 @@ class DrawingOrder {
     void assign(std::vector<Stroke>& r_strokes);
 
   private:
+    // Drops from r_touches each touch between strokes of two different groups of last frame
+    // that has held fewer than join_after_frames frames in a row, and counts them in held_.
+    void hold_back_joins(std::span<const Stroke> strokes, std::vector<std::vector<uint32_t>>& r_touches);
+
     DrawingOrderOptions options_;
     std::unordered_map<uint32_t, uint32_t> last_order_;  // stroke id -> its order last frame
     std::unordered_map<uint32_t, uint32_t> last_level_;   // stroke id -> its level (0: a main stroke)
     std::unordered_map<uint32_t, uint32_t> last_parent_;  // stroke id -> its parent's id
+    std::unordered_map<uint32_t, uint32_t> last_group_;   // stroke id -> its group
+    // Touches between strokes of two different groups of last frame:
+    // (lower id << 32 | higher id) -> frames they have held in a row.
+    std::unordered_map<uint64_t, uint32_t> held_;
 };
 
 }  // namespace inkline::core

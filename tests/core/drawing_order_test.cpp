@@ -51,19 +51,21 @@ bool ends_within(const core::Stroke& a, const core::Stroke& b, double max_px) {
     return near(p.front(), q) || near(p.back(), q) || near(q.front(), p) || near(q.back(), p);
 }
 
-// Stroke id -> its parent's id, for the strokes that have one.
-std::map<uint32_t, int64_t> parents_of(const std::vector<core::Stroke>& strokes) {
+// What the hierarchy's rules need to know of the frames before: each stroke's parent and group
+// last frame, and for strokes of two different groups last frame, how many frames in a row
+// they have touched.
+struct History {
     std::map<uint32_t, int64_t> parents;
-    for (const core::Stroke& s : strokes) {
-        if (s.parent >= 0) parents[s.id] = s.parent;
-    }
-    return parents;
-}
+    std::map<uint32_t, uint32_t> groups;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> touched;
+};
 
 // The hierarchy's rules on a frame's strokes; with `fresh`, level 0 is the longest of its group.
-// A stroke touches its parent, or one of the two was the other's parent last frame
-// (`last_parents`) and their ends lie within 1 px (DrawingOrderOptions::keep_parent_px).
-void expect_hierarchy(const std::vector<core::Stroke>& strokes, bool fresh, const std::map<uint32_t, int64_t>& last_parents = {}) {
+// A stroke touches its parent, or one of the two was the other's parent last frame and their
+// ends lie within 1 px (DrawingOrderOptions::keep_parent_px). Touching strokes share a group,
+// unless they were in two groups last frame and have touched fewer than join_after_frames frames
+// in a row. `r_history` is read, then updated to this frame.
+void expect_hierarchy(const std::vector<core::Stroke>& strokes, bool fresh, History& r_history) {
     std::map<uint32_t, const core::Stroke*> by_id;
     for (const core::Stroke& s : strokes) by_id[s.id] = &s;
     std::set<uint32_t> orders;
@@ -81,8 +83,8 @@ void expect_hierarchy(const std::vector<core::Stroke>& strokes, bool fresh, cons
         EXPECT_EQ(parent.level + 1, s.level) << "stroke " << s.id;
         EXPECT_EQ(parent.group, s.group) << "stroke " << s.id;
         auto was_parent = [&](const core::Stroke& child, const core::Stroke& of) {
-            const auto last = last_parents.find(child.id);
-            return last != last_parents.end() && last->second == int64_t(of.id);
+            const auto last = r_history.parents.find(child.id);
+            return last != r_history.parents.end() && last->second == int64_t(of.id);
         };
         const bool kept = (was_parent(s, parent) || was_parent(parent, s)) && ends_within(s, parent, 1.0);
         EXPECT_TRUE(touch(s, parent) || kept) << "stroke " << s.id << " does not touch its parent " << parent.id;
@@ -92,16 +94,34 @@ void expect_hierarchy(const std::vector<core::Stroke>& strokes, bool fresh, cons
     if (!orders.empty()) {
         EXPECT_EQ(*orders.rbegin(), strokes.size() - 1);
     }
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> touched;
     for (const core::Stroke& s : strokes) {
         for (const core::Stroke& t : strokes) {
-            if (touch(s, t)) {
-                EXPECT_EQ(s.group, t.group) << "touching strokes " << s.id << " and " << t.id;
+            if (s.id < t.id && touch(s, t)) {
+                const auto gs = r_history.groups.find(s.id), gt = r_history.groups.find(t.id);
+                const bool apart = gs != r_history.groups.end() && gt != r_history.groups.end() && gs->second != gt->second;
+                const uint32_t frames = apart ? touched[{s.id, t.id}] = r_history.touched[{s.id, t.id}] + 1 : 0;
+                if (!apart || frames >= core::DrawingOrderOptions{}.join_after_frames) {
+                    EXPECT_EQ(s.group, t.group) << "touching strokes " << s.id << " and " << t.id;
+                }
             }
             if (fresh && t.group == s.group && t.level == 0) {
                 EXPECT_GE(t.geometry.length_px(), s.geometry.length_px()) << "level 0 is the longest of group " << t.id;
             }
         }
     }
+    r_history = {};
+    r_history.touched = std::move(touched);
+    for (const core::Stroke& s : strokes) {
+        if (s.parent >= 0) r_history.parents[s.id] = s.parent;
+        r_history.groups[s.id] = s.group;
+    }
+}
+
+// The rules on a single frame, with nothing remembered.
+void expect_hierarchy(const std::vector<core::Stroke>& strokes, bool fresh) {
+    History none;
+    expect_hierarchy(strokes, fresh, none);
 }
 
 TEST(DrawingOrder, ATreeOfStrokesHasItsLongestStrokeFirstAndLevelsByTouch) {
@@ -188,9 +208,10 @@ TEST(DrawingOrder, StrokesTouchAtAPointTheyShareNotWhereOneEndsOnAnothersSide) {
     EXPECT_EQ(strokes[3].level, 2u);
 }
 
-TEST(DrawingOrder, AMergeAndASplitLeaveTheMainStrokesTreeAsItWas) {
+TEST(DrawingOrder, TwoGroupsJoinOnceTheirTouchHasHeldAndAMergeAndASplitLeaveTheMainTree) {
     // A tree of three (A, B from A's end, C from B's end) and a short stroke D apart; D's end
-    // reaches C's end, then draws back.
+    // reaches C's end for a frame less than it takes to join, draws back, reaches it again and
+    // stays, then draws back.
     const std::vector<core::Stroke> tree = {
         stroke(1, {{0, 0}, {100, 0}}),   // A
         stroke(2, {{100, 0}, {100, 50}}),  // B
@@ -201,28 +222,57 @@ TEST(DrawingOrder, AMergeAndASplitLeaveTheMainStrokesTreeAsItWas) {
         strokes.push_back(stroke(4, {{30, 80}, d_end}));  // D
         return strokes;
     };
+    const glm::dvec2 apart{50, 60}, touching{60, 50};
+    const uint32_t join_after = core::DrawingOrderOptions{}.join_after_frames;
+    ASSERT_GT(join_after, 1u);
     core::DrawingOrder order;
-    std::vector<core::Stroke> strokes = frame({50, 60});
+    History history;
+    std::vector<core::Stroke> strokes = frame(apart);
     order.assign(strokes);
+    expect_hierarchy(strokes, true, history);
     ASSERT_EQ(strokes[3].level, 0u);
     const std::vector<core::Stroke> before = strokes;
-    strokes = frame({60, 50});
-    order.assign(strokes);
-    expect_hierarchy(strokes, false);
-    for (size_t i = 0; i < 3; ++i) {
-        EXPECT_EQ(strokes[i].level, before[i].level) << "stroke " << strokes[i].id;
-        EXPECT_EQ(strokes[i].parent, before[i].parent) << "stroke " << strokes[i].id;
+    auto expect_as_before = [&](size_t count, const char* when) {
+        for (size_t i = 0; i < count; ++i) {
+            EXPECT_EQ(strokes[i].group, before[i].group) << when << ", stroke " << strokes[i].id;
+            EXPECT_EQ(strokes[i].level, before[i].level) << when << ", stroke " << strokes[i].id;
+            EXPECT_EQ(strokes[i].parent, before[i].parent) << when << ", stroke " << strokes[i].id;
+            EXPECT_EQ(strokes[i].order, before[i].order) << when << ", stroke " << strokes[i].id;
+        }
+    };
+    for (int round = 0; round < 2; ++round) {
+        for (uint32_t f = 1; f < join_after; ++f) {
+            strokes = frame(touching);
+            order.assign(strokes);
+            expect_hierarchy(strokes, false, history);
+            expect_as_before(4, "touching, not yet joined");
+        }
+        // The first time the touch breaks a frame short; the second it holds.
+        strokes = frame(round == 0 ? apart : touching);
+        order.assign(strokes);
+        expect_hierarchy(strokes, false, history);
+        expect_as_before(round == 0 ? 4 : 3, round == 0 ? "apart again" : "joined");
     }
     EXPECT_EQ(strokes[3].group, 1u);
     EXPECT_EQ(strokes[3].level, 3u);
     EXPECT_EQ(strokes[3].parent, 3);
-    strokes = frame({50, 60});
+    strokes = frame(apart);
     order.assign(strokes);
-    expect_hierarchy(strokes, false);
-    for (size_t i = 0; i < 4; ++i) {
-        EXPECT_EQ(strokes[i].level, before[i].level) << "stroke " << strokes[i].id;
-        EXPECT_EQ(strokes[i].order, before[i].order) << "stroke " << strokes[i].id;
-    }
+    expect_hierarchy(strokes, false, history);
+    expect_as_before(4, "split");
+    // A new stroke joins what it touches at once, as does everything with join_after_frames 1.
+    strokes = frame(touching);
+    strokes[3].id = 5;
+    order.assign(strokes);
+    expect_hierarchy(strokes, false, history);
+    EXPECT_EQ(strokes[3].group, 1u);
+    core::DrawingOrder at_once({.join_after_frames = 1});
+    strokes = frame(apart);
+    at_once.assign(strokes);
+    strokes = frame(touching);
+    at_once.assign(strokes);
+    EXPECT_EQ(strokes[3].group, 1u);
+    EXPECT_EQ(strokes[3].level, 3u);
 }
 
 TEST(DrawingOrder, AGroupThatSplitsOffKeepsTheLevelsItCan) {
@@ -238,13 +288,13 @@ TEST(DrawingOrder, AGroupThatSplitsOffKeepsTheLevelsItCan) {
     };
     core::DrawingOrder order;
     order.assign(strokes);
-    expect_hierarchy(strokes, true);
+    History history;
+    expect_hierarchy(strokes, true, history);
     ASSERT_EQ(strokes[1].level, 1u);
     ASSERT_EQ(strokes[2].level, 2u);
-    const std::map<uint32_t, int64_t> last_parents = parents_of(strokes);
     strokes[0].geometry.points_px = {{0, -10}, {200, -10}};
     order.assign(strokes);
-    expect_hierarchy(strokes, false, last_parents);
+    expect_hierarchy(strokes, false, history);
     EXPECT_EQ(strokes[0].group, 1u);
     EXPECT_EQ(strokes[2].level, 0u) << "B is main";
     EXPECT_EQ(strokes[1].group, 3u);
@@ -289,16 +339,16 @@ TEST(DrawingOrder, AStrokeStaysWithItsParentWhileTheirEndsAreWithinAPixel) {
     std::vector<core::Stroke> strokes = frame(0.0);
     order.assign(strokes);
     ASSERT_EQ(strokes[1].parent, 1);
-    std::map<uint32_t, int64_t> last_parents = parents_of(strokes);
+    History history;
+    expect_hierarchy(strokes, true, history);
     strokes = frame(0.6);
     order.assign(strokes);
-    expect_hierarchy(strokes, false, last_parents);
+    expect_hierarchy(strokes, false, history);
     EXPECT_EQ(strokes[1].parent, 1) << "still touching: 0.6 px apart";
     EXPECT_EQ(strokes[1].group, 1u);
-    last_parents = parents_of(strokes);
     strokes = frame(2.0);
     order.assign(strokes);
-    expect_hierarchy(strokes, false, last_parents);
+    expect_hierarchy(strokes, false, history);
     EXPECT_EQ(strokes[1].group, 2u) << "apart at 2 px";
     EXPECT_EQ(strokes[1].level, 0u);
     // Strokes 0.6 px apart in a first frame do not touch: only a pair that touched holds on.
@@ -326,11 +376,10 @@ Steadiness turntable_steadiness(const core::Mesh& mesh, int frames, double degre
     core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
     std::map<uint32_t, std::pair<uint32_t, uint32_t>> last;  // id -> (level, order)
     size_t kept = 0, same_level = 0, same_order = 0;
-    std::map<uint32_t, int64_t> last_parents;
+    History history;
     for (int f = 1; f <= frames; ++f) {
         const core::FrameResult r = pipeline.run(f);
-        expect_hierarchy(r.strokes.strokes, f == 1, last_parents);
-        last_parents = parents_of(r.strokes.strokes);
+        expect_hierarchy(r.strokes.strokes, f == 1, history);
         std::map<uint32_t, std::pair<uint32_t, uint32_t>> now;
         for (const core::Stroke& s : r.strokes.strokes) now[s.id] = {s.level, s.order};
         // The strokes in both frames, ranked by order in each.
@@ -360,13 +409,13 @@ TEST(DrawingOrder, LevelsAndOrderHoldOverATorusTurntableAtThreeDegreesAFrame) {
 }
 
 TEST(DrawingOrder, TheHierarchyHoldsOnEveryFrameOfABumpySphereTurntable) {
-    // The rules on every frame; steadiness below the torus's where strokes grow and shrink
-    // past junctions (docs/strokes.md measures scanned meshes). Measured: 95.5% and 96.4%.
+    // The rules on every frame, and the 95% where strokes grow and shrink past
+    // junctions (docs/strokes.md measures scanned meshes). Measured: 99.1% and 100%.
     const core::Mesh mesh = test::bumpy_sphere(test::icosphere(4), {.count = 30, .height_max = 0.1});
     const Steadiness s = turntable_steadiness(mesh, 30, 3.0);
     std::printf("bumpy sphere: %zu kept strokes, same level %.4f, same place %.4f\n", s.kept, s.level, s.order);
     EXPECT_GT(s.kept, 100u);
-    EXPECT_GE(s.level, 0.9);
+    EXPECT_GE(s.level, 0.95);
     EXPECT_GE(s.order, 0.95);
 }
 
