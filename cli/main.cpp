@@ -70,8 +70,8 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
         ->capture_default_str();
     cmd->add_flag("--hidden", r.hidden, "also output occluded lines (visible: false)");
     cmd->add_option("--tone", r.tone,
-                    "tone on the surface: stipple (dots, with the scene's tone block or its defaults) or none; "
-                    "default: the scene's tone.mode, else none");
+                    "tone on the surface: stipple (dots), hatch or crosshatch (with the scene's tone block or its "
+                    "defaults), or none; default: the scene's tone.mode, else none");
     cmd->add_option("--chunk", r.chunk,
                            "render chunk K of N contiguous chunks of the frames (K/N), or 'slurm' for the job array task");
     cmd->add_flag("--keep-going", r.keep_going, "report a frame that fails and render the rest");
