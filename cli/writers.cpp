@@ -90,6 +90,7 @@ Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Sce
     } else if (args.layers != "kind") {
         throw InputError("--layers '" + quote_value(args.layers) + "': expected kind, object or style");
     }
+    pdf_options_.layers = svg_options_.layers;
     pdf_options_.page = args.page.empty() ? std::nullopt : std::optional(output::parse_page_size(args.page));
     pdf_options_.margin_mm = args.margin_mm;
     pdf_options_.dpi = args.dpi;

@@ -240,4 +240,50 @@ Layer layer_of(const Shape& shape) {
     return Layer::kSilhouette;
 }
 
+std::vector<LineLayer> line_layers(const Drawing& d, LayerGrouping grouping) {
+    // The kind layers of the shapes `selected` picks, empty ones too where `keep_empty` says.
+    std::vector<LineLayer> layers;
+    auto add_kinds = [&](const std::string& parent_id, const std::string& parent_label, auto selected, auto keep_empty) {
+        for (const Layer kind : kAllLayers) {
+            LineLayer layer{parent_id, parent_label, kind, {}, 1.0};
+            for (uint32_t i = 0; i < d.shapes.size(); ++i) {
+                if (layer_of(d.shapes[i]) == kind && selected(d.shapes[i])) layer.shapes.push_back(i);
+            }
+            if (layer.shapes.empty() && !keep_empty(kind)) continue;
+            layer.opacity = layer_opacity(d, kind, selected);
+            layers.push_back(std::move(layer));
+        }
+    };
+    const bool any_object = std::any_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return s.object_index >= 0; });
+    if (grouping == LayerGrouping::kObject && any_object) {
+        std::vector<std::pair<int32_t, std::string>> objects;  // (index, name)
+        for (const Shape& s : d.shapes) objects.emplace_back(s.object_index, s.object_index >= 0 ? s.object : std::string());
+        std::sort(objects.begin(), objects.end());
+        objects.erase(std::unique(objects.begin(), objects.end(),
+                                  [](const auto& a, const auto& b) { return a.first == b.first; }),
+                      objects.end());
+        for (const auto& [index, name] : objects) {
+            const std::string id = index >= 0 ? "object-" + std::to_string(index) : std::string("object-none");
+            add_kinds(id, index >= 0 ? name : std::string("none"), [index](const Shape& s) { return s.object_index == index; },
+                      [](Layer) { return false; });
+        }
+    } else if (grouping == LayerGrouping::kStyle) {
+        std::vector<std::pair<int32_t, std::string>> styles;  // (rule, name)
+        for (const Shape& s : d.shapes) {
+            const InkStyle ink = ink_of(d, s);
+            styles.emplace_back(ink.rule, ink.name);
+        }
+        std::sort(styles.begin(), styles.end());
+        styles.erase(std::unique(styles.begin(), styles.end()), styles.end());
+        for (const auto& [rule, name] : styles) {
+            add_kinds(name.empty() ? std::string("unstyled") : "style-" + name, name.empty() ? std::string("unstyled") : name,
+                      [&d, &name](const Shape& s) { return ink_of(d, s).name == name; }, [](Layer) { return false; });
+        }
+    } else {
+        add_kinds("", "", [](const Shape&) { return true; },
+                  [](Layer kind) { return kind != Layer::kHidden && kind != Layer::kIntersection; });
+    }
+    return layers;
+}
+
 }  // namespace inkline::output

@@ -184,6 +184,27 @@ double shape_opacity(const Drawing& drawing, const Shape& shape, double layer_op
 // The layer a shape belongs to.
 Layer layer_of(const Shape& shape);
 
+// How line layers are grouped (--layers): by line kind; one layer per object with its kind
+// layers inside; one layer per style with its kind layers inside.
+enum class LayerGrouping : uint8_t { kKind, kObject, kStyle };
+
+// A kind layer of lines as the writers group them: under kObject and kStyle grouping inside its
+// object's or style's layer (`parent_id`, `parent_label`), else at the top (both empty).
+struct LineLayer {
+    std::string parent_id;     // "object-N", "object-none", "style-NAME" or "unstyled"
+    std::string parent_label;  // the object's or style's name ("none", "unstyled" without one)
+    Layer kind = Layer::kSilhouette;
+    std::vector<uint32_t> shapes;  // indices into Drawing::shapes, in drawing order
+    double opacity = 1.0;          // layer_opacity of those shapes
+};
+
+// The drawing's line layers in drawing order (the tone layer, when there is one, comes under
+// them all). By kind: every kind, the intersection and hidden layers only when they hold lines.
+// By object (a drawing without objects is grouped by kind): the objects in index order, the
+// shapes without one ("none") first. By style: the styles in the order of their rules, the
+// unstyled shapes first. Inside an object or a style, only the kinds that hold lines.
+std::vector<LineLayer> line_layers(const Drawing& drawing, LayerGrouping grouping);
+
 template <typename Selected>
 double layer_opacity(const Drawing& drawing, Layer layer, Selected selected) {
     const double factor = layer == Layer::kHidden ? 0.5 : 1.0;

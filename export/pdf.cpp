@@ -7,13 +7,21 @@
 #include <cairo-pdf.h>
 #include <cairo.h>
 #include <nlohmann/json.hpp>
+#include <qpdf/Buffer.hh>
+#include <qpdf/QPDF.hh>
+#include <qpdf/QPDFObjectHandle.hh>
+#include <qpdf/QPDFPageDocumentHelper.hh>
+#include <qpdf/QPDFPageObjectHelper.hh>
+#include <qpdf/QPDFWriter.hh>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <map>
 #include <regex>
+#include <vector>
 
 #include <sys/stat.h>
 
@@ -119,9 +127,126 @@ PageSize parse_page_size(const std::string& text) {
     throw InputError("--page '" + quote_value(text) + "': expected A4, A3, Letter or WxHmm with sides 1..5000 mm");
 }
 
+namespace {
+
+// A PDF layer: an optional content group, inside its parent's (an object's or a style's) where
+// it has one.
+struct PdfLayer {
+    std::string key;  // unique: "tone", "KIND" or "PARENT-ID/KIND"
+    std::string label;
+    std::string parent_key, parent_label;  // empty at the top
+};
+
+// A frame's pages in Cairo's document: the page it ends up on (background and label), then one
+// page per layer, drawn in that order.
+struct FramePages {
+    size_t base = 0;
+    std::string label;
+    std::vector<std::pair<size_t, PdfLayer>> layers;  // (page, layer)
+};
+
+// Puts each frame's layer pages on its first page, each as a form XObject marked as optional
+// content of its layer (and of its parent's), and lists the layers in the document.
+std::string assemble_layers(const std::string& cairo_pdf, const std::vector<FramePages>& frames) {
+    QPDF pdf;
+    pdf.setSuppressWarnings(true);
+    pdf.processMemoryFile("inkline PDF", cairo_pdf.data(), cairo_pdf.size());
+    QPDFPageDocumentHelper document(pdf);
+    std::vector<QPDFPageObjectHelper> pages = document.getAllPages();
+    std::map<std::string, QPDFObjectHandle> groups;  // layer key -> its optional content group
+    std::vector<std::string> top;                    // top-level keys, in drawing order
+    std::map<std::string, std::vector<std::string>> children;
+    auto group = [&](const std::string& key, const std::string& label, const std::string& parent) {
+        auto [it, added] = groups.try_emplace(key);
+        if (added) {
+            it->second = pdf.makeIndirectObject(QPDFObjectHandle::parse("<< /Type /OCG >>"));
+            it->second.replaceKey("/Name", QPDFObjectHandle::newUnicodeString(label));
+            (parent.empty() ? top : children[parent]).push_back(key);
+        }
+        return it->second;
+    };
+    std::vector<QPDFPageObjectHelper> drawn;
+    QPDFObjectHandle labels = QPDFObjectHandle::newArray();
+    for (size_t f = 0; f < frames.size(); ++f) {
+        const FramePages& frame = frames[f];
+        QPDFPageObjectHelper base = pages.at(frame.base);
+        QPDFObjectHandle resources = base.getAttribute("/Resources", true);
+        if (!resources.isDictionary()) {
+            resources = QPDFObjectHandle::newDictionary();
+            base.getObjectHandle().replaceKey("/Resources", resources);
+        }
+        for (const char* key : {"/XObject", "/Properties"}) {
+            if (!resources.getKey(key).isDictionary()) resources.replaceKey(key, QPDFObjectHandle::newDictionary());
+        }
+        QPDFObjectHandle xobjects = resources.getKey("/XObject"), properties = resources.getKey("/Properties");
+        std::string content = "Q\n";
+        for (size_t k = 0; k < frame.layers.size(); ++k) {
+            const auto& [page, layer] = frame.layers[k];
+            const std::string form = "/InkLayer" + std::to_string(k);
+            xobjects.replaceKey(form, pages.at(page).getFormXObjectForPage());
+            std::string marks = "/OC /InkOC" + std::to_string(k) + " BDC ";
+            properties.replaceKey("/InkOC" + std::to_string(k), group(layer.key, layer.label, layer.parent_key));
+            if (!layer.parent_key.empty()) {
+                properties.replaceKey("/InkOCP" + std::to_string(k), group(layer.parent_key, layer.parent_label, ""));
+                marks = "/OC /InkOCP" + std::to_string(k) + " BDC " + marks;
+            }
+            content += marks + form + " Do EMC" + (layer.parent_key.empty() ? "" : " EMC") + "\n";
+        }
+        // The page's own drawing (background, label) keeps its graphics state to itself.
+        base.addPageContents(QPDFObjectHandle::newStream(&pdf, "q\n"), true);
+        base.addPageContents(QPDFObjectHandle::newStream(&pdf, content), false);
+        labels.appendItem(QPDFObjectHandle::newInteger(static_cast<long long>(f)));
+        QPDFObjectHandle label = QPDFObjectHandle::newDictionary();
+        label.replaceKey("/P", QPDFObjectHandle::newUnicodeString(frame.label));
+        labels.appendItem(label);
+        drawn.push_back(base);
+    }
+    for (const FramePages& frame : frames) {
+        for (const auto& [page, layer] : frame.layers) document.removePage(pages.at(page));
+    }
+    QPDFObjectHandle root = pdf.getRoot();
+    QPDFObjectHandle all = QPDFObjectHandle::newArray(), order = QPDFObjectHandle::newArray();
+    for (const std::string& key : top) {
+        all.appendItem(groups.at(key));
+        order.appendItem(groups.at(key));
+        if (const auto kids = children.find(key); kids != children.end()) {
+            QPDFObjectHandle nested = QPDFObjectHandle::newArray();
+            for (const std::string& kid : kids->second) {
+                all.appendItem(groups.at(kid));
+                nested.appendItem(groups.at(kid));
+            }
+            order.appendItem(nested);
+        }
+    }
+    if (!top.empty()) {
+        QPDFObjectHandle config = QPDFObjectHandle::newDictionary();
+        config.replaceKey("/Name", QPDFObjectHandle::newUnicodeString("inkline"));
+        config.replaceKey("/Order", order);
+        QPDFObjectHandle properties = QPDFObjectHandle::newDictionary();
+        properties.replaceKey("/OCGs", all);
+        properties.replaceKey("/D", config);
+        root.replaceKey("/OCProperties", properties);
+    }
+    QPDFObjectHandle page_labels = QPDFObjectHandle::newDictionary();
+    page_labels.replaceKey("/Nums", labels);
+    root.replaceKey("/PageLabels", page_labels);
+    QPDFWriter writer(pdf);
+    writer.setOutputMemory();
+    writer.setDeterministicID(true);
+    writer.setCompressStreams(true);
+    writer.setObjectStreamMode(qpdf_o_generate);
+    writer.write();
+    const std::shared_ptr<Buffer> out = writer.getBufferSharedPointer();
+    return std::string(reinterpret_cast<const char*>(out->getBuffer()), out->getSize());
+}
+
+}  // namespace
+
 struct PdfDocument::Impl {
     PdfOptions options;
     std::string bytes;
+    std::vector<FramePages> frames;  // with layers
+    size_t cairo_pages = 0;
     cairo_surface_t* surface = nullptr;
     cairo_t* cr = nullptr;
     Impl() = default;
@@ -155,30 +280,56 @@ void PdfDocument::add_page(const Drawing& drawing) {
     check_pdf_page(o, drawing.image.width, drawing.image.height);
     const PageLayout l = layout(o, drawing.image.width, drawing.image.height);
     const double page_h = l.page_h;
-    cairo_pdf_surface_set_size(impl_->surface, l.page_w, page_h);
     const std::string label = "frame " + std::to_string(drawing.frame);
-    cairo_pdf_surface_set_page_label(impl_->surface, label.c_str());
-
     cairo_t* cr = impl_->cr;
-    cairo_save(cr);
-    cairo_translate(cr, l.offset_x, l.offset_y);
-    cairo_scale(cr, l.scale, l.scale);
-    internal::paint_drawing(cr, drawing);
-    cairo_restore(cr);
-    if (o.page && o.margin_mm > 0.0) {
-        // The frame number in the bottom margin, small and grey.
+    // One Cairo page: the whole drawing, or with layers one part of it, at the image's place.
+    auto page = [&](internal::Part part, const LineLayer* layer, bool first) {
+        cairo_pdf_surface_set_size(impl_->surface, l.page_w, page_h);
+        if (!o.layers) cairo_pdf_surface_set_page_label(impl_->surface, label.c_str());
         cairo_save(cr);
-        cairo_set_source_rgb(cr, 0.45, 0.45, 0.45);
-        cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-        cairo_set_font_size(cr, kLabelPoints);
-        cairo_move_to(cr, mm_to_points(o.margin_mm), page_h - mm_to_points(o.margin_mm) / 2.0);
-        cairo_show_text(cr, (o.title + " - " + label).c_str());
+        cairo_translate(cr, l.offset_x, l.offset_y);
+        cairo_scale(cr, l.scale, l.scale);
+        if (o.layers) {
+            internal::paint_part(cr, drawing, part, layer);
+        } else {
+            internal::paint_drawing(cr, drawing);
+        }
         cairo_restore(cr);
+        if (first && o.page && o.margin_mm > 0.0) {
+            // The frame number in the bottom margin, small and grey.
+            cairo_save(cr);
+            cairo_set_source_rgb(cr, 0.45, 0.45, 0.45);
+            cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+            cairo_set_font_size(cr, kLabelPoints);
+            cairo_move_to(cr, mm_to_points(o.margin_mm), page_h - mm_to_points(o.margin_mm) / 2.0);
+            cairo_show_text(cr, (o.title + " - " + label).c_str());
+            cairo_restore(cr);
+        }
+        // Cairo records a failure in the context and draws nothing more: check before the page counts.
+        internal::check_cairo(cr, "PDF drawing");
+        cairo_show_page(cr);
+        internal::check_cairo(cr, "PDF drawing");
+        return impl_->cairo_pages++;
+    };
+    if (!o.layers) {
+        page(internal::Part::kBackground, nullptr, true);
+        ++pages_;
+        return;
     }
-    // Cairo records a failure in the context and draws nothing more: check before the page counts.
-    internal::check_cairo(cr, "PDF drawing");
-    cairo_show_page(cr);
-    internal::check_cairo(cr, "PDF drawing");
+    FramePages frame;
+    frame.label = label;
+    frame.base = page(internal::Part::kBackground, nullptr, true);
+    if (drawing.tone.mode != core::ToneMode::kNone) {
+        frame.layers.emplace_back(page(internal::Part::kTone, nullptr, false), PdfLayer{"tone", "tone", "", ""});
+    }
+    for (const LineLayer& layer : line_layers(drawing, *o.layers)) {
+        if (layer.shapes.empty()) continue;
+        const std::string kind = layer_name(layer.kind);
+        PdfLayer pdf_layer{layer.parent_id.empty() ? kind : layer.parent_id + "/" + kind, kind, layer.parent_id,
+                           layer.parent_label};
+        frame.layers.emplace_back(page(internal::Part::kLines, &layer, false), std::move(pdf_layer));
+    }
+    impl_->frames.push_back(std::move(frame));
     ++pages_;
 }
 
@@ -193,7 +344,14 @@ std::string PdfDocument::finish() {
     impl_->surface = nullptr;
     internal::check_cairo(drawn, "PDF drawing");
     internal::check_cairo(status, "PDF encoding");
-    return std::move(impl_->bytes);
+    if (!impl_->options.layers) return std::move(impl_->bytes);
+    try {
+        return assemble_layers(impl_->bytes, impl_->frames);
+    } catch (const std::bad_alloc&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw OutputError(std::string("PDF layers: ") + e.what());
+    }
 }
 
 }  // namespace inkline::output

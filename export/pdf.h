@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// PDF through Cairo: vector fills, one page per frame, for print at a physical size.
+// PDF through Cairo: vector fills, one page per frame, for print at a physical size, its line
+// layers as PDF layers (put together with qpdf).
 #pragma once
 
 #include "export/drawing.h"
@@ -28,6 +29,10 @@ struct PdfOptions {
     // ISO 8601 "YYYY-MM-DDThh:mm:ss" written as the document's creation date; empty: Cairo's
     // clock. A fixed date makes the file depend on its input alone.
     std::string creation_date;
+    // The line layers as PDF layers (optional content groups, which Illustrator, Inkscape and
+    // Acrobat show as layers), grouped as the SVG's are (--layers), the tone in a layer of its
+    // own under them; none: one drawing per page, no layers.
+    std::optional<LayerGrouping> layers = LayerGrouping::kKind;
 };
 
 // The creation date of a reproducible PDF: SOURCE_DATE_EPOCH when set (the reproducible-builds
@@ -62,7 +67,7 @@ class PdfDocument {
   private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
-    size_t pages_ = 0;
+    size_t pages_ = 0;  // frames
 };
 
 }  // namespace inkline::output

@@ -316,105 +316,81 @@ class WriteOn {
     std::unordered_map<uint32_t, size_t> path_of_;  // stroke id -> its path in the animation
 };
 
-// The kind layers (silhouette, boundary, crease, hidden) of the selected shapes, each line
-// indented by `indent`, their ids prefixed with `prefix`; inside an object's layer, an empty kind
-// layer is left out.
-template <typename Selected>
-void kind_layers(Writer& w, const Drawing& d, const WriteOn& write_on, const std::string& indent, const std::string& prefix,
-                 Selected selected) {
-    for (const Layer layer : kAllLayers) {
-        const bool hidden = layer == Layer::kHidden;
-        bool any = false;
-        for (const Shape& s : d.shapes) any |= layer_of(s) == layer && selected(s);
-        // The hidden and intersection layers only when they have lines.
-        if (!any && (hidden || layer == Layer::kIntersection || !prefix.empty())) continue;
-        const char* name = layer_name(layer);
-        w << indent << "<g id=\"" << prefix << name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
-        const double opacity = layer_opacity(d, layer, selected);
-        if (opacity < 1.0) {
-            w << " opacity=\"";
-            w.number(opacity) << "\"";
-        }
-        w << ">\n";
-        for (const Shape& s : d.shapes) {
-            if (layer_of(s) != layer || !selected(s)) continue;
-            const InkStyle ink = ink_of(d, s);
-            w << indent << "  <path id=\"stroke-" << long(s.stroke_id) << "\"";
-            if (!s.object.empty()) w << " data-object=\"" << xml_escaped(s.object) << "\"";
-            if (!ink.name.empty()) w << " data-style=\"" << xml_escaped(ink.name) << "\"";
-            if (d.drawing_order) {
-                w << " data-group=\"" << long(s.group) << "\" data-level=\"" << long(s.level) << "\"";
-                if (s.parent >= 0) w << " data-parent=\"" << long(s.parent) << "\"";
-                w << " data-order=\"" << long(s.order) << "\"";
-            }
-            w << " d=\"";
-            path_data(w, s);
-            w << "\"";
-            if (const double own = shape_opacity(d, s, opacity); own < 1.0) {
-                w << " opacity=\"";
-                w.number(own) << "\"";
-            }
-            const std::string end = write_on.end_of(w, s.stroke_id);
-            if (s.filled) {
-                w << " fill=\"" << color_of(d, s) << "\" stroke=\"none\"" << end;
-                continue;
-            }
-            w << " fill=\"none\" stroke=\"" << ink.color << "\" stroke-width=\"";
-            w.number(line_width_of(d, s)) << "\" stroke-linecap=\"" << cap_name(ink.cap) << "\" stroke-linejoin=\"round\"";
-            if (const std::vector<double> dashes = dashes_of(d, s); !dashes.empty()) {
-                w << " stroke-dasharray=\"";
-                for (size_t k = 0; k < dashes.size(); ++k) {
-                    if (k > 0) w << " ";
-                    w.number(dashes[k]);
-                }
-                w << "\"";
-                if (const double offset = dash_offset_of(d, s); offset != 0.0) {
-                    w << " stroke-dashoffset=\"";
-                    w.number(offset) << "\"";
-                }
-            }
-            w << end;
-        }
-        w << indent << "</g>\n";
+// A kind layer's group and its paths, each line indented by `indent`, the id prefixed with
+// `prefix`.
+void kind_layer(Writer& w, const Drawing& d, const WriteOn& write_on, const LineLayer& layer, const std::string& indent,
+                const std::string& prefix) {
+    const char* name = layer_name(layer.kind);
+    w << indent << "<g id=\"" << prefix << name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
+    if (layer.opacity < 1.0) {
+        w << " opacity=\"";
+        w.number(layer.opacity) << "\"";
     }
-}
-
-// One layer per object, in object order, with its kind layers inside.
-void object_layers(Writer& w, const Drawing& d, const WriteOn& write_on) {
-    std::vector<int32_t> objects;
-    for (const Shape& s : d.shapes) objects.push_back(s.object_index);
-    std::sort(objects.begin(), objects.end());
-    objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
-    for (const int32_t o : objects) {
-        const auto first = std::find_if(d.shapes.begin(), d.shapes.end(), [&](const Shape& s) { return s.object_index == o; });
-        const std::string name = o >= 0 ? xml_escaped(first->object) : std::string("none");
-        const std::string id = o >= 0 ? "object-" + std::to_string(o) : std::string("object-none");
-        w << "  <g id=\"" << id << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name << "\"";
-        if (o >= 0) w << " data-object=\"" << name << "\"";
-        w << ">\n";
-        kind_layers(w, d, write_on, "    ", id + "-", [&](const Shape& s) { return s.object_index == o; });
-        w << "  </g>\n";
-    }
-}
-
-// One layer per style name, in the order of the rules ("unstyled" first, for the strokes no rule
-// matched), with its kind layers inside.
-void style_layers(Writer& w, const Drawing& d, const WriteOn& write_on) {
-    std::vector<std::pair<int32_t, std::string>> names;  // (rule, name)
-    for (const Shape& s : d.shapes) {
+    w << ">\n";
+    for (const uint32_t index : layer.shapes) {
+        const Shape& s = d.shapes[index];
         const InkStyle ink = ink_of(d, s);
-        names.emplace_back(ink.rule, ink.name);
+        w << indent << "  <path id=\"stroke-" << long(s.stroke_id) << "\"";
+        if (!s.object.empty()) w << " data-object=\"" << xml_escaped(s.object) << "\"";
+        if (!ink.name.empty()) w << " data-style=\"" << xml_escaped(ink.name) << "\"";
+        if (d.drawing_order) {
+            w << " data-group=\"" << long(s.group) << "\" data-level=\"" << long(s.level) << "\"";
+            if (s.parent >= 0) w << " data-parent=\"" << long(s.parent) << "\"";
+            w << " data-order=\"" << long(s.order) << "\"";
+        }
+        w << " d=\"";
+        path_data(w, s);
+        w << "\"";
+        if (const double own = shape_opacity(d, s, layer.opacity); own < 1.0) {
+            w << " opacity=\"";
+            w.number(own) << "\"";
+        }
+        const std::string end = write_on.end_of(w, s.stroke_id);
+        if (s.filled) {
+            w << " fill=\"" << color_of(d, s) << "\" stroke=\"none\"" << end;
+            continue;
+        }
+        w << " fill=\"none\" stroke=\"" << ink.color << "\" stroke-width=\"";
+        w.number(line_width_of(d, s)) << "\" stroke-linecap=\"" << cap_name(ink.cap) << "\" stroke-linejoin=\"round\"";
+        if (const std::vector<double> dashes = dashes_of(d, s); !dashes.empty()) {
+            w << " stroke-dasharray=\"";
+            for (size_t k = 0; k < dashes.size(); ++k) {
+                if (k > 0) w << " ";
+                w.number(dashes[k]);
+            }
+            w << "\"";
+            if (const double offset = dash_offset_of(d, s); offset != 0.0) {
+                w << " stroke-dashoffset=\"";
+                w.number(offset) << "\"";
+            }
+        }
+        w << end;
     }
-    std::sort(names.begin(), names.end());
-    names.erase(std::unique(names.begin(), names.end()), names.end());
-    for (const auto& [rule, name] : names) {
-        const std::string label = name.empty() ? std::string("unstyled") : xml_escaped(name);
-        const std::string id = name.empty() ? std::string("unstyled") : "style-" + label;
-        w << "  <g id=\"" << id << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << label << "\"";
-        if (!name.empty()) w << " data-style=\"" << label << "\"";
-        w << ">\n";
-        kind_layers(w, d, write_on, "    ", id + "-", [&](const Shape& s) { return ink_of(d, s).name == name; });
-        w << "  </g>\n";
+    w << indent << "</g>\n";
+}
+
+// The line layers as line_layers groups them: the kind layers at the top, or inside one layer
+// per object (data-object) or per style (data-style), their ids prefixed with the parent's.
+void line_groups(Writer& w, const Drawing& d, const WriteOn& write_on, LayerGrouping grouping) {
+    const std::vector<LineLayer> layers = line_layers(d, grouping);
+    const char* data = grouping == LayerGrouping::kObject ? "data-object" : "data-style";
+    for (size_t i = 0; i < layers.size(); ++i) {
+        const LineLayer& layer = layers[i];
+        if (layer.parent_id.empty()) {
+            kind_layer(w, d, write_on, layer, "  ", "");
+            continue;
+        }
+        const bool opens = i == 0 || layers[i - 1].parent_id != layer.parent_id;
+        const bool closes = i + 1 == layers.size() || layers[i + 1].parent_id != layer.parent_id;
+        if (opens) {
+            const std::string label = xml_escaped(layer.parent_label);
+            w << "  <g id=\"" << xml_escaped(layer.parent_id) << "\" inkscape:groupmode=\"layer\" inkscape:label=\""
+              << label << "\"";
+            if (layer.parent_id != "object-none" && layer.parent_id != "unstyled") w << " " << data << "=\"" << label << "\"";
+            w << ">\n";
+        }
+        kind_layer(w, d, write_on, layer, "    ", xml_escaped(layer.parent_id) + "-");
+        if (closes) w << "  </g>\n";
     }
 }
 
@@ -471,14 +447,7 @@ std::string svg_document(const Drawing& d, const SvgOptions& options) {
           << *d.style.background << "\"/>\n";
     }
     tone_group(w, d.tone);
-    const bool any_object = std::any_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return s.object_index >= 0; });
-    if (options.layers == SvgLayers::kObject && any_object) {
-        object_layers(w, d, write_on);
-    } else if (options.layers == SvgLayers::kStyle) {
-        style_layers(w, d, write_on);
-    } else {
-        kind_layers(w, d, write_on, "  ", "", [](const Shape&) { return true; });
-    }
+    line_groups(w, d, write_on, options.layers);
     w << "</svg>\n";
     return w.take();
 }

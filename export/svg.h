@@ -11,9 +11,8 @@
 
 namespace inkline::output {
 
-// How the layers are grouped (--layers): by line kind; one layer per object with its kind layers
-// inside; one layer per style with its kind layers inside.
-enum class SvgLayers : uint8_t { kKind, kObject, kStyle };
+// How the layers are grouped (--layers; export/drawing.h).
+using SvgLayers = LayerGrouping;
 
 struct SvgOptions {
     int decimals = 2;  // coordinate precision

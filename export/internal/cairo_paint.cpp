@@ -53,6 +53,46 @@ void paint_tone(cairo_t* cr, const ToneLayer& tone) {
     cairo_paint_with_alpha(cr, tone.opacity);
 }
 
+// Saves the state and sets what every part of a drawing is painted with: clipped to the image,
+// round joins, the nonzero rule; the background first where `part` is the background.
+void begin_painting(cairo_t* cr, const Drawing& d, Part part) {
+    cairo_save(cr);
+    cairo_rectangle(cr, 0, 0, d.image.width, d.image.height);
+    cairo_clip(cr);
+    if (part == Part::kBackground && d.style.background) {
+        const Rgb bg = parse_color(*d.style.background, "background");
+        cairo_set_source_rgb(cr, bg.r, bg.g, bg.b);
+        cairo_paint(cr);
+    }
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+}
+
+// A layer's shapes, composited as a group so that its opacity applies to the layer, not per path.
+void paint_line_layer(cairo_t* cr, const Drawing& d, const LineLayer& layer) {
+    cairo_push_group(cr);
+    for (const uint32_t index : layer.shapes) {
+        const Shape& s = d.shapes[index];
+        const InkStyle ink = ink_of(d, s);
+        const Rgb rgb = parse_color(color_of(d, s), "color");
+        cairo_set_source_rgba(cr, rgb.r, rgb.g, rgb.b, shape_opacity(d, s, layer.opacity));
+        trace_path(cr, s);
+        if (s.filled) {
+            cairo_fill(cr);
+            continue;
+        }
+        const std::vector<double> dashes = dashes_of(d, s);
+        cairo_set_dash(cr, dashes.empty() ? nullptr : dashes.data(), int(dashes.size()), dash_offset_of(d, s));
+        cairo_set_line_cap(cr, ink.cap == core::LineCap::kButt     ? CAIRO_LINE_CAP_BUTT
+                               : ink.cap == core::LineCap::kSquare ? CAIRO_LINE_CAP_SQUARE
+                                                                   : CAIRO_LINE_CAP_ROUND);
+        cairo_set_line_width(cr, line_width_of(d, s));
+        cairo_stroke(cr);
+    }
+    cairo_pop_group_to_source(cr);
+    cairo_paint_with_alpha(cr, layer.opacity);
+}
+
 }  // namespace
 
 cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
@@ -86,47 +126,16 @@ void check_cairo(cairo_t* cr, const std::string& what) {
 }
 
 void paint_drawing(cairo_t* cr, const Drawing& d) {
-    cairo_save(cr);
-    cairo_rectangle(cr, 0, 0, d.image.width, d.image.height);
-    cairo_clip(cr);
-    if (d.style.background) {
-        const Rgb bg = parse_color(*d.style.background, "background");
-        cairo_set_source_rgb(cr, bg.r, bg.g, bg.b);
-        cairo_paint(cr);
-    }
-    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+    begin_painting(cr, d, Part::kBackground);
     paint_tone(cr, d.tone);
-    const auto all = [](const Shape&) { return true; };
-    for (const Layer layer : kAllLayers) {
-        if (layer == Layer::kIntersection &&
-            std::none_of(d.shapes.begin(), d.shapes.end(), [](const Shape& s) { return layer_of(s) == Layer::kIntersection; })) {
-            continue;  // as in SVG, only when there are intersection lines
-        }
-        // Each layer is composited as a group so its opacity applies to the layer, not per path.
-        const double opacity = layer_opacity(d, layer, all);
-        cairo_push_group(cr);
-        for (const Shape& s : d.shapes) {
-            if (layer_of(s) != layer) continue;
-            const InkStyle ink = ink_of(d, s);
-            const Rgb rgb = parse_color(color_of(d, s), "color");
-            cairo_set_source_rgba(cr, rgb.r, rgb.g, rgb.b, shape_opacity(d, s, opacity));
-            trace_path(cr, s);
-            if (s.filled) {
-                cairo_fill(cr);
-                continue;
-            }
-            const std::vector<double> dashes = dashes_of(d, s);
-            cairo_set_dash(cr, dashes.empty() ? nullptr : dashes.data(), int(dashes.size()), dash_offset_of(d, s));
-            cairo_set_line_cap(cr, ink.cap == core::LineCap::kButt     ? CAIRO_LINE_CAP_BUTT
-                                   : ink.cap == core::LineCap::kSquare ? CAIRO_LINE_CAP_SQUARE
-                                                                       : CAIRO_LINE_CAP_ROUND);
-            cairo_set_line_width(cr, line_width_of(d, s));
-            cairo_stroke(cr);
-        }
-        cairo_pop_group_to_source(cr);
-        cairo_paint_with_alpha(cr, opacity);
-    }
+    for (const LineLayer& layer : line_layers(d, LayerGrouping::kKind)) paint_line_layer(cr, d, layer);
+    cairo_restore(cr);
+}
+
+void paint_part(cairo_t* cr, const Drawing& d, Part part, const LineLayer* layer) {
+    begin_painting(cr, d, part);
+    if (part == Part::kTone) paint_tone(cr, d.tone);
+    if (part == Part::kLines && layer != nullptr) paint_line_layer(cr, d, *layer);
     cairo_restore(cr);
 }
 

@@ -14,6 +14,13 @@ namespace inkline::output::internal {
 // layer in order.
 void paint_drawing(cairo_t* cr, const Drawing& drawing);
 
+// One part of a drawing, for writers that keep its layers apart: the background (nothing
+// without one), the tone (nothing without one), or the lines of `layer` (one of
+// line_layers(drawing, ...)). Painted one over the other in that order they give paint_drawing's
+// picture (with the line layers of its grouping).
+enum class Part : uint8_t { kBackground, kTone, kLines };
+void paint_part(cairo_t* cr, const Drawing& drawing, Part part, const LineLayer* layer = nullptr);
+
 // Appends Cairo's output to a string (for cairo_*_create_for_stream / write_to_png_stream); out
 // of memory is reported to Cairo as CAIRO_STATUS_NO_MEMORY.
 cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length);

@@ -159,8 +159,8 @@ class Frame:
         return self._drawn("PNG").png(path_format, centerline, background)
 
     def to_pdf(self, page: Optional[str] = None, margin_mm: float = 10.0, dpi: float = 96.0, path_format: str = "polygon",
-               centerline: bool = False, background: Optional[str] = None) -> bytes:
-        return self._drawn("PDF").pdf(page, margin_mm, dpi, path_format, centerline, background)
+               centerline: bool = False, background: Optional[str] = None, layers: str = "kind") -> bytes:
+        return self._drawn("PDF").pdf(page, margin_mm, dpi, path_format, centerline, background, layers)
 
     def write_json(self, path) -> None:
         _write(path, self.to_json().encode())

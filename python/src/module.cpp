@@ -144,17 +144,16 @@ struct Frame {
     }
 };
 
+output::LayerGrouping layer_grouping(const std::string& layers) {
+    if (layers == "kind") return output::LayerGrouping::kKind;
+    if (layers == "object") return output::LayerGrouping::kObject;
+    if (layers == "style") return output::LayerGrouping::kStyle;
+    throw InputError("layers '" + inkline::quote_value(layers) + "': expected kind, object or style");
+}
+
 output::SvgOptions svg_options(const std::string& layers) {
     output::SvgOptions o;
-    if (layers == "kind") {
-        o.layers = output::SvgLayers::kKind;
-    } else if (layers == "object") {
-        o.layers = output::SvgLayers::kObject;
-    } else if (layers == "style") {
-        o.layers = output::SvgLayers::kStyle;
-    } else {
-        throw InputError("layers '" + inkline::quote_value(layers) + "': expected kind, object or style");
-    }
+    o.layers = layer_grouping(layers);
     return o;
 }
 
@@ -470,8 +469,10 @@ PYBIND11_MODULE(_inkline, m) {
              },
              py::arg("path_format"), py::arg("centerline"), py::arg("background"))
         .def("pdf", [](const Frame& f, const std::optional<std::string>& page, double margin_mm, double dpi,
-                       const std::string& path_format, bool centerline, const std::optional<std::string>& background) {
+                       const std::string& path_format, bool centerline, const std::optional<std::string>& background,
+                       const std::string& layers) {
                  output::PdfOptions options;
+                 options.layers = layer_grouping(layers);
                  options.page = page ? std::optional(output::parse_page_size(*page)) : std::nullopt;
                  options.margin_mm = margin_mm;
                  options.dpi = dpi;
@@ -490,7 +491,7 @@ PYBIND11_MODULE(_inkline, m) {
                  return py::bytes(bytes);
              },
              py::arg("page"), py::arg("margin_mm"), py::arg("dpi"), py::arg("path_format"), py::arg("centerline"),
-             py::arg("background"));
+             py::arg("background"), py::arg("layers"));
 
     py::class_<Shot>(m, "Shot")
         .def(py::init<const std::string&, const ShotArgs&, int, const std::string&, const std::string&, double, size_t, int>(),
