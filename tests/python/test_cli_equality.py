@@ -82,16 +82,20 @@ def test_bare_mesh_turntable_and_smooth_contours(inkline_exe, tmp_path):
             assert_frame_is_cli(shot.render(n), out / f"{n}.json")
 
 
-def test_styles_and_texture(inkline_exe, tmp_path):
+def test_styles_and_texture(inkline_exe, tmp_path, monkeypatch):
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "0")
     scene = SAMPLES / "looks" / "brush.json"
     run_cli(inkline_exe, scene, "--frames", "1:2", "--visibility", "raycast", "--layers", "style", "--path-format",
-            "bezier", "--json", tmp_path / "%d.json", "--svg", tmp_path / "%d.svg")
+            "bezier", "--json", tmp_path / "%d.json", "--svg", tmp_path / "%d.svg", "--pdf", tmp_path / "%d.pdf")
     shot = inkline.open(scene, frames=(1, 2), visibility="raycast")
     for n in shot.frames:
         frame = shot.render(n)
         assert any(s.style for s in frame.strokes)
         assert_frame_is_cli(frame, tmp_path / f"{n}.json")
         assert frame.to_svg(layers="style", path_format="bezier") == (tmp_path / f"{n}.svg").read_text()
+        pdf = frame.to_pdf(layers="style", path_format="bezier")
+        assert pdf == (tmp_path / f"{n}.pdf").read_bytes()
+        assert pdf != frame.to_pdf(layers="kind", path_format="bezier"), "the PDF's layers follow `layers`"
 
 
 SPHERE_SCENE = {

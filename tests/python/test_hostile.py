@@ -147,6 +147,7 @@ def test_unwritable_outputs_leave_old_files_and_no_temporaries(tmp_path):
     (lambda f: f.to_pdf(page="B9"), "B9"),
     (lambda f: f.to_pdf(dpi=0), "dpi"),
     (lambda f: f.to_pdf(margin_mm=-1), "margin_mm"),
+    (lambda f: f.to_pdf(layers="colour"), "layers 'colour'"),
 ])
 def test_writer_options(call, message):
     frame = inkline.scene(*SPHERE, camera=CAMERA).render(1)
