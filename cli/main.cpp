@@ -117,8 +117,9 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "inkline " + std::string(inkline::kVersion));
 
     inkline::cli::RenderArgs render;
-    CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (.json) or a mesh as a turntable");
-    render_cmd->add_option("input", render.input, "scene file (.json) or mesh (.obj .off .ply .stl)")->required();
+    CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (.json), a glTF shot, or a mesh as a turntable");
+    render_cmd->add_option("input", render.input, "scene file (.json), glTF shot (.glb .gltf) or mesh (.obj .off .ply .stl)")
+        ->required();
     add_render_options(render_cmd, render);
 
     inkline::cli::FarmArgs farm;
