@@ -8,8 +8,11 @@
 #       [--runs 3] [--frames 24] [--reuse] [--mesh FILE ...] [-- EXTRA INKLINE RENDER ARGS]
 #
 # Installs nothing. Without `blender` on PATH the Suzanne meshes cannot be built: the script
-# says so and times only the meshes given with --mesh (each rendered as inkline's default
-# turntable), or those an earlier run left in --work with --reuse.
+# says so and times only the inputs given with --mesh, or those an earlier run left in --work with
+# --reuse. --mesh takes any input `inkline render` does: a mesh file is rendered as inkline's
+# default turntable, a glTF shot (bench/gltf/build_shot.py's, say) through its own camera and
+# animation. Extra render arguments apply to every input: `-- --contour smooth` times smooth
+# contours.
 #
 # Per size: the median over frames 2.. of the per-frame stage times `render -v` prints (every
 # stage including the SVG file) and of the wall time from one frame's line to the next (where a
@@ -41,10 +44,15 @@ run = functools.partial(measured_run.run, who="scale.py")
 STAGE = re.compile(r", ([a-z_]+) ([0-9.]+) ms")
 
 
-def mesh_counts(obj_path):
-    """Vertices and triangles (polygons fan-triangulated) of an OBJ file."""
+def mesh_counts(path, inkline, log):
+    """Vertices and triangles of a mesh file: an OBJ's (polygons fan-triangulated) read here, any
+    other input's (a glTF shot's welded and in total, .off, .ply, .stl) from `inkline info`."""
+    if Path(path).suffix.lower() != ".obj":
+        text = run([str(inkline), "info", str(path)], log)[3]
+        return (int(re.search(r"^vertices: (\d+)", text, re.M).group(1)),
+                int(re.search(r"^faces: (\d+)", text, re.M).group(1)))
     vertices = triangles = 0
-    with open(obj_path) as f:
+    with open(path) as f:
         for line in f:
             vertices += line.startswith("v ")
             if line.startswith("f "):
@@ -61,7 +69,7 @@ def main():
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--frames", type=int, default=24)
     ap.add_argument("--reuse", action="store_true")
-    ap.add_argument("--mesh", action="append", default=[], help="also time this mesh file (default turntable)")
+    ap.add_argument("--mesh", action="append", default=[], help="also time this input (a mesh: default turntable; a glTF shot)")
     ap.add_argument("extra", nargs="*", help="extra arguments for inkline render (after --)")
     args = ap.parse_args()
 
@@ -102,7 +110,7 @@ def main():
 
     rows = []
     for label, target, mesh, frame_args in inputs:
-        vertices, faces = mesh_counts(mesh)
+        vertices, faces = mesh_counts(mesh, inkline, work / "logs" / "info.log")
         mesh_mb = 12.0 * (vertices + faces) / 2**20
         per_run = []
         for r in range(args.runs):
