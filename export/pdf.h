@@ -29,9 +29,9 @@ struct PdfOptions {
     // ISO 8601 "YYYY-MM-DDThh:mm:ss" written as the document's creation date; empty: Cairo's
     // clock. A fixed date makes the file depend on its input alone.
     std::string creation_date;
-    // The line layers as PDF layers (optional content groups, which Illustrator, Inkscape and
-    // Acrobat show as layers), grouped as the SVG's are (--layers), the tone in a layer of its
-    // own under them; none: one drawing per page, no layers.
+    // The line layers as PDF layers (optional content groups, which Acrobat, Illustrator and
+    // other PDF tools with a layers panel show as layers), grouped as the SVG's are (--layers),
+    // the tone in a layer of its own under them; none: one drawing per page, no layers.
     std::optional<LayerGrouping> layers = LayerGrouping::kKind;
 };
 
