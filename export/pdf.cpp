@@ -165,7 +165,6 @@ std::string assemble_layers(const std::string& cairo_pdf, const std::vector<Fram
         }
         return it->second;
     };
-    std::vector<QPDFPageObjectHelper> drawn;
     QPDFObjectHandle labels = QPDFObjectHandle::newArray();
     for (size_t f = 0; f < frames.size(); ++f) {
         const FramePages& frame = frames[f];
@@ -199,12 +198,19 @@ std::string assemble_layers(const std::string& cairo_pdf, const std::vector<Fram
         QPDFObjectHandle label = QPDFObjectHandle::newDictionary();
         label.replaceKey("/P", QPDFObjectHandle::newUnicodeString(frame.label));
         labels.appendItem(label);
-        drawn.push_back(base);
     }
-    for (const FramePages& frame : frames) {
-        for (const auto& [page, layer] : frame.layers) document.removePage(pages.at(page));
-    }
+    // The page tree keeps the frames' pages only (one pass: removing pages one by one costs the
+    // square of their number); the layer pages live on in the forms made of them.
     QPDFObjectHandle root = pdf.getRoot();
+    QPDFObjectHandle tree = root.getKey("/Pages"), frame_pages = QPDFObjectHandle::newArray();
+    for (const FramePages& frame : frames) {
+        QPDFObjectHandle page = pages.at(frame.base).getObjectHandle();
+        page.replaceKey("/Parent", tree);
+        frame_pages.appendItem(page);
+    }
+    tree.replaceKey("/Kids", frame_pages);
+    tree.replaceKey("/Count", QPDFObjectHandle::newInteger(static_cast<long long>(frames.size())));
+    pdf.updateAllPagesCache();
     QPDFObjectHandle all = QPDFObjectHandle::newArray(), order = QPDFObjectHandle::newArray();
     for (const std::string& key : top) {
         all.appendItem(groups.at(key));
@@ -234,6 +240,7 @@ std::string assemble_layers(const std::string& cairo_pdf, const std::vector<Fram
     writer.setOutputMemory();
     writer.setDeterministicID(true);
     writer.setCompressStreams(true);
+    writer.setDecodeLevel(qpdf_dl_none);  // Cairo's streams as they are; only the new ones compressed
     writer.setObjectStreamMode(qpdf_o_generate);
     writer.write();
     const std::shared_ptr<Buffer> out = writer.getBufferSharedPointer();
