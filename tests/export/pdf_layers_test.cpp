@@ -214,5 +214,13 @@ TEST_F(PdfLayers, ObjectsAndStylesHoldTheirKindLayersAndTheToneLiesUnderAll) {
     }
 }
 
+TEST_F(PdfLayers, ADocumentWithoutPagesIsStillAPdf) {
+    const std::string layered = pdf_of({}, output::LayerGrouping::kKind);
+    QPDF pdf;
+    pdf.processMemoryFile("empty", layered.data(), layered.size());
+    EXPECT_EQ(QPDFPageDocumentHelper(pdf).getAllPages().size(), 0u);
+    EXPECT_TRUE(listed_layers(pdf).empty());
+}
+
 }  // namespace
 }  // namespace inkline
