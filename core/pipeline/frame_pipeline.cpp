@@ -292,23 +292,42 @@ FrameResult FramePipeline::run(int frame) {
         }
         out.tone.mode = scene_.tone.mode;
         if (tone_faces_.empty() && !meshes_.objects().empty()) {
-            std::vector<uint8_t> shaded;
-            for (const MeshObject& object : meshes_.objects()) shaded.push_back(object_draws_tone(scene_, object.name));
-            if (std::find(shaded.begin(), shaded.end(), 0) != shaded.end()) {
+            // Each object's curve (0: unshaded, else 1 + its index in tone_curves_); faces keep
+            // the scene's curve unless some object is unshaded or has one of its own.
+            const ToneCurve scene_curve = tone_curve(scene_.tone);
+            std::vector<uint16_t> curve_of_object;
+            bool own = false;
+            for (const MeshObject& object : meshes_.objects()) {
+                const std::optional<ToneCurve> curve = object_tone_curve(scene_, object.name);
+                if (!curve) {
+                    curve_of_object.push_back(0);
+                    own = true;
+                    continue;
+                }
+                const auto same = [&](const ToneCurve& c) {
+                    return c.gamma == curve->gamma && c.levels == curve->levels && c.min == curve->min && c.max == curve->max;
+                };
+                own |= !same(scene_curve);
+                auto it = std::find_if(tone_curves_.begin(), tone_curves_.end(), same);
+                if (it == tone_curves_.end()) it = tone_curves_.insert(it, *curve);
+                curve_of_object.push_back(uint16_t(1 + (it - tone_curves_.begin())));
+            }
+            if (own) {
                 tone_faces_.reserve(meshes_.face_objects().size());
-                for (uint32_t object : meshes_.face_objects()) tone_faces_.push_back(shaded[object]);
+                for (uint32_t object : meshes_.face_objects()) tone_faces_.push_back(curve_of_object[object]);
             }
         }
+        const FaceTones face_tones{tone_faces_, tone_curves_};
         const bool new_topology = change == MeshChange::kTopology;
         if (scene_.tone.mode == ToneMode::kStipple) {
             if (!stippler_) stippler_.emplace(scene_.tone);
             out.tone.dots = stippler_->stipple(mesh, table, tone_normals_, projection, scene_.light, occlusion,
-                                               out.strokes.strokes, new_topology, tone_faces_);
+                                               out.strokes.strokes, new_topology, face_tones);
             out.tone.stipple_stats = stippler_->stats();
         } else {
             if (!hatcher_) hatcher_.emplace(scene_.tone);
             out.tone.hatches = hatcher_->hatch(mesh, table, tone_normals_, projection, scene_.light, occlusion,
-                                               out.strokes.strokes, new_topology, tone_faces_);
+                                               out.strokes.strokes, new_topology, face_tones);
             out.tone.hatch_stats = hatcher_->stats();
         }
         tone_ms = step("tone");

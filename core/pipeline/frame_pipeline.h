@@ -140,7 +140,10 @@ class FramePipeline {
     std::optional<Stippler> stippler_;  // with a scene "tone" of mode stipple
     std::optional<Hatcher> hatcher_;    // ... of mode hatch or crosshatch
     std::vector<glm::dvec3> tone_normals_;  // the mesh's vertex normals, for the tone
-    std::vector<uint8_t> tone_faces_;       // per face: 1 where its object is shaded; empty: all
+    // Per face: 0 where its object is unshaded, else 1 + the index of its object's tone curve in
+    // tone_curves_; empty: every face on the scene's curve.
+    std::vector<uint16_t> tone_faces_;
+    std::vector<ToneCurve> tone_curves_;
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;
     bool trace_intersections_ = false;

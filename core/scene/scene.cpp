@@ -296,6 +296,26 @@ glm::dvec3 read_color(const Reader& r, const std::string& key) {
     return color;
 }
 
+// The tone curve's keys of a "tone" block, those it has (docs/tone.md).
+ToneCurvePatch read_tone_curve(const Reader& r) {
+    ToneCurvePatch c;
+    if (r.has("gamma")) {
+        c.gamma = r.number_or("gamma", 1.0);
+        if (!(*c.gamma > 0.0 && *c.gamma <= 16.0)) r.fail("gamma", "must be above 0 and at most 16");
+    }
+    if (r.has("levels")) {
+        c.levels = r.integer("levels");
+        if (*c.levels < 0 || *c.levels > 256) r.fail("levels", "must be between 0 and 256");
+    }
+    for (const char* key : {"min", "max"}) {
+        if (!r.has(key)) continue;
+        const double v = r.number_or(key, 0.0);
+        if (!(v >= 0.0 && v <= 0.9)) r.fail(key, "must be between 0 and 0.9");
+        (std::string_view(key) == "min" ? c.min : c.max) = v;
+    }
+    return c;
+}
+
 // The scene's "tone" block (docs/tone.md).
 ToneOptions read_tone(const Reader& r) {
     r.allow_only({"mode", "gamma", "levels", "min", "max", "dot_radius_px", "fade", "line_width_px", "direction",
@@ -307,16 +327,12 @@ ToneOptions read_tone(const Reader& r) {
         if (!mode) r.fail("mode", "expected \"stipple\", \"hatch\", \"crosshatch\" or \"none\"");
         t.mode = *mode;
     }
-    t.gamma = r.number_or("gamma", t.gamma);
-    if (!(t.gamma > 0.0 && t.gamma <= 16.0)) r.fail("gamma", "must be above 0 and at most 16");
-    if (r.has("levels")) {
-        t.levels = r.integer("levels");
-        if (t.levels < 0 || t.levels > 256) r.fail("levels", "must be between 0 and 256");
-    }
-    t.min = r.number_or("min", t.min);
-    t.max = r.number_or("max", t.max);
-    if (!(t.min >= 0.0 && t.min <= 0.9)) r.fail("min", "must be between 0 and 0.9");
-    if (!(t.max >= 0.0 && t.max <= 0.9)) r.fail("max", "must be between 0 and 0.9");
+    ToneCurve curve = tone_curve(t);
+    read_tone_curve(r).apply_to(curve);
+    t.gamma = curve.gamma;
+    t.levels = curve.levels;
+    t.min = curve.min;
+    t.max = curve.max;
     t.dot_radius_px = r.number_or("dot_radius_px", t.dot_radius_px);
     if (!(t.dot_radius_px >= 0.25 && t.dot_radius_px <= 64.0)) r.fail("dot_radius_px", "must be between 0.25 and 64");
     t.fade = r.number_or("fade", t.fade);
@@ -578,7 +594,15 @@ std::vector<ObjectRule> read_object_rules(const Reader& r) {
         o.allow_only({"lines", "tone"});
         ObjectRule rule;
         rule.pattern = pattern;
-        if (o.has("tone")) rule.tone = o.boolean_or("tone", true);
+        if (o.has("tone") && o.at("tone").is_object()) {
+            const Reader t = o.child("tone");
+            t.allow_only({"gamma", "levels", "min", "max"});
+            rule.tone = true;
+            rule.tone_curve = read_tone_curve(t);
+        } else if (o.has("tone")) {
+            if (!o.at("tone").is_boolean()) o.fail("tone", "expected true, false or {\"gamma\", \"levels\", \"min\", \"max\"}");
+            rule.tone = o.boolean_or("tone", true);
+        }
         if (o.has("lines")) {
             if (o.at("lines").is_boolean()) {
                 rule.lines = o.boolean_or("lines", true);
@@ -619,13 +643,27 @@ std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std
 }
 
 bool object_draws_tone(const Scene& scene, const std::string& object_name) {
+    return object_tone_curve(scene, object_name).has_value();
+}
+
+std::optional<ToneCurve> object_tone_curve(const Scene& scene, const std::string& object_name) {
     bool lines = true, tone = true;
+    ToneCurve curve = tone_curve(scene.tone);
     for (const ObjectRule& rule : scene.objects) {
         if (::fnmatch(rule.pattern.c_str(), object_name.c_str(), 0) != 0) continue;
         lines = rule.lines;
         if (rule.tone) tone = *rule.tone;
+        rule.tone_curve.apply_to(curve);
     }
-    return lines && tone;
+    if (!lines || !tone) return std::nullopt;
+    return curve;
+}
+
+void ToneCurvePatch::apply_to(ToneCurve& r_curve) const {
+    if (gamma) r_curve.gamma = *gamma;
+    if (levels) r_curve.levels = *levels;
+    if (min) r_curve.min = *min;
+    if (max) r_curve.max = *max;
 }
 
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file, int max_image_side) {

@@ -57,11 +57,19 @@ struct GltfSettings {
 };
 
 // Line settings for the objects whose names match a glob (scene "objects"; docs/scene.md).
+// Keys of a tone curve that a rule sets (the others stay as they were).
+struct ToneCurvePatch {
+    std::optional<double> gamma, min, max;
+    std::optional<int> levels;
+    void apply_to(ToneCurve& r_curve) const;
+};
+
 struct ObjectRule {
     std::string pattern;  // fnmatch(3) glob over object names ("Ground", "Tree.*")
     bool lines = true;    // false: a holdout, which hides lines and draws none
     std::optional<bool> silhouette, boundary, crease, intersection;  // override the scene's lines.*
     std::optional<bool> tone;  // false: no tone on the object (a holdout has none either)
+    ToneCurvePatch tone_curve;  // "tone": {...}: the object's own gamma, levels, min, max
 };
 
 // The longest write-on (s): a day.
@@ -100,6 +108,9 @@ std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std
 // Whether an object is shaded by the scene's tone: not a holdout, and no matching rule says
 // "tone": false (the last matching rule that says either way decides).
 bool object_draws_tone(const Scene& scene, const std::string& object_name);
+// The tone curve an object is shaded with: the scene's, with the keys of every matching rule's
+// "tone" block applied in order; none where object_draws_tone says it is not shaded.
+std::optional<ToneCurve> object_tone_curve(const Scene& scene, const std::string& object_name);
 
 // Reads and validates a scene file; relative paths resolve against its folder.
 // Throws InputError naming the file and key.

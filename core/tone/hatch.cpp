@@ -96,7 +96,7 @@ struct FaceLine {
 std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
                                   const Projection& projection, const Light& light, const Occlusion& occlusion,
                                   std::span<const Stroke> strokes, bool topology_changed,
-                                  std::span<const uint8_t> shaded_faces) {
+                                  FaceTones face_tones) {
     stats_ = {};
     std::vector<Hatch> out;
     if ((options_.mode != ToneMode::kHatch && options_.mode != ToneMode::kCrosshatch) || mesh.triangles.empty()) {
@@ -132,21 +132,30 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
     const ImageSize image = projection.image();
     const double width = options_.line_width_px;
 
-    // Tone at a point of the mesh with the (object-space) normal given; 0 without one.
+    // Each face's curve: its own, or the options' (nullptr: the face is left unshaded).
+    const ToneCurve scene_curve = tone_curve(options_);
+    const auto curve_of = [&](size_t f) -> const ToneCurve* {
+        if (face_tones.empty()) return &scene_curve;
+        const uint16_t c = face_tones.curve_of_face[f];
+        return c == 0 ? nullptr : &face_tones.curves[c - 1];
+    };
+    // Tone at a point of the mesh with the (object-space) normal given, on a curve; 0 without a
+    // normal.
     const internal::ToneLight lit(world_from_object, light, options_);
-    const auto tone_at = [&](const glm::dvec3& p, const glm::dvec3& normal) {
-        return glm::dot(normal, normal) == 0.0 ? 0.0 : lit.at(p, normal);
+    const auto tone_at = [&](const glm::dvec3& p, const glm::dvec3& normal, const ToneCurve& curve) {
+        return glm::dot(normal, normal) == 0.0 ? 0.0 : tone_of(lit.intensity(p, normal), curve);
     };
 
-    // Per vertex, once a frame: the tone (0 without a normal) and the clip coordinates.
-    std::vector<double>& vertex_tone = vertex_tone_;
+    // Per vertex, once a frame: the light's intensity (NaN without a normal: tone 0) and the
+    // clip coordinates.
+    std::vector<double>& vertex_intensity = vertex_intensity_;
     std::vector<glm::dvec4>& vertex_clip = vertex_clip_;
-    vertex_tone.resize(mesh.positions.size());
+    vertex_intensity.resize(mesh.positions.size());
     vertex_clip.resize(mesh.positions.size());
     internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
         for (size_t v = begin; v < end; ++v) {
             const glm::dvec3 p(mesh.positions[v]);
-            vertex_tone[v] = tone_at(p, normals[v]);
+            vertex_intensity[v] = glm::dot(normals[v], normals[v]) == 0.0 ? NAN : lit.intensity(p, normals[v]);
             vertex_clip[v] = projection.clip(p);
         }
     });
@@ -159,6 +168,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
 
         // The lines across one face, appended to r_lines in plane order.
         const auto trace_face = [&](uint32_t face, std::vector<FaceLine>& r_lines) {
+            const ToneCurve& curve = *curve_of(face);
             const glm::uvec3 t = mesh.triangles[face];
             const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
                                      glm::dvec3(mesh.positions[t.z])};
@@ -184,8 +194,9 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
 
             int finest = -1;
             for (int c = 0; c < 3; ++c) {
-                finest = std::max(finest, finest_level(family_tone(vertex_tone[t[c]], f, options_), family.step0,
-                                                       gradient, width));
+                const double intensity = vertex_intensity[t[c]];
+                const double tone = std::isnan(intensity) ? 0.0 : tone_of(intensity, curve);
+                finest = std::max(finest, finest_level(family_tone(tone, f, options_), family.step0, gradient, width));
             }
             if (finest < 0) return;
             // Planes of levels up to `finest` with h_lo < c <= h_hi (a corner on a plane counts
@@ -218,7 +229,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                     line.sides[found] = edge;
                     line.points[found] = e0 + along * (e1 - e0);
                     const glm::dvec3 normal = normals[ends.x] + along * (normals[ends.y] - normals[ends.x]);
-                    const double tone = family_tone(tone_at(line.points[found], normal), f, options_);
+                    const double tone = family_tone(tone_at(line.points[found], normal, curve), f, options_);
                     line.width[found] = width * line_weight(level_of(plane), tone, family.step0, gradient, width);
                     ++found;
                 }
@@ -237,7 +248,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             std::vector<HatchStats> slice_stats(slices);
             internal::run_tasks(slices, [&](size_t s) {
                 for (size_t face = faces * s / slices; face < faces * (s + 1) / slices; ++face) {
-                    if (!table.face_valid[face] || (!shaded_faces.empty() && !shaded_faces[face])) continue;
+                    if (!table.face_valid[face] || curve_of(face) == nullptr) continue;
                     const size_t before = found[s].size();
                     trace_face(uint32_t(face), found[s]);
                     line_offsets[face + 1] = uint32_t(found[s].size() - before);

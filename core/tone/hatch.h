@@ -59,11 +59,10 @@ class Hatcher {
   public:
     explicit Hatcher(ToneOptions options) : options_(options) {}
 
-    // The hatches of one frame, as Stippler::stipple takes its arguments (shaded_faces too).
+    // The hatches of one frame, as Stippler::stipple takes its arguments (face_tones too).
     std::vector<Hatch> hatch(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
                              const Projection& projection, const Light& light, const Occlusion& occlusion,
-                             std::span<const Stroke> strokes, bool topology_changed,
-                             std::span<const uint8_t> shaded_faces = {});
+                             std::span<const Stroke> strokes, bool topology_changed, FaceTones face_tones = {});
 
     const HatchStats& stats() const { return stats_; }
 
@@ -79,8 +78,8 @@ class Hatcher {
     std::vector<glm::uvec3> face_edges_;  // per face, the edge of each side (face_edges), with families_
     size_t faces_ = 0;
     HatchStats stats_;
-    // A frame's scratch, kept for the next: per vertex its tone and clip coordinates.
-    std::vector<double> vertex_tone_;
+    // A frame's scratch, kept for the next: per vertex its light's intensity and clip coordinates.
+    std::vector<double> vertex_intensity_;
     std::vector<glm::dvec4> vertex_clip_;
 };
 

@@ -272,7 +272,7 @@ void SurfaceSamples::add_level() {
 std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
                                    const Projection& projection, const Light& light, const Occlusion& occlusion,
                                    std::span<const Stroke> strokes, bool topology_changed,
-                                   std::span<const uint8_t> shaded_faces) {
+                                   FaceTones face_tones) {
     stats_ = {};
     if (options_.mode != ToneMode::kStipple || mesh.triangles.empty()) return {};
     if (!samples_ || topology_changed || samples_->faces() != mesh.triangles.size()) {
@@ -310,13 +310,20 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         return shrink(std::abs(glm::dot(n, glm::normalize(eye - p))));
     };
     const internal::ToneLight lit(world_from_object, light, options_);
-    const auto tone_at = [&](const glm::dvec3& p, const glm::dvec3& normal, const glm::dvec3& face_n) {
-        return lit.at(p, glm::dot(normal, normal) == 0.0 ? face_n : normal);
+    // Each face's curve: its own, or the options' (nullptr: the face is left unshaded).
+    const ToneCurve scene_curve = tone_curve(options_);
+    const auto curve_of = [&](size_t f) -> const ToneCurve* {
+        if (face_tones.empty()) return &scene_curve;
+        const uint16_t c = face_tones.curve_of_face[f];
+        return c == 0 ? nullptr : &face_tones.curves[c - 1];
+    };
+    const auto tone_at = [&](const glm::dvec3& p, const glm::dvec3& normal, const glm::dvec3& face_n, const ToneCurve& curve) {
+        return tone_of(lit.intensity(p, glm::dot(normal, normal) == 0.0 ? face_n : normal), curve);
     };
 
-    // Per vertex, once each: its tone (the darkest without a normal) and what its faces' limits
-    // below read of it, as area_scale and foreshortening would compute them at the vertex.
-    const double darkest = std::max(options_.min, options_.max);
+    // Per vertex, once each: the light's intensity (none without a normal: its faces take their
+    // darkest tone) and what its faces' limits below read of it, as area_scale and
+    // foreshortening would compute them at the vertex.
     // (Kept from frame to frame: a new buffer's pages cost more than filling it.)
     std::vector<VertexView>& vertex_view = vertex_view_;
     vertex_view.resize(mesh.positions.size());
@@ -326,7 +333,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             VertexView& view = vertex_view[v];
             const glm::dvec4 clip = m * glm::dvec4(p, 1.0);
             const glm::dvec3& normal = normals[v];
-            view.tone = glm::dot(normal, normal) == 0.0 ? darkest : tone_at(p, normal, normal);
+            view.intensity = glm::dot(normal, normal) == 0.0 ? NAN : lit.intensity(p, normal);
             view.in_front = projection.in_front(clip);
             if (!view.in_front) continue;
             view.px = projection.pixel_from_clip(clip);
@@ -344,7 +351,8 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     const double area = samples_->area();
     internal::parallel_for(mesh.triangles.size(), 8192, [&](size_t begin, size_t end) {
         for (size_t f = begin; f < end; ++f) {
-            if (!table.face_valid[f] || (!shaded_faces.empty() && !shaded_faces[f])) continue;
+            const ToneCurve* curve = curve_of(f);
+            if (!table.face_valid[f] || curve == nullptr) continue;
             const glm::uvec3 t = mesh.triangles[f];
             const glm::dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
             const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
@@ -361,7 +369,8 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
                 lo = glm::min(lo, view.px);
                 hi = glm::max(hi, view.px);
                 scale = std::max(scale, std::abs(glm::dot(view.jacobian, unit_n)) / shrink(std::abs(glm::dot(unit_n, view.to_eye))));
-                tone = std::max(tone, view.tone);
+                tone = std::max(tone, std::isnan(view.intensity) ? std::max(curve->min, curve->max)
+                                                                 : tone_of(view.intensity, *curve));
             }
             if (!in_front || hi.x < 0.0 || hi.y < 0.0 || lo.x > image.width || lo.y > image.height) continue;
             face_limit[f] = dot_density(tone, radius) * kScaleMargin * scale * area / kappa;
@@ -399,7 +408,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
                 if (!projection.inside_image(px)) continue;
                 const double shrunk = foreshortening(p, unit_n);
                 const double scale = area_scale(clip, unit_n) / shrunk;
-                const double tone = tone_at(p, b0 * normals[t.x] + b1 * normals[t.y] + b2 * normals[t.z], n);
+                const double tone = tone_at(p, b0 * normals[t.x] + b1 * normals[t.y] + b2 * normals[t.z], n, *curve_of(f));
                 const double threshold = dot_density(tone, radius) * scale * area / kappa;
                 const double rank = double(i);
                 double weight = 0.0;

@@ -104,12 +104,12 @@ class Stippler {
     // The dots of one frame: mesh (object space) seen through `projection`, lit by `light`,
     // hidden as `occlusion` says (prepared for this mesh and projection); the ink of `strokes`
     // (visible, drawn) covers dots under it. `normals` are the mesh's vertex normals
-    // (vertex_normals). A new topology (topology_changed) rebuilds the samples. With shaded_faces,
-    // only faces marked 1 there get dots (the others still hide them); empty: every face.
+    // (vertex_normals). A new topology (topology_changed) rebuilds the samples. With face_tones,
+    // each face is shaded on its own curve, and faces left unshaded get no dots (they still hide
+    // them); empty: every face on the options' curve.
     std::vector<Dot> stipple(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
                              const Projection& projection, const Light& light, const Occlusion& occlusion,
-                             std::span<const Stroke> strokes, bool topology_changed,
-                             std::span<const uint8_t> shaded_faces = {});
+                             std::span<const Stroke> strokes, bool topology_changed, FaceTones face_tones = {});
 
     const ToneOptions& options() const { return options_; }
     // Counts of the last stipple().
@@ -125,7 +125,7 @@ class Stippler {
         glm::dvec2 px{0.0};
         glm::dvec3 jacobian{0.0};  // the pixel Jacobian's rows, crossed: square pixels per unit area along a normal
         glm::dvec3 to_eye{0.0};    // unit
-        double tone = 0.0;
+        double intensity = NAN;  // of the light; NaN without a normal (the darkest tone)
         bool in_front = false;
     };
     std::vector<VertexView> vertex_view_;

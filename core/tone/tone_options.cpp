@@ -23,11 +23,17 @@ std::optional<ToneMode> tone_mode_from_name(std::string_view name) {
     return std::nullopt;
 }
 
-double tone_of(double intensity, const ToneOptions& options) {
+double tone_of(double intensity, const ToneCurve& curve) {
     const double x = 1.0 - std::clamp(intensity, 0.0, 1.0);
-    double t = options.gamma == 1.0 ? x : std::pow(x, options.gamma);
-    if (options.levels > 1) t = std::round(t * (options.levels - 1)) / double(options.levels - 1);
-    return options.min + (options.max - options.min) * t;
+    double t = curve.gamma == 1.0 ? x : std::pow(x, curve.gamma);
+    if (curve.levels > 1) t = std::round(t * (curve.levels - 1)) / double(curve.levels - 1);
+    return curve.min + (curve.max - curve.min) * t;
+}
+
+double tone_of(double intensity, const ToneOptions& options) { return tone_of(intensity, tone_curve(options)); }
+
+ToneCurve tone_curve(const ToneOptions& options) {
+    return {.gamma = options.gamma, .levels = options.levels, .min = options.min, .max = options.max};
 }
 
 }  // namespace inkline::core

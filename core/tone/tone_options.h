@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
 
 namespace inkline::core {
@@ -21,6 +22,15 @@ enum class ToneMode : uint8_t {
 
 // "none", "stipple", "hatch" or "crosshatch".
 const char* tone_mode_name(ToneMode mode);
+
+// How dark the surface is shaded at a light intensity I in [0, 1]: t = x^gamma with x = 1 - I,
+// rounded to `levels` steps (0 or 1: not rounded), then tone = min + (max - min) t.
+struct ToneCurve {
+    double gamma = 1.0;
+    int levels = 0;
+    double min = 0.0;
+    double max = 0.4;
+};
 
 // The scene's "tone" block.
 struct ToneOptions {
@@ -54,7 +64,19 @@ struct ToneOptions {
 // The mode of that name; nullopt for any other text.
 std::optional<ToneMode> tone_mode_from_name(std::string_view name);
 
-// Tone at a light intensity, as ToneOptions describes.
+// Tone at a light intensity, as ToneOptions (its curve) describes.
+double tone_of(double intensity, const ToneCurve& curve);
 double tone_of(double intensity, const ToneOptions& options);
+// The curve of a scene's tone options.
+ToneCurve tone_curve(const ToneOptions& options);
+
+// Which tone curve each face is shaded with (per-object tone, scene "objects"): curve_of_face[f]
+// is 0 for a face left unshaded, else 1 + its index in `curves`. Empty: every face is shaded
+// with the options' own curve.
+struct FaceTones {
+    std::span<const uint16_t> curve_of_face;
+    std::span<const ToneCurve> curves;
+    bool empty() const { return curve_of_face.empty(); }
+};
 
 }  // namespace inkline::core

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <regex>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace inkline {
@@ -52,6 +53,69 @@ std::vector<long> circle_samples(const std::string& svg) {
         samples.push_back(std::stol((*it)[1]));
     }
     return samples;
+}
+
+// Two spheres side by side, objects "Left" and "Right" of one OBJ file, lit from the camera's
+// side, with the scene keys `extra`.
+fs::path two_spheres_scene(const fs::path& dir, const std::string& extra) {
+    const core::Mesh sphere = test::icosphere(3);
+    std::string obj;
+    for (const auto& [name, x] : {std::pair{"Left", -1.2}, std::pair{"Right", 1.2}}) {
+        const size_t base = name == std::string("Left") ? 0 : sphere.positions.size();
+        obj += std::string("o ") + name + "\n";
+        for (const glm::vec3& p : sphere.positions) {
+            obj += "v " + std::to_string(p.x + x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+        }
+        for (const glm::uvec3& t : sphere.triangles) {
+            obj += "f " + std::to_string(base + t.x + 1) + " " + std::to_string(base + t.y + 1) + " " +
+                   std::to_string(base + t.z + 1) + "\n";
+        }
+    }
+    test::write_text(dir / "spheres.obj", obj);
+    test::write_text(dir / "spheres.json", R"({"mesh": "spheres.obj", "frames": [1, 1], "image": {"width": 320, "height": 160},
+        "camera": {"eye": [0, 0, 6], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 30},
+        "light": {"direction": [0.0, -0.3, -1.0]})" + extra + "}");
+    return dir / "spheres.json";
+}
+
+// The tone's marks left and right of the image's middle: dots, or hatch points.
+std::pair<size_t, size_t> marks_left_and_right(const nlohmann::json& tone) {
+    size_t left = 0, right = 0;
+    for (const auto& d : tone.value("dots", nlohmann::json::array())) (d["point"][0].get<double>() < 160.0 ? left : right) += 1;
+    for (const auto& h : tone.value("hatches", nlohmann::json::array())) {
+        for (const auto& p : h["points"]) (p[0].get<double>() < 160.0 ? left : right) += 1;
+    }
+    return {left, right};
+}
+
+TEST_F(Tone, AnObjectCanHaveAToneCurveOfItsOwn) {
+    for (const char* mode : {"stipple", "crosshatch"}) {
+        SCOPED_TRACE(mode);
+        const std::string tone = std::string(R"(, "tone": {"mode": ")") + mode + R"(", "max": 0.6})";
+        auto marks = [&](const std::string& objects, const std::string& name) {
+            const test::RunResult r = render(two_spheres_scene(dir, tone + objects), name, "");
+            EXPECT_EQ(r.code, 0) << r.output;
+            return marks_left_and_right(json(name)["tone"]);
+        };
+        const auto [left, right] = marks("", std::string(mode) + "_same");
+        ASSERT_GT(right, 200u);
+        EXPECT_NEAR(double(left), double(right), 0.05 * double(right)) << "alike with the scene's curve";
+        const auto [light_left, light_right] = marks(R"(, "objects": {"Left": {"tone": {"max": 0.15}}})", std::string(mode) + "_light");
+        EXPECT_EQ(light_right, right) << "the other object keeps the scene's curve";
+        EXPECT_LT(double(light_left), 0.45 * double(left)) << "a quarter of the darkest tone";
+        EXPECT_GT(light_left, 0u);
+        const auto [none_left, none_right] = marks(R"(, "objects": {"Left": {"tone": false}})", std::string(mode) + "_none");
+        EXPECT_EQ(none_left, 0u);
+        EXPECT_EQ(none_right, right);
+        // Rules apply key by key in order: the exact name's max over the glob's, the glob's gamma.
+        const auto both = marks(R"(, "objects": {"L*": {"tone": {"max": 0.15, "gamma": 2}}, "Left": {"tone": {"max": 0.6}}})",
+                                std::string(mode) + "_both");
+        const auto direct = marks(R"(, "objects": {"Left": {"tone": {"max": 0.6, "gamma": 2}}})", std::string(mode) + "_direct");
+        EXPECT_EQ(both, direct);
+        EXPECT_LT(direct.first, left) << "gamma 2 lightens the mid tones";
+        EXPECT_GT(direct.first, light_left) << "max 0.6, not 0.15";
+        EXPECT_EQ(direct.second, right);
+    }
 }
 
 TEST_F(Tone, BogusModeFailsWithOneLineAndExitCode2) {

@@ -360,7 +360,7 @@ TEST(Scene, ToneErrorsNameTheKey) {
         {R"("tone": {"opacity": 2})", "key 'tone.opacity'"},
         {R"("tone": {"seed": -3})", "key 'tone.seed'"},
         {R"("tone": "stipple")", "key 'tone': expected an object"},
-        {R"("objects": {"Ground": {"tone": 1}})", "key 'objects.Ground.tone': expected true or false"},
+        {R"("objects": {"Ground": {"tone": 1}})", "key 'objects.Ground.tone': expected true, false or {\"gamma\""},
     };
     for (const auto& [tone, expected] : cases) {
         const std::string json = R"({"mesh": "m.obj", )" + camera + ", " + tone + "}";
@@ -381,6 +381,39 @@ TEST(Scene, ObjectsCanBeLeftUnshaded) {
     EXPECT_FALSE(core::object_draws_tone(s, "Tree.2"));
     EXPECT_TRUE(core::object_draws_tone(s, "Tree.1")) << "an exact name overrides a glob";
     EXPECT_TRUE(core::object_draws_tone(s, "Ball"));
+}
+
+TEST(Scene, AnObjectsToneBlockSetsItsOwnCurveKeyByKey) {
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]},
+            "tone": {"max": 0.5, "gamma": 1.5, "levels": 4},
+            "objects": {"Ground*": {"tone": {"max": 0.1, "min": 0.05}}, "Ground.2": {"tone": {"gamma": 2}},
+                        "Wall": {"lines": false, "tone": {"max": 0.2}}}})",
+        "scene.json");
+    const std::optional<core::ToneCurve> ball = core::object_tone_curve(s, "Ball");
+    ASSERT_TRUE(ball);
+    EXPECT_EQ(ball->max, 0.5);
+    EXPECT_EQ(ball->gamma, 1.5);
+    EXPECT_EQ(ball->levels, 4);
+    const std::optional<core::ToneCurve> ground = core::object_tone_curve(s, "Ground.2");
+    ASSERT_TRUE(ground);
+    EXPECT_EQ(ground->max, 0.1) << "the glob's";
+    EXPECT_EQ(ground->min, 0.05);
+    EXPECT_EQ(ground->gamma, 2.0) << "the exact name's, after the glob";
+    EXPECT_EQ(ground->levels, 4) << "the scene's";
+    EXPECT_EQ(core::object_tone_curve(s, "Ground.1")->gamma, 1.5);
+    EXPECT_FALSE(core::object_tone_curve(s, "Wall")) << "a holdout is never shaded";
+    const std::string camera = R"("camera": {"eye": [0,0,4], "target": [0,0,0]})";
+    for (const auto& [objects, expected] : std::vector<std::pair<std::string, std::string>>{
+             {R"({"A": {"tone": {"max": 2}}})", "key 'objects.A.tone.max': must be between 0 and 0.9"},
+             {R"({"A": {"tone": {"gamma": 0}}})", "key 'objects.A.tone.gamma': must be above 0"},
+             {R"({"A": {"tone": {"levels": -1}}})", "key 'objects.A.tone.levels': must be between 0 and 256"},
+             {R"({"A": {"tone": {"mode": "hatch"}}})", "objects.A.tone"},
+             {R"({"A": {"tone": "dark"}})", "objects.A.tone"}}) {
+        const std::string json = R"({"mesh": "m.obj", )" + camera + R"(, "objects": )" + objects + "}";
+        const std::string error = error_of(json);
+        EXPECT_NE(error.find(expected), std::string::npos) << json << "\n  gave: " << error;
+    }
 }
 
 TEST(Scene, BrushTipResolvesAgainstTheSceneFolder) {

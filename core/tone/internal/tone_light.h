@@ -24,14 +24,16 @@ class ToneLight {
           direction_(glm::normalize(-light.direction)),
           options_(options) {}
 
-    // The tone at p (object space) with normal `normal` (object space, not zero).
-    double at(const glm::dvec3& p, const glm::dvec3& normal) const {
+    // The light's intensity at p (object space) with normal `normal` (object space, not zero).
+    double intensity(const glm::dvec3& p, const glm::dvec3& normal) const {
         const glm::dvec3 n = glm::normalize(normal_matrix_ * normal);
         const glm::dvec3 to_light =
             light_.is_point ? glm::normalize(light_.position - glm::dvec3(world_from_object_ * glm::dvec4(p, 1.0)))
                             : direction_;
-        return tone_of(glm::dot(n, to_light), options_);
+        return glm::dot(n, to_light);
     }
+    // The tone there, on the options' curve.
+    double at(const glm::dvec3& p, const glm::dvec3& normal) const { return tone_of(intensity(p, normal), options_); }
 
   private:
     glm::dmat4 world_from_object_;
