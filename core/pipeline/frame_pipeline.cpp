@@ -304,11 +304,8 @@ FrameResult FramePipeline::run(int frame) {
                     own = true;
                     continue;
                 }
-                const auto same = [&](const ToneCurve& c) {
-                    return c.gamma == curve->gamma && c.levels == curve->levels && c.min == curve->min && c.max == curve->max;
-                };
-                own |= !same(scene_curve);
-                auto it = std::find_if(tone_curves_.begin(), tone_curves_.end(), same);
+                own |= *curve != scene_curve;
+                auto it = std::find(tone_curves_.begin(), tone_curves_.end(), *curve);
                 if (it == tone_curves_.end()) it = tone_curves_.insert(it, *curve);
                 curve_of_object.push_back(uint16_t(1 + (it - tone_curves_.begin())));
             }

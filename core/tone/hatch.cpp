@@ -146,16 +146,19 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
         return glm::dot(normal, normal) == 0.0 ? 0.0 : tone_of(lit.intensity(p, normal), curve);
     };
 
-    // Per vertex, once a frame: the light's intensity (NaN without a normal: tone 0) and the
-    // clip coordinates.
+    // Per vertex, once a frame: the tone on the options' curve (0 without a normal), the light's
+    // intensity for faces on other curves (NaN without a normal) and the clip coordinates.
+    std::vector<double>& vertex_tone = vertex_tone_;
     std::vector<double>& vertex_intensity = vertex_intensity_;
     std::vector<glm::dvec4>& vertex_clip = vertex_clip_;
+    vertex_tone.resize(mesh.positions.size());
     vertex_intensity.resize(mesh.positions.size());
     vertex_clip.resize(mesh.positions.size());
     internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
         for (size_t v = begin; v < end; ++v) {
             const glm::dvec3 p(mesh.positions[v]);
             vertex_intensity[v] = glm::dot(normals[v], normals[v]) == 0.0 ? NAN : lit.intensity(p, normals[v]);
+            vertex_tone[v] = std::isnan(vertex_intensity[v]) ? 0.0 : tone_of(vertex_intensity[v], scene_curve);
             vertex_clip[v] = projection.clip(p);
         }
     });
@@ -195,7 +198,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             int finest = -1;
             for (int c = 0; c < 3; ++c) {
                 const double intensity = vertex_intensity[t[c]];
-                const double tone = std::isnan(intensity) ? 0.0 : tone_of(intensity, curve);
+                const double tone = curve == scene_curve ? vertex_tone[t[c]] : std::isnan(intensity) ? 0.0 : tone_of(intensity, curve);
                 finest = std::max(finest, finest_level(family_tone(tone, f, options_), family.step0, gradient, width));
             }
             if (finest < 0) return;

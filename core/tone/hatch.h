@@ -78,8 +78,9 @@ class Hatcher {
     std::vector<glm::uvec3> face_edges_;  // per face, the edge of each side (face_edges), with families_
     size_t faces_ = 0;
     HatchStats stats_;
-    // A frame's scratch, kept for the next: per vertex its light's intensity and clip coordinates.
-    std::vector<double> vertex_intensity_;
+    // A frame's scratch, kept for the next: per vertex its tone, its light's intensity and its
+    // clip coordinates.
+    std::vector<double> vertex_tone_, vertex_intensity_;
     std::vector<glm::dvec4> vertex_clip_;
 };
 

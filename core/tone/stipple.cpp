@@ -321,9 +321,10 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         return tone_of(lit.intensity(p, glm::dot(normal, normal) == 0.0 ? face_n : normal), curve);
     };
 
-    // Per vertex, once each: the light's intensity (none without a normal: its faces take their
-    // darkest tone) and what its faces' limits below read of it, as area_scale and
-    // foreshortening would compute them at the vertex.
+    // Per vertex, once each: its tone on the options' curve (the darkest without a normal), the
+    // light's intensity for faces on other curves, and what its faces' limits below read of it,
+    // as area_scale and foreshortening would compute them at the vertex.
+    const double darkest = std::max(options_.min, options_.max);
     // (Kept from frame to frame: a new buffer's pages cost more than filling it.)
     std::vector<VertexView>& vertex_view = vertex_view_;
     vertex_view.resize(mesh.positions.size());
@@ -334,6 +335,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             const glm::dvec4 clip = m * glm::dvec4(p, 1.0);
             const glm::dvec3& normal = normals[v];
             view.intensity = glm::dot(normal, normal) == 0.0 ? NAN : lit.intensity(p, normal);
+            view.tone = std::isnan(view.intensity) ? darkest : tone_of(view.intensity, scene_curve);
             view.in_front = projection.in_front(clip);
             if (!view.in_front) continue;
             view.px = projection.pixel_from_clip(clip);
@@ -369,8 +371,9 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
                 lo = glm::min(lo, view.px);
                 hi = glm::max(hi, view.px);
                 scale = std::max(scale, std::abs(glm::dot(view.jacobian, unit_n)) / shrink(std::abs(glm::dot(unit_n, view.to_eye))));
-                tone = std::max(tone, std::isnan(view.intensity) ? std::max(curve->min, curve->max)
-                                                                 : tone_of(view.intensity, *curve));
+                tone = std::max(tone, *curve == scene_curve          ? view.tone
+                                      : std::isnan(view.intensity) ? std::max(curve->min, curve->max)
+                                                                   : tone_of(view.intensity, *curve));
             }
             if (!in_front || hi.x < 0.0 || hi.y < 0.0 || lo.x > image.width || lo.y > image.height) continue;
             face_limit[f] = dot_density(tone, radius) * kScaleMargin * scale * area / kappa;

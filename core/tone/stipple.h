@@ -125,7 +125,8 @@ class Stippler {
         glm::dvec2 px{0.0};
         glm::dvec3 jacobian{0.0};  // the pixel Jacobian's rows, crossed: square pixels per unit area along a normal
         glm::dvec3 to_eye{0.0};    // unit
-        double intensity = NAN;  // of the light; NaN without a normal (the darkest tone)
+        double tone = 0.0;       // on the options' curve (the darkest without a normal)
+        double intensity = NAN;  // of the light, for other curves; NaN without a normal
         bool in_front = false;
     };
     std::vector<VertexView> vertex_view_;

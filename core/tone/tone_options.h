@@ -30,6 +30,7 @@ struct ToneCurve {
     int levels = 0;
     double min = 0.0;
     double max = 0.4;
+    bool operator==(const ToneCurve&) const = default;
 };
 
 // The scene's "tone" block.
