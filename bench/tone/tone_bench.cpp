@@ -122,7 +122,7 @@ double median(std::vector<double> v) {
 double coverage(const Subject& subject, const Args& args, double max, core::VisibilityMode mode) {
     core::Scene scene = framed(subject.mesh, args.size);
     scene.lines.silhouette = scene.lines.boundary = scene.lines.crease = scene.lines.intersection = false;
-    scene.tone = {.mode = core::ToneMode::kStipple, .max = max};
+    scene.tone = {.mode = core::ToneMode::kStipple, .curve = {.max = max}};
     core::MeshFrames meshes(subject.mesh);
     core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(mode));
     const core::FrameResult result = pipeline.run(1);
@@ -150,7 +150,7 @@ struct TurntableSummary {
 
 TurntableSummary turntable(const Subject& subject, const Args& args, core::VisibilityMode mode) {
     core::Scene scene = framed(subject.mesh, args.size);
-    scene.tone = {.mode = core::ToneMode::kStipple, .max = args.max};
+    scene.tone = {.mode = core::ToneMode::kStipple, .curve = {.max = args.max}};
     scene.last_frame = args.frames;
     scene.object_rotation =
         core::Rotation{.axis = {0.0, 1.0, 0.0}, .degrees = 2.0 * args.frames, .center = core::bounds_of(subject.mesh.positions).center()};

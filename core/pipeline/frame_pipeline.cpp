@@ -294,7 +294,7 @@ FrameResult FramePipeline::run(int frame) {
         if (tone_faces_.empty() && !meshes_.objects().empty()) {
             // Each object's curve (0: unshaded, else 1 + its index in tone_curves_); faces keep
             // the scene's curve unless some object is unshaded or has one of its own.
-            const ToneCurve scene_curve = tone_curve(scene_.tone);
+            const ToneCurve& scene_curve = scene_.tone.curve;
             std::vector<uint16_t> curve_of_object;
             bool own = false;
             for (const MeshObject& object : meshes_.objects()) {

@@ -327,12 +327,7 @@ ToneOptions read_tone(const Reader& r) {
         if (!mode) r.fail("mode", "expected \"stipple\", \"hatch\", \"crosshatch\" or \"none\"");
         t.mode = *mode;
     }
-    ToneCurve curve = tone_curve(t);
-    read_tone_curve(r).apply_to(curve);
-    t.gamma = curve.gamma;
-    t.levels = curve.levels;
-    t.min = curve.min;
-    t.max = curve.max;
+    read_tone_curve(r).apply_to(t.curve);
     t.dot_radius_px = r.number_or("dot_radius_px", t.dot_radius_px);
     if (!(t.dot_radius_px >= 0.25 && t.dot_radius_px <= 64.0)) r.fail("dot_radius_px", "must be between 0.25 and 64");
     t.fade = r.number_or("fade", t.fade);
@@ -648,7 +643,7 @@ bool object_draws_tone(const Scene& scene, const std::string& object_name) {
 
 std::optional<ToneCurve> object_tone_curve(const Scene& scene, const std::string& object_name) {
     bool lines = true, tone = true;
-    ToneCurve curve = tone_curve(scene.tone);
+    ToneCurve curve = scene.tone.curve;
     for (const ObjectRule& rule : scene.objects) {
         if (::fnmatch(rule.pattern.c_str(), object_name.c_str(), 0) != 0) continue;
         lines = rule.lines;

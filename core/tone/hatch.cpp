@@ -133,7 +133,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
     const double width = options_.line_width_px;
 
     // Each face's curve: its own, or the options' (nullptr: the face is left unshaded).
-    const ToneCurve scene_curve = tone_curve(options_);
+    const ToneCurve& scene_curve = options_.curve;
     const auto curve_of = [&](size_t f) -> const ToneCurve* {
         if (face_tones.empty()) return &scene_curve;
         const uint16_t c = face_tones.curve_of_face[f];
@@ -141,7 +141,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
     };
     // Tone at a point of the mesh with the (object-space) normal given, on a curve; 0 without a
     // normal.
-    const internal::ToneLight lit(world_from_object, light, options_);
+    const internal::ToneLight lit(world_from_object, light);
     const auto tone_at = [&](const glm::dvec3& p, const glm::dvec3& normal, const ToneCurve& curve) {
         return glm::dot(normal, normal) == 0.0 ? 0.0 : tone_of(lit.intensity(p, normal), curve);
     };

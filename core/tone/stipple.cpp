@@ -309,9 +309,9 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     const auto foreshortening = [&](const glm::dvec3& p, const glm::dvec3& n) {
         return shrink(std::abs(glm::dot(n, glm::normalize(eye - p))));
     };
-    const internal::ToneLight lit(world_from_object, light, options_);
+    const internal::ToneLight lit(world_from_object, light);
     // Each face's curve: its own, or the options' (nullptr: the face is left unshaded).
-    const ToneCurve scene_curve = tone_curve(options_);
+    const ToneCurve& scene_curve = options_.curve;
     const auto curve_of = [&](size_t f) -> const ToneCurve* {
         if (face_tones.empty()) return &scene_curve;
         const uint16_t c = face_tones.curve_of_face[f];
@@ -324,7 +324,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     // Per vertex, once each: its tone on the options' curve (the darkest without a normal), the
     // light's intensity for faces on other curves, and what its faces' limits below read of it,
     // as area_scale and foreshortening would compute them at the vertex.
-    const double darkest = std::max(options_.min, options_.max);
+    const double darkest = std::max(scene_curve.min, scene_curve.max);
     // (Kept from frame to frame: a new buffer's pages cost more than filling it.)
     std::vector<VertexView>& vertex_view = vertex_view_;
     vertex_view.resize(mesh.positions.size());
@@ -394,7 +394,8 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         std::vector<Dot>& dots = found[s];
         for (size_t f = faces * s / slices; f < faces * (s + 1) / slices; ++f) {
             const double limit = face_limit[f];
-            if (limit <= 0.0) continue;
+            if (limit <= 0.0) continue;  // also where the face is left unshaded
+            const ToneCurve& curve = *curve_of(f);
             const glm::uvec3 t = mesh.triangles[f];
             const glm::dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
             const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
@@ -411,7 +412,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
                 if (!projection.inside_image(px)) continue;
                 const double shrunk = foreshortening(p, unit_n);
                 const double scale = area_scale(clip, unit_n) / shrunk;
-                const double tone = tone_at(p, b0 * normals[t.x] + b1 * normals[t.y] + b2 * normals[t.z], n, *curve_of(f));
+                const double tone = tone_at(p, b0 * normals[t.x] + b1 * normals[t.y] + b2 * normals[t.z], n, curve);
                 const double threshold = dot_density(tone, radius) * scale * area / kappa;
                 const double rank = double(i);
                 double weight = 0.0;

@@ -30,10 +30,5 @@ double tone_of(double intensity, const ToneCurve& curve) {
     return curve.min + (curve.max - curve.min) * t;
 }
 
-double tone_of(double intensity, const ToneOptions& options) { return tone_of(intensity, tone_curve(options)); }
-
-ToneCurve tone_curve(const ToneOptions& options) {
-    return {.gamma = options.gamma, .levels = options.levels, .min = options.min, .max = options.max};
-}
 
 }  // namespace inkline::core

@@ -36,13 +36,8 @@ struct ToneCurve {
 // The scene's "tone" block.
 struct ToneOptions {
     ToneMode mode = ToneMode::kNone;
-    // Tone (the share of the surface covered by ink) from the light intensity I in [0, 1] at a
-    // point: t = x^gamma with x = 1 - I, rounded to `levels` steps (0 or 1: not rounded), then
-    // tone = min + (max - min) t.
-    double gamma = 1.0;
-    int levels = 0;
-    double min = 0.0;
-    double max = 0.4;
+    // Tone (the share of the surface covered by ink) from the light intensity at a point.
+    ToneCurve curve;
     double dot_radius_px = 1.0;  // radius of a dot that has faded in fully
     // A dot fades in while the density asked for grows by this share past its threshold (0: it
     // pops in at full size).
@@ -65,11 +60,9 @@ struct ToneOptions {
 // The mode of that name; nullopt for any other text.
 std::optional<ToneMode> tone_mode_from_name(std::string_view name);
 
-// Tone at a light intensity, as ToneOptions (its curve) describes.
+// Tone at a light intensity on a curve (the options' own curve).
 double tone_of(double intensity, const ToneCurve& curve);
-double tone_of(double intensity, const ToneOptions& options);
-// The curve of a scene's tone options.
-ToneCurve tone_curve(const ToneOptions& options);
+inline double tone_of(double intensity, const ToneOptions& options) { return tone_of(intensity, options.curve); }
 
 // Which tone curve each face is shaded with (per-object tone, scene "objects"): curve_of_face[f]
 // is 0 for a face left unshaded, else 1 + its index in `curves`. Empty: every face is shaded

@@ -411,7 +411,7 @@ TEST(FramePipeline, LinesFoundAheadOnAMovingMeshDrawTheSameAsLinesFoundInTurn) {
     for (const bool tone : {false, true}) {
         SCOPED_TRACE(tone ? "stippled" : "lines only");
         core::Scene scene = turntable(SlidingSphere::mesh_at(1), 7);
-        if (tone) scene.tone = {.mode = core::ToneMode::kStipple, .max = 0.6};
+        if (tone) scene.tone = {.mode = core::ToneMode::kStipple, .curve = {.max = 0.6}};
         for (const core::VisibilityMode mode : {core::VisibilityMode::kExact, core::VisibilityMode::kRaycast}) {
             if (mode == core::VisibilityMode::kRaycast && !core::raycast_available()) continue;
             SCOPED_TRACE(core::visibility_mode_name(mode));

@@ -41,7 +41,7 @@ core::Scene sphere_scene(const core::Mesh& mesh, core::ToneMode mode, double max
     core::Scene scene = test::scene_for({.eye = {0.0, 0.0, 4.0}, .fov_y_deg = 35.0, .size = size}, mesh);
     scene.light = kSideLight;
     scene.lines.silhouette = scene.lines.boundary = scene.lines.crease = scene.lines.intersection = false;
-    scene.tone = {.mode = mode, .max = max};
+    scene.tone = {.mode = mode, .curve = {.max = max}};
     return scene;
 }
 
@@ -202,7 +202,7 @@ TEST(Hatch, NoneOnHiddenSurfaceOrOnTheLines) {
         test::combine(test::torus(1.0, 0.35, 96, 48), test::uv_sphere(48, 24, 0.45), {0.2f, 0.3f, 1.2f});
     core::Scene scene = test::scene_for({.eye = {0.4, 1.6, 4.2}, .fov_y_deg = 40.0, .size = 512}, mesh);
     scene.light = kSideLight;
-    scene.tone = {.mode = core::ToneMode::kCrosshatch, .max = 0.5};
+    scene.tone = {.mode = core::ToneMode::kCrosshatch, .curve = {.max = 0.5}};
     const core::FrameResult r = run_frames(scene, mesh).front();
     ASSERT_FALSE(r.tone.hatches.empty());
     ASSERT_FALSE(r.strokes.strokes.empty());
@@ -275,7 +275,7 @@ TEST(Tone, OddMeshesAreShadedWithoutFailing) {
             SCOPED_TRACE(std::string(core::tone_mode_name(mode)) + ", mesh " + std::to_string(m));
             core::Scene scene = test::scene_for({.eye = {0.6, 1.8, 2.5}, .fov_y_deg = 45.0, .size = 256}, meshes[m]);
             scene.light = kSideLight;
-            scene.tone = {.mode = mode, .max = 0.6};
+            scene.tone = {.mode = mode, .curve = {.max = 0.6}};
             const std::vector<core::FrameResult> frames = run_frames(scene, meshes[m]);
             const core::FrameTone& tone = frames.front().tone;
             for (const core::Dot& d : tone.dots) {

@@ -305,10 +305,10 @@ TEST(Scene, ToneBlockSetsTheTone) {
                      "color": "#ff0000", "opacity": 0.5, "seed": 7}})",
         "scene.json");
     EXPECT_EQ(s.tone.mode, core::ToneMode::kStipple) << "a block without a mode stipples";
-    EXPECT_EQ(s.tone.min, 0.05);
-    EXPECT_EQ(s.tone.max, 0.6);
-    EXPECT_EQ(s.tone.gamma, 2.0);
-    EXPECT_EQ(s.tone.levels, 4);
+    EXPECT_EQ(s.tone.curve.min, 0.05);
+    EXPECT_EQ(s.tone.curve.max, 0.6);
+    EXPECT_EQ(s.tone.curve.gamma, 2.0);
+    EXPECT_EQ(s.tone.curve.levels, 4);
     EXPECT_EQ(s.tone.dot_radius_px, 1.5);
     EXPECT_EQ(s.tone.fade, 0.25);
     EXPECT_EQ(s.tone.color, glm::dvec3(1.0, 0.0, 0.0));
@@ -327,7 +327,7 @@ TEST(Scene, ToneBlockSetsTheTone) {
 }
 
 TEST(Scene, ToneCurveFollowsTheLight) {
-    core::ToneOptions t;
+    core::ToneCurve t;
     t.max = 0.5;
     EXPECT_EQ(core::tone_of(1.0, t), 0.0) << "lit: white";
     EXPECT_EQ(core::tone_of(-0.3, t), 0.5) << "turned away: the darkest";

@@ -46,7 +46,7 @@ constexpr double kDensityTolerance = 0.20;
 const core::Light kSideLight{.direction = {-1.0, 0.0, 0.0}};
 
 core::ToneOptions stipple(double max) {
-    return {.mode = core::ToneMode::kStipple, .max = max};
+    return {.mode = core::ToneMode::kStipple, .curve = {.max = max}};
 }
 
 void lines_off(core::Scene& scene) {
@@ -238,7 +238,7 @@ TEST(Tone, DollyKeepsDotsPerSquarePixel) {
     constexpr double kFovDeg = 35.0;
     core::Scene scene = test::scene_for({.eye = {0.0, 0.0, 4.0}, .fov_y_deg = kFovDeg, .size = kSize}, sphere);
     scene.tone = stipple(0.4);
-    scene.tone.min = 0.4;
+    scene.tone.curve.min = 0.4;
     lines_off(scene);
     scene.camera.near.reset();
     scene.camera.far.reset();

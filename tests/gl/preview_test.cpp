@@ -313,7 +313,7 @@ TEST(Preview, ToneMatchesCairo) {
     for (const core::ToneMode mode : {core::ToneMode::kStipple, core::ToneMode::kCrosshatch}) {
         core::Scene scene = test::scene_for({.eye = {0.0, 2.6, 4.6}, .fov_y_deg = 40.0, .size = 512}, mesh);
         scene.lines.silhouette = scene.lines.boundary = scene.lines.crease = scene.lines.intersection = false;
-        scene.tone = {.mode = mode, .max = 0.5, .dot_radius_px = 2.0, .line_width_px = 1.5, .opacity = 0.8};
+        scene.tone = {.mode = mode, .curve = {.max = 0.5}, .dot_radius_px = 2.0, .line_width_px = 1.5, .opacity = 0.8};
         core::MeshFrames meshes(mesh);
         core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
         const core::FrameResult r = pipeline.run(1);

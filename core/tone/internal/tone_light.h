@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The tone at a point of a mesh from the light there, as stippling and hatching both read it.
+// The light at a point of a mesh, as stippling and hatching both read it (their tone curves turn
+// it into a tone: tone_of).
 #pragma once
 
 #include "core/strokes/brush_style.h"
-#include "core/tone/tone_options.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -12,19 +12,18 @@
 
 namespace inkline::core::internal {
 
-// tone_of the light's intensity at a point: its object-space normal taken to world space, against
-// the direction to the light. A directional light's direction is normalized once, the same bits as
-// at every call; a point's world position is computed only for a point light.
+// The light's intensity at a point: its object-space normal taken to world space, against the
+// direction to the light. A directional light's direction is normalized once, the same bits as at
+// every call; a point's world position is computed only for a point light.
 class ToneLight {
   public:
-    ToneLight(const glm::dmat4& world_from_object, const Light& light, const ToneOptions& options)
+    ToneLight(const glm::dmat4& world_from_object, const Light& light)
         : world_from_object_(world_from_object),
           normal_matrix_(glm::transpose(glm::inverse(glm::dmat3(world_from_object)))),
           light_(light),
-          direction_(glm::normalize(-light.direction)),
-          options_(options) {}
+          direction_(glm::normalize(-light.direction)) {}
 
-    // The light's intensity at p (object space) with normal `normal` (object space, not zero).
+    // The intensity at p (object space) with normal `normal` (object space, not zero).
     double intensity(const glm::dvec3& p, const glm::dvec3& normal) const {
         const glm::dvec3 n = glm::normalize(normal_matrix_ * normal);
         const glm::dvec3 to_light =
@@ -32,15 +31,12 @@ class ToneLight {
                             : direction_;
         return glm::dot(n, to_light);
     }
-    // The tone there, on the options' curve.
-    double at(const glm::dvec3& p, const glm::dvec3& normal) const { return tone_of(intensity(p, normal), options_); }
 
   private:
     glm::dmat4 world_from_object_;
     glm::dmat3 normal_matrix_;
     Light light_;
     glm::dvec3 direction_;
-    const ToneOptions& options_;
 };
 
 }  // namespace inkline::core::internal
