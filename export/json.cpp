@@ -23,6 +23,21 @@ json light_json(const core::Light& light) {
     return {{"direction", vec3(light.direction)}};
 }
 
+// An orthographic camera gives its view height instead of a field of view.
+json camera_json(const core::Camera& camera) {
+    json out = {{"eye", vec3(camera.eye)},
+                {"target", vec3(camera.target)},
+                {"up", vec3(camera.up)},
+                {"near", camera.near},
+                {"far", camera.far}};
+    if (camera.ortho_height) {
+        out["ortho_height"] = *camera.ortho_height;
+    } else {
+        out["fov_y_deg"] = camera.fov_y_deg;
+    }
+    return out;
+}
+
 // Per line kind; intersection only when the frame traced intersection lines.
 json per_kind(const auto& values, bool intersections, auto transform) {
     json out = json::object();
@@ -245,13 +260,7 @@ std::string polylines_json(const core::FrameLines& frame, const core::FrameStrok
         {"version", 1},
         {"frame", frame.frame},
         {"image", {{"width", frame.image.width}, {"height", frame.image.height}}},
-        {"camera",
-         {{"eye", vec3(frame.camera.eye)},
-          {"target", vec3(frame.camera.target)},
-          {"up", vec3(frame.camera.up)},
-          {"fov_y_deg", frame.camera.fov_y_deg},
-          {"near", frame.camera.near},
-          {"far", frame.camera.far}}},
+        {"camera", camera_json(frame.camera)},
         {"light", light_json(frame.light)},
         {"strokes", std::move(strokes)},
         {"stats", std::move(stats)}};

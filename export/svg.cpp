@@ -192,8 +192,13 @@ void metadata(Writer& w, const Drawing& d) {
     vec(d.camera.target);
     w << "\" up=\"";
     vec(d.camera.up);
-    w << "\" fov_y_deg=\"";
-    w.number(d.camera.fov_y_deg) << "\" near=\"";
+    if (d.camera.ortho_height) {
+        w << "\" ortho_height=\"";
+        w.number(*d.camera.ortho_height) << "\" near=\"";
+    } else {
+        w << "\" fov_y_deg=\"";
+        w.number(d.camera.fov_y_deg) << "\" near=\"";
+    }
     w.number(d.camera.near) << "\" far=\"";
     w.number(d.camera.far) << "\"/>\n  </metadata>\n";
 }

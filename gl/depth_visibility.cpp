@@ -20,20 +20,33 @@ namespace {
 constexpr const char* kVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 p_object;
 uniform mat4 clip_from_object;
-void main() { gl_Position = clip_from_object * vec4(p_object, 1.0); }
+noperspective out float ortho_q;
+void main() {
+    gl_Position = clip_from_object * vec4(p_object, 1.0);
+    ortho_q = 2.0 - gl_Position.z;
+}
 )";
 
-// gl_FragCoord.w is 1 / w_clip, which is affine in window space on a planar triangle: its
-// screen derivatives are the triangle's own depth slope, constant over it, so storing them
-// lets the CPU test extend the seen surface exactly to a point between texel centres. The
-// face id (exact as a float below 2^24) names the candidates for the exact test at edges.
+// q, larger nearer the eye, is affine in window space on a planar triangle: its screen
+// derivatives are the triangle's own depth slope, constant over it, so storing them lets the
+// CPU test extend the seen surface exactly to a point between texel centres. In perspective q
+// is gl_FragCoord.w, 1 / w_clip; in orthographic projection (w_clip = 1) it is 2 - z_clip,
+// from 1 at the near plane to 3 at the far plane (depth_q). The face id (exact as a float below
+// 2^24) names the candidates for the exact test at edges.
 constexpr const char* kFragmentShader = R"(#version 330 core
 layout(location = 0) out vec4 plane;
+uniform bool orthographic;
+noperspective in float ortho_q;
 void main() {
-    float q = gl_FragCoord.w;
+    float q = orthographic ? ortho_q : gl_FragCoord.w;
     plane = vec4(q, dFdx(q), dFdy(q), float(gl_PrimitiveID + 1));
 }
 )";
+
+// The depth map's q of a clip-space point in front of the eye (kFragmentShader).
+double depth_q(const core::Projection& projection, const glm::dvec4& clip) {
+    return projection.orthographic() ? 2.0 - clip.z : 1.0 / clip.w;
+}
 
 // Largest depth map supersampling may make: 2^26 texels are 1 GiB of RGBA32F plus 256 MiB of
 // depth, already 8192x8192 at 1 texel per pixel. Larger images get fewer texels per pixel.
@@ -55,17 +68,18 @@ constexpr double kNearTexels = 3.0;
 // as core::ExactOcclusion, so both answer the same where the depth map defers to geometry.
 constexpr double kEndGap = 1e-6;
 
-// True when the segment eye -> p, without its last kEndGap, crosses the triangle
-// (Moller-Trumbore in double precision).
-bool segment_hits(const glm::dvec3& eye, const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+// True when the segment from -> p, without its last kEndGap, crosses the triangle
+// (Moller-Trumbore in double precision). `from` is the eye, or for an eye at infinity the
+// point core::occlusion_segment_end gives.
+bool segment_hits(const glm::dvec3& from, const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
                   const glm::dvec3& c) {
-    const glm::dvec3 dir = p - eye;
+    const glm::dvec3 dir = p - from;
     const glm::dvec3 e1 = b - a, e2 = c - a;
     const glm::dvec3 h = glm::cross(dir, e2);
     const double det = glm::dot(e1, h);
     if (det == 0.0) return false;  // parallel, or a degenerate face
     const double inv = 1.0 / det;
-    const glm::dvec3 s = eye - a;
+    const glm::dvec3 s = from - a;
     const double u = glm::dot(s, h) * inv;
     if (u < 0.0 || u > 1.0) return false;
     const glm::dvec3 q = glm::cross(s, e1);
@@ -109,6 +123,7 @@ struct DepthOcclusion::Impl {
     GLuint program = 0, vao = 0, positions = 0, indices = 0;
     GLuint framebuffer = 0, color = 0, depth = 0;
     GLint clip_from_object_location = -1;
+    GLint orthographic_location = -1;
     GLint max_size = 0;          // largest framebuffer side GL allows
     size_t vertex_count = 0;     // uploaded
     GLsizei index_count = 0;     // uploaded
@@ -127,6 +142,7 @@ struct DepthOcclusion::Impl {
 
     internal::DepthMap map;
     std::optional<core::Projection> projection;  // of the last prepare()
+    double reach = 0.0;  // occlusion_reach of the last prepare()'s mesh, for an orthographic eye
     const core::Mesh* frame_mesh = nullptr;      // of the last prepare()
     const core::EdgeTable* frame_table = nullptr;
     DepthPassStats stats;
@@ -178,7 +194,7 @@ struct DepthOcclusion::Impl {
     // corners of the faces seen around the point (the texels cannot say on which side of the
     // occluder's outline the point lies; those faces and their neighbours can); then every
     // vertex reached from these through mesh edges that projects within kNearTexels.
-    bool covered_nearby(const glm::dvec3& eye, const core::OcclusionQuery& query, const internal::DepthSample& sample,
+    bool covered_nearby(const glm::dvec3& from, const core::OcclusionQuery& query, const internal::DepthSample& sample,
                         internal::DepthVerdict verdict) const {
         const core::Mesh& mesh = *frame_mesh;
         const core::EdgeTable& table = *frame_table;
@@ -221,7 +237,7 @@ struct DepthOcclusion::Impl {
                 if (face_mark[f] == epoch || !table.face_valid[f] || is_own(query, f)) continue;
                 face_mark[f] = epoch;
                 const glm::uvec3 t = mesh.triangles[f];
-                if (segment_hits(eye, query.p_object, glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
+                if (segment_hits(from, query.p_object, glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
                                  glm::dvec3(mesh.positions[t.z]))) {
                     return true;
                 }
@@ -236,8 +252,8 @@ struct DepthOcclusion::Impl {
         return !query.own_faces.empty() && std::binary_search(query.own_faces.begin(), query.own_faces.end(), face);
     }
 
-    // True when a face seen at the four texels around the point crosses the segment eye -> p.
-    bool seen_faces_cover(const glm::dvec3& eye, const core::OcclusionQuery& query, const internal::DepthSample& sample) const {
+    // True when a face seen at the four texels around the point crosses the segment from -> p.
+    bool seen_faces_cover(const glm::dvec3& from, const core::OcclusionQuery& query, const internal::DepthSample& sample) const {
         const core::Mesh& mesh = *frame_mesh;
         const glm::dvec3& p = query.p_object;
         seen.clear();
@@ -245,7 +261,7 @@ struct DepthOcclusion::Impl {
         for (uint32_t f : seen) {
             if (is_own(query, f)) continue;
             const glm::uvec3 t = mesh.triangles[f];
-            if (segment_hits(eye, p, glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
+            if (segment_hits(from, p, glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
                              glm::dvec3(mesh.positions[t.z]))) {
                 return true;
             }
@@ -310,6 +326,7 @@ struct DepthOcclusion::Impl {
         fn.Disable(GL_CULL_FACE);  // back faces occlude too
         fn.UseProgram(program);
         fn.UniformMatrix4fv(clip_from_object_location, 1, GL_FALSE, &clip_from_object[0][0]);
+        fn.Uniform1i(orthographic_location, proj.orthographic() ? 1 : 0);
         fn.BindVertexArray(vao);
         fn.DrawElements(GL_TRIANGLES, index_count, GL_UNSIGNED_INT, nullptr);
         fn.Finish();
@@ -337,6 +354,7 @@ DepthOcclusion::DepthOcclusion(const Context& context, const DepthVisibilityOpti
     const internal::Functions& fn = m.fn;
     m.program = internal::link_program(fn, kVertexShader, kFragmentShader, "depth pass");
     m.clip_from_object_location = fn.GetUniformLocation(m.program, "clip_from_object");
+    m.orthographic_location = fn.GetUniformLocation(m.program, "orthographic");
     fn.GenVertexArrays(1, &m.vao);
     fn.GenBuffers(1, &m.positions);
     fn.GenBuffers(1, &m.indices);
@@ -390,19 +408,20 @@ void DepthOcclusion::prepare(const core::Mesh& mesh, const core::EdgeTable& tabl
     m.stats.height = m.map.height;
     m.stats.supersampling = supersampling;
     m.projection = projection;
+    m.reach = projection.orthographic() ? core::occlusion_reach(mesh.positions) : 0.0;
     m.frame_mesh = &mesh;
     m.frame_table = &table;
 }
 
-void DepthOcclusion::occluded(const glm::dvec3& eye_object, std::span<const core::OcclusionQuery> queries,
+void DepthOcclusion::occluded(const core::Viewpoint& eye_object, std::span<const core::OcclusionQuery> queries,
                               std::span<uint8_t> r_occluded) const {
     INKLINE_CHECK_EQ(queries.size(), r_occluded.size());
     const Impl& m = *impl_;
     INKLINE_CHECK(m.projection.has_value());  // prepare() comes first
     const core::Projection& projection = *m.projection;
     // The caller's eye must be the prepared one; a stale depth map would answer silently.
-    INKLINE_CHECK(glm::length(eye_object - projection.eye_object()) <=
-                  1e-9 * (1.0 + glm::length(eye_object)));
+    INKLINE_CHECK(eye_object.w == projection.eye_object().w &&
+                  glm::length(eye_object.xyz - projection.eye_object().xyz) <= 1e-9 * (1.0 + glm::length(eye_object.xyz)));
     const glm::dvec2 size(m.map.width, m.map.height);
     for (size_t i = 0; i < queries.size(); ++i) {
         const glm::dvec4 clip = projection.clip(queries[i].p_object);
@@ -411,18 +430,23 @@ void DepthOcclusion::occluded(const glm::dvec3& eye_object, std::span<const core
             continue;
         }
         const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-        const internal::DepthSample sample{(ndc * 0.5 + 0.5) * size, 1.0 / clip.w};
+        const internal::DepthSample sample{(ndc * 0.5 + 0.5) * size, depth_q(projection, clip)};
+        // The segment towards the eye starts at the eye, or towards one at infinity where
+        // exact visibility starts it.
+        const glm::dvec3 from = eye_object.orthographic()
+                                    ? core::occlusion_segment_end(queries[i].p_object, eye_object, m.reach)
+                                    : eye_object.xyz;
         const internal::DepthVerdict verdict = internal::classify_in_depth_map(m.map, sample);
         bool hidden = verdict == internal::DepthVerdict::kHidden;
         if (m.options.local_ray_test) {
             if (!hidden) {
-                hidden = m.covered_nearby(eye_object, queries[i], sample, verdict);
+                hidden = m.covered_nearby(from, queries[i], sample, verdict);
             } else if (m.frame_mesh->triangles.size() < internal::kMaxFaceId) {
                 // The planes seen around the point all pass in front of it, but a plane is not its
                 // face: in a valley narrower than a texel, the neighbours' planes do and their
                 // faces do not. The faces themselves confirm it, or the full local test decides.
-                hidden = m.seen_faces_cover(eye_object, queries[i], sample) ||
-                         m.covered_nearby(eye_object, queries[i], sample, internal::DepthVerdict::kEdge);
+                hidden = m.seen_faces_cover(from, queries[i], sample) ||
+                         m.covered_nearby(from, queries[i], sample, internal::DepthVerdict::kEdge);
             }
         }
         r_occluded[i] = hidden ? 1 : 0;

@@ -67,7 +67,7 @@ class DepthOcclusion final : public core::Occlusion {
     // Tests each query against the depth map of the last prepare(); eye_object must be that
     // projection's eye. The point's own faces pass both tests: their planes contain it, and the
     // ray stops just short of it. Not safe to call from two threads at once.
-    void occluded(const glm::dvec3& eye_object, std::span<const core::OcclusionQuery> queries,
+    void occluded(const core::Viewpoint& eye_object, std::span<const core::OcclusionQuery> queries,
                   std::span<uint8_t> r_occluded) const override;
 
     const DepthPassStats& last_pass() const;

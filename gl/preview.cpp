@@ -184,7 +184,7 @@ void main() {
 constexpr const char* kSurfaceFragmentShader = R"(#version 330 core
 in vec3 p_world;
 in vec3 n_world;
-uniform vec3 eye_world;
+uniform vec4 eye_world;  // w = 0: towards an orthographic camera's viewer
 uniform vec3 light;  // direction from the light, or a point light's position
 uniform int point_light;
 uniform int toon;
@@ -194,7 +194,7 @@ const vec3 kMid = vec3(0.85, 0.84, 0.81);
 const vec3 kShadow = vec3(0.68, 0.68, 0.68);
 void main() {
     vec3 n = toon != 0 ? normalize(n_world) : normalize(cross(dFdx(p_world), dFdy(p_world)));
-    if (dot(n, eye_world - p_world) < 0.0) n = -n;
+    if (dot(n, eye_world.xyz - eye_world.w * p_world) < 0.0) n = -n;
     vec3 to_light = point_light != 0 ? normalize(light - p_world) : -normalize(light);
     float i = max(dot(n, to_light), 0.0);
     vec3 c = toon != 0 ? (i > 0.6 ? kLit : i > 0.25 ? kMid : kShadow) : mix(kShadow, kLit, i);
@@ -476,7 +476,8 @@ struct PreviewRenderer::Impl {
         fn.UniformMatrix4fv(fu.clip_from_object, 1, GL_FALSE, &clip_from_object[0][0]);
         fn.UniformMatrix4fv(fu.world_from_object, 1, GL_FALSE, &world_from_object[0][0]);
         fn.UniformMatrix4fv(fu.normal_world_from_object, 1, GL_FALSE, &normal_world_from_object[0][0]);
-        fn.Uniform3f(fu.eye_world, float(frame.camera.eye.x), float(frame.camera.eye.y), float(frame.camera.eye.z));
+        const core::Viewpoint eye = core::viewpoint_of(frame.camera);
+        fn.Uniform4f(fu.eye_world, float(eye.xyz.x), float(eye.xyz.y), float(eye.xyz.z), float(eye.w));
         fn.Uniform3f(fu.light, light_vector.x, light_vector.y, light_vector.z);
         fn.Uniform1i(fu.point_light, light.is_point ? 1 : 0);
         fn.Uniform1i(fu.toon, options.underlay == Underlay::kToon ? 1 : 0);

@@ -121,7 +121,7 @@ core::Mesh wobbled(const core::Mesh& base, double phase) {
 class CountingOcclusion final : public core::Occlusion {
   public:
     explicit CountingOcclusion(const core::Occlusion& inner) : inner_(inner) {}
-    void occluded(const glm::dvec3& eye_object, std::span<const core::OcclusionQuery> queries,
+    void occluded(const core::Viewpoint& eye_object, std::span<const core::OcclusionQuery> queries,
                   std::span<uint8_t> r_occluded) const override {
         // split_by_visibility tests the coarse samples in one call, then one point per call.
         (queries.size() > 1 ? coarse_ : bisection_) += queries.size();

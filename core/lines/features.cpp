@@ -32,16 +32,16 @@ std::array<size_t, kLineKindCount> FeatureEdges::count_by_kind() const {
     return counts;
 }
 
-double facing_value(const Mesh& mesh, uint32_t face, const glm::dvec3& eye_object) {
+double facing_value(const Mesh& mesh, uint32_t face, const Viewpoint& eye_object) {
     const glm::uvec3 t = mesh.triangles[face];
     return facing_value(mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z], eye_object);
 }
 
 double facing_value(const glm::vec3& corner_a, const glm::vec3& corner_b, const glm::vec3& corner_c,
-                    const glm::dvec3& eye_object) {
+                    const Viewpoint& eye_object) {
     const glm::dvec3 a(corner_a), b(corner_b), c(corner_c);
     const glm::dvec3 centroid = (a + b + c) / 3.0;
-    return glm::dot(glm::cross(b - a, c - a), eye_object - centroid);
+    return glm::dot(glm::cross(b - a, c - a), eye_object.toward(centroid));
 }
 
 bool is_crease(const Mesh& mesh, uint32_t face0, uint32_t face1, double cos_crease_angle) {
@@ -72,7 +72,7 @@ bool classify_edge(const Mesh& mesh, const EdgeTable& table, uint32_t edge,
 }
 
 FeatureEdges extract_feature_edges(const Mesh& mesh, const EdgeTable& table,
-                                   const glm::dvec3& eye_object, const LineOptions& lines) {
+                                   const Viewpoint& eye_object, const LineOptions& lines) {
     FeatureEdges out;
     std::vector<uint8_t> front(mesh.triangles.size(), 0);
     for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {

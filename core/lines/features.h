@@ -5,6 +5,7 @@
 
 #include "core/mesh/mesh.h"
 #include "core/mesh/topology.h"
+#include "core/scene/camera.h"
 
 #include <glm/vec3.hpp>
 
@@ -59,11 +60,11 @@ struct FeatureEdges {
     std::array<size_t, kLineKindCount> count_by_kind() const;
 };
 
-// Signed facing of a face: dot(n, eye - centroid), n from counter-clockwise order.
+// Signed facing of a face: dot(n, eye_object.toward(centroid)), n from counter-clockwise order.
 // Front-facing when > 0. Every extractor uses this one function so their results agree exactly.
-double facing_value(const Mesh& mesh, uint32_t face, const glm::dvec3& eye_object);
+double facing_value(const Mesh& mesh, uint32_t face, const Viewpoint& eye_object);
 // The same for the triangle of corners a, b, c (the face's positions, in order).
-double facing_value(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::dvec3& eye_object);
+double facing_value(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const Viewpoint& eye_object);
 
 // True when the dihedral angle between the two faces' normals exceeds the crease angle.
 bool is_crease(const Mesh& mesh, uint32_t face0, uint32_t face1, double cos_crease_angle);
@@ -76,6 +77,6 @@ bool classify_edge(const Mesh& mesh, const EdgeTable& table, uint32_t edge,
 
 // Reference extraction: tests every edge and every face (`--tracker brute`).
 FeatureEdges extract_feature_edges(const Mesh& mesh, const EdgeTable& table,
-                                   const glm::dvec3& eye_object, const LineOptions& lines);
+                                   const Viewpoint& eye_object, const LineOptions& lines);
 
 }  // namespace inkline::core

@@ -91,7 +91,7 @@ void SilhouetteTracker::reset() {
     silhouettes_.clear();
 }
 
-FeatureEdges SilhouetteTracker::update(const Mesh& mesh, const glm::dvec3& eye_object, const LineOptions& lines) {
+FeatureEdges SilhouetteTracker::update(const Mesh& mesh, const Viewpoint& eye_object, const LineOptions& lines) {
     INKLINE_CHECK_EQ(mesh.triangles.size(), face_count_);
     begin_frame();
     mesh_ = &mesh;

@@ -77,7 +77,7 @@ class SilhouetteTracker {
     // The feature edges of `mesh` seen from `eye_object` (object space): the same edges, kinds
     // and order as extract_feature_edges(mesh, table, eye_object, lines). edges_tested and
     // faces_tested count the edges classified and the faces whose facing was evaluated.
-    FeatureEdges update(const Mesh& mesh, const glm::dvec3& eye_object, const LineOptions& lines);
+    FeatureEdges update(const Mesh& mesh, const Viewpoint& eye_object, const LineOptions& lines);
 
     // Forgets the previous frame, so that the next update is a full pass (chunk start, cut).
     void reset();
@@ -121,7 +121,7 @@ class SilhouetteTracker {
     // Per-frame work, valid during update. Stamps equal to frame_ mark this frame's entries, so
     // nothing is cleared between frames.
     const Mesh* mesh_ = nullptr;
-    glm::dvec3 eye_{0.0};
+    Viewpoint eye_;
     uint32_t frame_ = 0;
     // Per valid face, in ConeTree::faces order: (stamp << 1) | (facing_value > 0), for the
     // frame whose face_stamp_ (1..127, cycling) last evaluated it.

@@ -214,7 +214,7 @@ void SmoothContourTracer::smooth_pieces(const Mesh& mesh, const EdgeTable& table
 }
 
 const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const EdgeTable& table,
-                                                     const glm::dvec3& eye_object) {
+                                                     const Viewpoint& eye_object) {
     INKLINE_CHECK_EQ(mesh.triangles.size(), face_edges_.size());
     chains_.clear();
     contour_faces_.clear();
@@ -356,7 +356,7 @@ void SmoothContourTracer::trace_crease_outline(const Mesh& mesh, const EdgeTable
     }
 }
 
-void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object) {
+void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& table, const Viewpoint& eye_object) {
     eye_ = eye_object;
     smooth_pieces(mesh, table);
     values_.resize(normals_.size());
@@ -396,7 +396,7 @@ void SmoothContourTracer::set_facing(const Mesh& mesh, Chain& r_chain) const {
 }
 
 double SmoothContourTracer::corner_value(const Mesh& mesh, uint32_t group) const {
-    return glm::dot(normals_[group], glm::dvec3(mesh.positions[group_vertex_[group]]) - eye_);
+    return -glm::dot(normals_[group], eye_.toward(glm::dvec3(mesh.positions[group_vertex_[group]])));
 }
 
 bool SmoothContourTracer::back(uint32_t group) {

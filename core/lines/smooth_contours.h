@@ -4,7 +4,8 @@
 //
 // g(p) = n(p) . (p - eye) is evaluated at every vertex with the area-weighted vertex normal and
 // taken as linear over each face (Hertzmann and Zorin, "Illustrating smooth surfaces", SIGGRAPH
-// 2000). A vertex faces away from the eye where g > 0 and towards it where g <= 0. The contour
+// 2000); for an orthographic camera, p - eye is the view direction (-eye.toward(p), Viewpoint in
+// core/scene/camera.h). A vertex faces away from the eye where g > 0 and towards it where g <= 0. The contour
 // crosses each edge whose two vertices differ, at the point where g interpolated along the edge
 // is zero, and each face with two such edges as one straight segment. Segments through shared
 // edges chain into closed loops, or into open curves that end on an edge of one face (a
@@ -82,7 +83,7 @@ class SmoothContourTracer {
     SmoothContourTracer(SmoothContourTracer&&) noexcept;
     SmoothContourTracer& operator=(SmoothContourTracer&&) noexcept;
 
-    const std::vector<Chain>& trace(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object);
+    const std::vector<Chain>& trace(const Mesh& mesh, const EdgeTable& table, const Viewpoint& eye_object);
     const SmoothContourStats& stats() const { return stats_; }
     // The last trace's stretches of crease edges on the outline, by edge, and along each edge
     // from its lower-numbered vertex.
@@ -99,7 +100,7 @@ class SmoothContourTracer {
   private:
     // The corner groups and their normals for the mesh's positions.
     void smooth_pieces(const Mesh& mesh, const EdgeTable& table);
-    void test_every_face(const Mesh& mesh, const EdgeTable& table, const glm::dvec3& eye_object);
+    void test_every_face(const Mesh& mesh, const EdgeTable& table, const Viewpoint& eye_object);
     void search(uint32_t node);        // the faces under a node the cones cannot rule out
     bool back(uint32_t group);         // g > 0, computed once a trace (incremental)
     // g of a corner group at the last trace's eye: the one expression every test of a corner
@@ -140,7 +141,7 @@ class SmoothContourTracer {
     uint32_t frame_ = 0;
     // Valid during trace (incremental).
     const Mesh* mesh_ = nullptr;
-    glm::dvec3 eye_{0.0};
+    Viewpoint eye_;
     std::vector<uint32_t> contour_faces_;  // faces whose corners differ
     struct Crossing {
         uint32_t edge, face, side;  // the contour crosses the face's edge `side` (face_edges_ order)

@@ -93,7 +93,7 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibil
     const Bounds& object_bounds = object_bounds_;
     found.lines.camera = camera_at(scene_, frame, transformed(object_bounds, found.world_from_object));
     const Projection projection(found.lines.camera, scene_.image, found.world_from_object);
-    if (!warned_inside_ && inside(object_bounds, projection.eye_object())) {
+    if (!warned_inside_ && !projection.orthographic() && inside(object_bounds, projection.eye_object().xyz)) {
         warned_inside_ = true;
         found.warnings.push_back("frame " + std::to_string(frame) +
                                  ": the camera is inside the mesh's bounds; lines may be hidden");

@@ -32,6 +32,8 @@ constexpr double kMaxEyeCoordinate = 1e19;
 
 // The narrowest vertical field of view drawn, degrees (as in a scene file).
 constexpr double kMinFovDeg = 1e-3;
+// The narrowest orthographic view, world units (core/scene/scene.cpp keeps the same limit).
+constexpr double kMinOrthoHeight = 1e-18;
 
 // The most influences a vertex may have (JOINTS_n/WEIGHTS_n sets times four).
 constexpr size_t kMaxInfluenceSets = 16;
@@ -1078,28 +1080,28 @@ void apply_gltf_camera(const GltfShot& shot, Scene& r_scene, int first, int last
         const GltfCameraView view = shot.camera_view_at(frame);
         CameraPose pose;
         pose.up = view.up;
+        pose.eye = view.eye;
+        pose.target = view.eye + view.forward * size;
         if (cam->orthographic) {
-            // An eye far back along the axis: the perspective over the shot's depth stays below
-            // 1e-4 of the image (docs/gltf.md, "Cameras").
-            const double distance = std::min({1e4 * std::max(size, half_y), 1e5 * half_y, 0.5 * kMaxEyeCoordinate});
-            pose.eye = view.eye - view.forward * distance;
-            pose.target = view.eye;
-            pose.fov_y_deg = glm::degrees(2.0 * std::atan(half_y / distance));
-        } else {
-            pose.eye = view.eye;
-            pose.target = view.eye + view.forward * size;
-            pose.fov_y_deg = glm::degrees(2.0 * std::atan(half_y));
+            pose.ortho_height = 2.0 * half_y;
+            if (!(*pose.ortho_height >= kMinOrthoHeight)) {
+                throw InputError(shot_file(shot) + ": the orthographic camera's view height (" +
+                                 std::to_string(*pose.ortho_height) + " at this image size) is below the limit of 1e-18");
+            }
+            r_scene.camera.per_frame[frame] = pose;
+            continue;
         }
+        pose.fov_y_deg = glm::degrees(2.0 * std::atan(half_y));
         if (!(pose.fov_y_deg >= kMinFovDeg)) {
             throw InputError(shot_file(shot) + ": the camera's field of view (" + std::to_string(pose.fov_y_deg) +
                              " degrees at this image size) is below the limit of 0.001 degrees");
         }
         r_scene.camera.per_frame[frame] = pose;
     }
-    if (!cam->orthographic) {
-        r_scene.camera.near = cam->znear;
-        if (cam->zfar) r_scene.camera.far = *cam->zfar;
-    }
+    // Both kinds clip at the camera's planes, as Blender renders them; an orthographic znear of
+    // 0 keeps everything in front of the camera.
+    r_scene.camera.near = cam->znear;
+    if (cam->zfar) r_scene.camera.far = *cam->zfar;
 }
 
 }  // namespace inkline::core

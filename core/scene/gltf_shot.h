@@ -99,8 +99,8 @@ bool is_gltf_path(const std::filesystem::path& path);
 // is animated. An image size
 // that differs from the camera's aspect keeps the view as Blender's automatic sensor fit does:
 // the camera's field of view along its longer side becomes the field along the image's longer
-// side. An orthographic camera is drawn from an eye 10^4 view heights back along its axis with the
-// matching narrow field of view (docs/gltf.md gives the error bound).
+// side. An orthographic camera stays orthographic (Camera::ortho_height), its xmag and ymag
+// refitted the same way.
 void apply_gltf_camera(const GltfShot& shot, Scene& r_scene, int first, int last, bool image_given);
 
 }  // namespace inkline::core

@@ -49,6 +49,11 @@ constexpr double kMaxWorldCoordinate = 1e19;
 // the limit keeps clip-space values inside float range for the GL pass.
 constexpr double kMinFovDeg = 1e-3;
 
+// The range of an orthographic camera's view height, world units: 2 / height times a
+// coordinate at the limit stays inside float range for the GL pass.
+constexpr double kMinOrthoHeight = 1e-18;
+constexpr double kMaxOrthoHeight = kMaxWorldCoordinate;
+
 // v scaled to unit length without overflow or underflow of its squared length; nullopt for the
 // zero vector. Lengths whose square is a normal double are divided directly, so ordinary
 // directions normalise to the same bits as glm::normalize.
@@ -205,6 +210,9 @@ Rotation read_rotation(const Reader& r) {
 void check_pose(const Reader& r, const CameraPose& pose) {
     if (!(pose.fov_y_deg >= kMinFovDeg && pose.fov_y_deg < 180.0))
         r.fail("fov_y_deg", "must be at least " + number_text(kMinFovDeg) + " and below 180 degrees");
+    if (pose.ortho_height && !(*pose.ortho_height >= kMinOrthoHeight && *pose.ortho_height <= kMaxOrthoHeight)) {
+        r.fail("ortho_height", "must be between " + number_text(kMinOrthoHeight) + " and " + number_text(kMaxOrthoHeight));
+    }
     const glm::dvec3 view = pose.target - pose.eye;
     const double magnitude = std::max({std::abs(pose.eye.x), std::abs(pose.eye.y), std::abs(pose.eye.z),
                                        std::abs(pose.target.x), std::abs(pose.target.y), std::abs(pose.target.z)});
@@ -220,6 +228,10 @@ CameraPose read_pose(const Reader& r) {
     pose.target = r.position("target");
     pose.up = r.has("up") ? r.direction("up") : glm::dvec3(0.0, 1.0, 0.0);
     pose.fov_y_deg = r.number_or("fov_y_deg", 35.0);
+    if (r.has("ortho_height")) {
+        if (r.has("fov_y_deg")) r.fail("ortho_height", "an orthographic camera has no fov_y_deg; give one of the two");
+        pose.ortho_height = r.number("ortho_height");
+    }
     check_pose(r, pose);
     return pose;
 }
@@ -232,13 +244,13 @@ CameraSpec read_camera(const Reader& r) {
         if (!list.is_array() || list.empty()) r.fail("frames", "expected a non-empty array of camera objects");
         for (size_t i = 0; i < list.size(); ++i) {
             const Reader item(r.file(), list[i], r.join("frames") + "[" + std::to_string(i) + "]");
-            item.allow_only({"frame", "eye", "target", "up", "fov_y_deg"});
+            item.allow_only({"frame", "eye", "target", "up", "fov_y_deg", "ortho_height"});
             const int frame = item.frame("frame");
             if (spec.per_frame.count(frame)) item.fail("frame", "frame " + std::to_string(frame) + " is given twice");
             spec.per_frame[frame] = read_pose(item);
         }
     } else {
-        r.allow_only({"eye", "target", "up", "fov_y_deg", "orbit", "near", "far"});
+        r.allow_only({"eye", "target", "up", "fov_y_deg", "ortho_height", "orbit", "near", "far"});
         spec.pose = read_pose(r);
         if (r.has("orbit")) spec.orbit = read_rotation(r.child("orbit"));
     }
@@ -848,13 +860,24 @@ Camera camera_at(const Scene& scene, int frame, const Bounds& world_bounds) {
         pose.eye = pose.target + glm::rotate(pose.eye - pose.target, angle, orbit.axis);
         pose.up = glm::rotate(pose.up, angle, orbit.axis);
     }
-    Camera camera{pose.eye, pose.target, pose.up, pose.fov_y_deg, 0.0, 0.0};
+    Camera camera{pose.eye, pose.target, pose.up, pose.fov_y_deg, 0.0, 0.0, pose.ortho_height};
 
-    // Fit near/far to the bounding sphere; a camera inside it gets a small positive near.
     const double radius = framing_radius(world_bounds);
-    const double distance = glm::length(world_bounds.center() - camera.eye);
-    camera.near = spec.near.value_or(std::max(0.9 * (distance - radius), 1e-3 * radius));
-    camera.far = spec.far.value_or(std::max(1.1 * (distance + radius), camera.near * 2.0));
+    if (camera.orthographic()) {
+        // An orthographic view sees the whole bounding sphere, also behind the eye: near may be
+        // negative. The planes keep a millionth of the eye's distance clear of the sphere, so
+        // that they stay apart (and the sphere between them) however far the eye stands.
+        const glm::dvec3 forward = glm::normalize(camera.target - camera.eye);
+        const double along = glm::dot(world_bounds.center() - camera.eye, forward);
+        const double slack = std::max(1.1 * radius + 1e-6 * std::abs(along), 1e-300);
+        camera.near = spec.near.value_or(along - slack);
+        camera.far = spec.far.value_or(along + slack);
+    } else {
+        // Fit near/far to the bounding sphere; a camera inside it gets a small positive near.
+        const double distance = glm::length(world_bounds.center() - camera.eye);
+        camera.near = spec.near.value_or(std::max(0.9 * (distance - radius), 1e-3 * radius));
+        camera.far = spec.far.value_or(std::max(1.1 * (distance + radius), camera.near * 2.0));
+    }
     // The scene's limits keep every value here finite; a NaN would be a bug, not a bad key.
     INKLINE_CHECK(std::isfinite(camera.near) && std::isfinite(camera.far) && std::isfinite(glm::length(camera.eye)));
     if (!(camera.far > camera.near)) {

@@ -40,6 +40,7 @@ struct CameraPose {
     glm::dvec3 target{0.0};
     glm::dvec3 up{0.0, 1.0, 0.0};
     double fov_y_deg = 35.0;
+    std::optional<double> ortho_height{};  // set: orthographic, this high (world units); Camera::ortho_height
 };
 
 struct CameraSpec {

@@ -127,7 +127,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
         }
     }
 
-    const glm::dvec3 eye = projection.eye_object();
+    const Viewpoint& eye = projection.eye_object();
     const glm::dmat4& world_from_object = projection.world_from_object();
     const ImageSize image = projection.image();
     const double width = options_.line_width_px;
@@ -175,7 +175,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             const glm::uvec3 t = mesh.triangles[face];
             const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
                                      glm::dvec3(mesh.positions[t.z])};
-            if (glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), eye - p[0]) <= 0.0) return;  // back-facing
+            if (glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), eye.toward(p[0])) <= 0.0) return;  // back-facing
             const double h[3] = {family.h[t.x], family.h[t.y], family.h[t.z]};
             const double h_lo = std::min({h[0], h[1], h[2]}), h_hi = std::max({h[0], h[1], h[2]});
             if (!(h_hi > h_lo)) return;

@@ -285,7 +285,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
     const ImageSize image = projection.image();
     const double half_w = 0.5 * image.width, half_h = 0.5 * image.height;
     const glm::dmat4& world_from_object = projection.world_from_object();
-    const glm::dvec3 eye = projection.eye_object();
+    const Viewpoint& eye = projection.eye_object();
     const double radius = options_.dot_radius_px;
     const double kappa = fade_weight(options_.fade);
     const double fade = options_.fade;
@@ -307,7 +307,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         return std::max(std::pow(cos_theta, kForeshortening), 1e-6);
     };
     const auto foreshortening = [&](const glm::dvec3& p, const glm::dvec3& n) {
-        return shrink(std::abs(glm::dot(n, glm::normalize(eye - p))));
+        return shrink(std::abs(glm::dot(n, glm::normalize(eye.toward(p)))));
     };
     const internal::ToneLight lit(world_from_object, light);
     // Each face's curve: its own, or the options' (nullptr: the face is left unshaded).
@@ -340,7 +340,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             if (!view.in_front) continue;
             view.px = projection.pixel_from_clip(clip);
             view.jacobian = jacobian(clip);
-            view.to_eye = glm::normalize(eye - p);
+            view.to_eye = glm::normalize(eye.toward(p));
         }
     });
     // Per face, the most samples any point of it can ask for: the darkest tone of its corners
@@ -359,7 +359,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             const glm::dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
             const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
             const double n_len = glm::length(n);
-            if (!(n_len > 0.0) || glm::dot(n, eye - p0) <= 0.0) continue;
+            if (!(n_len > 0.0) || glm::dot(n, eye.toward(p0)) <= 0.0) continue;
             const glm::dvec3 unit_n = n / n_len;
             glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
             double scale = 0.0, tone = 0.0;

@@ -95,7 +95,7 @@ ExactOcclusion::ExactOcclusion(const Mesh& mesh, const EdgeTable& table)
 
 ExactOcclusion::~ExactOcclusion() = default;
 
-void ExactOcclusion::occluded(const glm::dvec3& eye_object, std::span<const OcclusionQuery> queries,
+void ExactOcclusion::occluded(const Viewpoint& eye_object, std::span<const OcclusionQuery> queries,
                               std::span<uint8_t> r_occluded) const {
     INKLINE_CHECK_EQ(queries.size(), r_occluded.size());
     const Impl& impl = *impl_;

@@ -18,7 +18,7 @@ class ExactOcclusion final : public Occlusion {
     ExactOcclusion(const Mesh& mesh, const EdgeTable& table);
     ~ExactOcclusion() override;
 
-    void occluded(const glm::dvec3& eye_object, std::span<const OcclusionQuery> queries,
+    void occluded(const Viewpoint& eye_object, std::span<const OcclusionQuery> queries,
                   std::span<uint8_t> r_occluded) const override;
 
   private:

@@ -294,7 +294,7 @@ void RaycastOcclusion::update_positions(const Mesh& mesh) {
     impl.commit();
 }
 
-void RaycastOcclusion::occluded(const glm::dvec3& eye_object, std::span<const OcclusionQuery> queries,
+void RaycastOcclusion::occluded(const Viewpoint& eye_object, std::span<const OcclusionQuery> queries,
                                 std::span<uint8_t> r_occluded) const {
     INKLINE_CHECK_EQ(queries.size(), r_occluded.size());
     const Impl& impl = *impl_;

@@ -33,7 +33,7 @@ class RaycastOcclusion final : public Occlusion {
     void update_positions(const Mesh& mesh);
 
     // Queries run in parallel; each result depends on its query only.
-    void occluded(const glm::dvec3& eye_object, std::span<const OcclusionQuery> queries,
+    void occluded(const Viewpoint& eye_object, std::span<const OcclusionQuery> queries,
                   std::span<uint8_t> r_occluded) const override;
 
   private:

@@ -182,9 +182,9 @@ class Splitter {
     OcclusionQuery query(const ChainGeometry& geom, double g, const glm::dvec3& p) const {
         OcclusionQuery q = geom.query_at(g, p);
         const double bias = geom.surface_bias(g);
-        const glm::dvec3 to_eye = projection_.eye_object() - p;
+        const glm::dvec3 to_eye = projection_.eye_object().toward(p);
         const double distance = glm::length(to_eye);
-        if (bias > 0.0 && distance > bias) q.p_object = p + to_eye * (bias / distance);
+        if (bias > 0.0 && (projection_.orthographic() || distance > bias)) q.p_object = p + to_eye * (bias / distance);
         return q;
     }
 
@@ -252,7 +252,7 @@ class Splitter {
     double pixel_distance(const ChainGeometry& geom, double g0, double g1) const {
         const glm::dvec4 c0 = projection_.clip(geom.point(g0));
         const glm::dvec4 c1 = projection_.clip(geom.point(g1));
-        if (c0.w <= 0.0 || c1.w <= 0.0) return HUGE_VAL;
+        if (c0.w <= 0.0 || c1.w <= 0.0) return HUGE_VAL;  // w is 1 in orthographic projection
         return glm::length(projection_.pixel_from_clip(c0) - projection_.pixel_from_clip(c1));
     }
 
@@ -400,10 +400,10 @@ double occlusion_reach(const std::vector<glm::vec3>& positions) {
     return diagonal > 0.0 ? kOcclusionReachDiagonals * diagonal : 1.0;
 }
 
-glm::dvec3 occlusion_segment_end(const glm::dvec3& p, const glm::dvec3& eye, double reach) {
-    const glm::dvec3 to_eye = eye - p;
+glm::dvec3 occlusion_segment_end(const glm::dvec3& p, const Viewpoint& eye, double reach) {
+    const glm::dvec3 to_eye = eye.toward(p);
     const double length = glm::length(to_eye);
-    return length > reach ? p + to_eye * (reach / length) : eye;
+    return eye.orthographic() || length > reach ? p + to_eye * (reach / length) : eye.xyz;
 }
 
 double Polyline::length_px() const {

@@ -37,7 +37,7 @@ class Occlusion {
   public:
     virtual ~Occlusion() = default;
     // r_occluded[i] = 1 when queries[i] is occluded seen from eye_object; sizes must match.
-    virtual void occluded(const glm::dvec3& eye_object, std::span<const OcclusionQuery> queries,
+    virtual void occluded(const Viewpoint& eye_object, std::span<const OcclusionQuery> queries,
                           std::span<uint8_t> r_occluded) const = 0;
 };
 
@@ -52,8 +52,9 @@ inline constexpr double kOcclusionReachDiagonals = 4.0;
 double occlusion_reach(const std::vector<glm::vec3>& positions);
 
 // The end of the segment from p towards the eye that the occlusion tests use: the eye when it
-// is within `reach` of p, else the point `reach` away from p towards it.
-glm::dvec3 occlusion_segment_end(const glm::dvec3& p, const glm::dvec3& eye, double reach);
+// is within `reach` of p, else the point `reach` away from p towards it (always, for an eye at
+// infinity).
+glm::dvec3 occlusion_segment_end(const glm::dvec3& p, const Viewpoint& eye, double reach);
 
 struct VisibilityOptions {
     double sample_spacing_px = 2.0;  // coarse samples at most this far apart along a chain

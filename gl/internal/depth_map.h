@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The depth map read back from the GL pass, and the test of one point against it.
-// Every texel holds the nearest surface's inverse view depth q = 1 / w_clip with its slope, so
+// Every texel holds the nearest surface's inverse view depth q = 1 / w_clip (in orthographic
+// projection, where w_clip is 1, q = 2 - z_clip: larger nearer, too) with its slope, so
 // the surface can be extended exactly to a point between texel centres, and the id of the face
 // seen there. Why the test looks at the texels around a point the way it does:
 // docs/visibility.md.
@@ -16,7 +17,7 @@ namespace inkline::gl::internal {
 // One texel, as the fragment shader writes it (RGBA32F). q is affine in window space on a
 // planar triangle, so (dq_dx, dq_dy) describe the seen triangle's plane exactly.
 struct DepthTexel {
-    float q = 0.0f;      // 1 / w_clip of the nearest surface at the texel centre; 0: none
+    float q = 0.0f;      // q of the nearest surface at the texel centre
     float dq_dx = 0.0f;  // change of q per texel along window x (right)
     float dq_dy = 0.0f;  // change of q per texel along window y (up)
     float face = 0.0f;   // index of the face seen + 1, exact below kMaxFaceId; 0: none
@@ -38,7 +39,7 @@ struct DepthMap {
 // A query point seen through the depth pass's projection.
 struct DepthSample {
     glm::dvec2 p_window;  // texels, x right, y up, origin at the bottom-left corner
-    double q = 0.0;       // 1 / w_clip, the point's inverse view depth
+    double q = 0.0;       // the point's q: 1 / w_clip, its inverse view depth (or 2 - z_clip)
 };
 
 enum class DepthVerdict : uint8_t {

@@ -66,7 +66,11 @@ py::dict camera_dict(const core::Camera& c) {
     d["eye"] = py::make_tuple(c.eye.x, c.eye.y, c.eye.z);
     d["target"] = py::make_tuple(c.target.x, c.target.y, c.target.z);
     d["up"] = py::make_tuple(c.up.x, c.up.y, c.up.z);
-    d["fov_y_deg"] = c.fov_y_deg;
+    if (c.ortho_height) {
+        d["ortho_height"] = *c.ortho_height;
+    } else {
+        d["fov_y_deg"] = c.fov_y_deg;
+    }
     d["near"] = c.near;
     d["far"] = c.far;
     return d;

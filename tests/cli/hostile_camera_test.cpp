@@ -93,6 +93,36 @@ TEST_F(HostileCamera, EyeAtTheLimitIsDrawnInEveryMode) {
     expect_drawn(scene(R"({"eye": [0, 0, 1e-20], "target": [0, 0, 0], "up": [1e-300, 1e-300, 0]})"));
 }
 
+TEST_F(HostileCamera, OrthographicViewsAtTheLimitsAreDrawnInEveryMode) {
+    expect_drawn(scene(R"({"eye": [0, 0, 4], "target": [0, 0, 0], "ortho_height": 3})"));
+    expect_drawn(scene(R"({"eye": [0, 0, 1e19], "target": [0, 0, 0], "ortho_height": 1e19})"));
+    expect_drawn(scene(R"({"eye": [0, 0, 4], "target": [0, 0, 0], "ortho_height": 1e-18})"));
+    // The eye inside the mesh, and behind it: an orthographic view sees all of it.
+    expect_drawn(scene(R"({"eye": [0, 0, 0.2], "target": [0, 0, 0], "ortho_height": 3})"));
+    expect_drawn(scene(R"({"eye": [0, 0, -5], "target": [0, 0, -6], "ortho_height": 3})"));
+    for (const double radius : {1e-30, 1e-20}) {
+        octahedron("tiny.obj", radius);
+        test::write_text(dir / "tiny.json", R"({"mesh": "tiny.obj", "camera": {"eye": [0, 0, 1], "target": [0, 0, 0], "ortho_height": 1e-15}})");
+        expect_drawn(dir / "tiny.json");
+    }
+    octahedron("far.obj", 1e3, 1e17);
+    test::write_text(dir / "far.json", R"({"mesh": "far.obj", "camera": {"eye": [1e17, 1e17, 2e17], "target": [1e17, 1e17, 1e17], "ortho_height": 4000}})");
+    expect_drawn(dir / "far.json");
+}
+
+TEST_F(HostileCamera, BadOrthographicViewsAreRefusedWithTheirKey) {
+    expect_refused(scene(R"({"eye": [0, 0, 4], "target": [0, 0, 0], "ortho_height": 0})"),
+                   "key 'camera.ortho_height': must be between 1e-18 and 1e+19");
+    expect_refused(scene(R"({"eye": [0, 0, 4], "target": [0, 0, 0], "ortho_height": -2})"), "key 'camera.ortho_height'");
+    expect_refused(scene(R"({"eye": [0, 0, 4], "target": [0, 0, 0], "ortho_height": 1e20})"), "key 'camera.ortho_height'");
+    expect_refused(scene(R"({"eye": [0, 0, 4], "target": [0, 0, 0], "ortho_height": "tall"})"),
+                   "key 'camera.ortho_height': expected a number");
+    expect_refused(scene(R"({"eye": [0, 0, 4], "target": [0, 0, 0], "ortho_height": 2, "fov_y_deg": 30})"),
+                   "key 'camera.ortho_height': an orthographic camera has no fov_y_deg");
+    expect_refused(scene(R"({"frames": [{"frame": 1, "eye": [0, 0, 4], "target": [0, 0, 0], "ortho_height": 1e-19}]})"),
+                   "key 'camera.frames[0].ortho_height'");
+}
+
 TEST_F(HostileCamera, EyeBeyondTheLimitIsRefusedWithItsKey) {
     expect_refused(scene(R"({"eye": [0, 0, 1e20], "target": [0, 0, 0]})"), "scene.json: key 'camera.eye': coordinate 1e+20 exceeds the limit of 1e+19");
     expect_refused(scene(R"({"eye": [0, 0, 4], "target": [1e38, 0, 0]})"), "key 'camera.target': coordinate 1e+38");

@@ -7,7 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <map>
 #include <regex>
 #include <set>
@@ -148,6 +151,48 @@ TEST_F(Cli, GlPreviewPerFrame) {
                               (dir / "p.png").string() + " --preview-underlay glossy");
     EXPECT_EQ(bad.code, 2);
     EXPECT_NE(bad.output.find("--preview-underlay 'glossy'"), std::string::npos) << bad.output;
+}
+
+// A technical drawing: a cube in isometric orthographic projection, hidden lines on. All twelve
+// edges are drawn (three hidden), each as long as the others, and the edges of each direction
+// stay parallel: what a perspective view of the same cube does not give.
+TEST_F(Cli, OrthographicCubeIsAnIsometricDrawing) {
+    const fs::path s = scene(R"({"mesh": "cube.obj", "image": {"width": 600, "height": 600},
+        "lines": {"hidden": true},
+        "camera": {"eye": [5, 5, 5], "target": [0, 0, 0], "up": [0, 1, 0], "ortho_height": 4}})");
+    const RunResult r = run("render " + s.string() + " -q --json " + (dir / "f.json").string() + " --svg " +
+                            (dir / "f.svg").string() + " --preview " + (dir / "p.png").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto doc = nlohmann::json::parse(test::read_text(dir / "f.json"));
+    EXPECT_EQ(doc["camera"]["ortho_height"], 4.0);
+    EXPECT_FALSE(doc["camera"].contains("fov_y_deg"));
+    EXPECT_NE(test::read_text(dir / "f.svg").find("ortho_height=\"4\""), std::string::npos);
+    // Each cube edge (2 units) projects to 2 sqrt(2/3) units at 150 px a unit.
+    const double edge_px = 2.0 * std::sqrt(2.0 / 3.0) * 150.0;
+    double visible_px = 0.0, hidden_px = 0.0;
+    std::vector<std::array<double, 2>> directions;
+    for (const auto& stroke : doc["strokes"]) {
+        const auto& points = stroke["points"];
+        for (size_t k = 0; k + 1 < points.size(); ++k) {
+            const double dx = points[k + 1][0].get<double>() - points[k][0].get<double>();
+            const double dy = points[k + 1][1].get<double>() - points[k][1].get<double>();
+            const double length = std::hypot(dx, dy);
+            (stroke["visible"].get<bool>() ? visible_px : hidden_px) += length;
+            directions.push_back({dx / length, dy / length});
+        }
+    }
+    EXPECT_NEAR(visible_px, 9.0 * edge_px, 0.5);
+    EXPECT_NEAR(hidden_px, 3.0 * edge_px, 0.5);
+    // Every segment runs along one of the three image directions of the cube's axes.
+    for (const auto& d : directions) {
+        double best = 1.0;
+        for (const double angle_deg : {90.0, 30.0, -30.0}) {
+            const double a = angle_deg * std::numbers::pi / 180.0;
+            best = std::min(best, 1.0 - std::abs(d[0] * std::cos(a) + d[1] * std::sin(a)));
+        }
+        EXPECT_LT(best, 1e-9) << d[0] << " " << d[1];
+    }
+    EXPECT_EQ(test::read_text(dir / "p.png").substr(1, 3), "PNG");
 }
 
 TEST_F(Cli, PdfPerFramePattern) {

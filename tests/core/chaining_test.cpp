@@ -52,7 +52,7 @@ TEST(Chaining, OpenMeshBoundaryIsOneClosedLoop) {
         const core::EdgeTable table = core::build_edge_table(mesh);
         core::LineOptions lines;
         lines.silhouette = lines.crease = false;
-        const auto features = core::extract_feature_edges(mesh, table, {0.0, 3.0, 3.0}, lines);
+        const auto features = core::extract_feature_edges(mesh, table, glm::dvec3{0.0, 3.0, 3.0}, lines);
         const auto chains = core::chain_feature_edges(features, table);
         ASSERT_EQ(chains.size(), 1u);
         EXPECT_TRUE(chains[0].closed);
@@ -63,7 +63,7 @@ TEST(Chaining, OpenMeshBoundaryIsOneClosedLoop) {
     const core::EdgeTable table = core::build_edge_table(hemi);
     core::LineOptions lines;
     lines.silhouette = lines.crease = false;
-    EXPECT_EQ(core::chain_feature_edges(core::extract_feature_edges(hemi, table, {0, 3, 3}, lines), table)[0].edges.size(), 32u);
+    EXPECT_EQ(core::chain_feature_edges(core::extract_feature_edges(hemi, table, glm::dvec3{0, 3, 3}, lines), table)[0].edges.size(), 32u);
 }
 
 TEST(Chaining, SplitsWhereThreeEdgesMeet) {
@@ -73,7 +73,7 @@ TEST(Chaining, SplitsWhereThreeEdgesMeet) {
     m.positions = {{0, 0, 0}, {0, 1, 0}, {1, 0.5f, 0}, {-1, 0.5f, 0}, {0, 0.5f, 1}};
     m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
     const core::EdgeTable table = core::build_edge_table(m);
-    const auto features = core::extract_feature_edges(m, table, {0.2, 0.3, 3.0}, {});
+    const auto features = core::extract_feature_edges(m, table, glm::dvec3{0.2, 0.3, 3.0}, {});
     const auto chains = core::chain_feature_edges(features, table);
     for (const core::Chain& chain : chains) {
         EXPECT_FALSE(chain.closed);

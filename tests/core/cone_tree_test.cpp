@@ -51,8 +51,8 @@ TEST(ConeTree, EyeInThePlaneOfFlatFacesProvesNothingWrong) {
     const ConeTree tree(grid, table, 4);
     check_proofs(tree, grid, {3.0, 0.5, 0.0});
     check_proofs(tree, grid, {0.25, 0.25, 0.0});
-    EXPECT_EQ(tree.facing(0, {0.0, 0.0, 2.0}), ClusterFacing::kFront);
-    EXPECT_EQ(tree.facing(0, {0.0, 0.0, -2.0}), ClusterFacing::kBack);
+    EXPECT_EQ(tree.facing(0, glm::dvec3{0.0, 0.0, 2.0}), ClusterFacing::kFront);
+    EXPECT_EQ(tree.facing(0, glm::dvec3{0.0, 0.0, -2.0}), ClusterFacing::kBack);
 }
 
 TEST(ConeTree, RefitKeepsProofsValidAfterDeformation) {

@@ -491,9 +491,9 @@ TEST(FanVisibility, OwnFacesAtTheApexNeverOcclude) {
 
     // The same points seen from below the base are behind it.
     std::vector<uint8_t> hidden(queries.size(), 0);
-    raycast.occluded({0.1, -3.0, 0.2}, queries, hidden);
+    raycast.occluded(glm::dvec3{0.1, -3.0, 0.2}, queries, hidden);
     EXPECT_EQ(std::count(hidden.begin(), hidden.end(), uint8_t(1)), 2000);
-    exact.occluded({0.1, -3.0, 0.2}, queries, hidden);
+    exact.occluded(glm::dvec3{0.1, -3.0, 0.2}, queries, hidden);
     EXPECT_EQ(std::count(hidden.begin(), hidden.end(), uint8_t(1)), 2000);
 }
 

@@ -28,7 +28,7 @@ TEST(Features, SphereSilhouetteSeparatesFrontFromBackFaces) {
 TEST(Features, BoundaryTakesPriorityOverSilhouetteAndCrease) {
     const core::Mesh g = test::grid(3, 1.0);
     const core::EdgeTable table = core::build_edge_table(g);
-    const core::FeatureEdges features = core::extract_feature_edges(g, table, {0.0, 0.0, 3.0}, {});
+    const core::FeatureEdges features = core::extract_feature_edges(g, table, glm::dvec3{0.0, 0.0, 3.0}, {});
     EXPECT_EQ(features.count_by_kind()[size_t(LineKind::kBoundary)], 12u);
     EXPECT_EQ(features.edges.size(), 12u) << "a flat grid has no silhouette or crease inside";
 }
@@ -38,7 +38,7 @@ TEST(Features, DisabledKindsAreNotReported) {
     const core::EdgeTable table = core::build_edge_table(cube);
     core::LineOptions lines;
     lines.crease = false;
-    const auto counts = core::extract_feature_edges(cube, table, {3, 2.5, 4}, lines).count_by_kind();
+    const auto counts = core::extract_feature_edges(cube, table, glm::dvec3{3, 2.5, 4}, lines).count_by_kind();
     EXPECT_EQ(counts[size_t(LineKind::kCrease)], 0u);
     EXPECT_EQ(counts[size_t(LineKind::kSilhouette)], 6u);
 }

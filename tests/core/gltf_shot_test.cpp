@@ -312,11 +312,11 @@ TEST_F(GltfShotTest, PerspectiveCameraSetsAspectFieldAndPose) {
     EXPECT_NEAR(square.camera.per_frame.at(1).fov_y_deg, glm::degrees(2.0 * std::atan(half_x)), 1e-9);
 }
 
-TEST_F(GltfShotTest, OrthographicCameraIsAFarEyeWithTheSameViewHeight) {
+TEST_F(GltfShotTest, OrthographicCameraKeepsItsViewHeightAndPlanes) {
     GltfBuilder b;
     b.mesh_node("tri", kTriangle, {0, 1, 2});
     const int cam = b.node("Ortho");
-    b.json()["cameras"] = {{{"type", "orthographic"}, {"orthographic", {{"xmag", 2.0}, {"ymag", 1.0}, {"znear", 0.0}, {"zfar", 50}}}}};
+    b.json()["cameras"] = {{{"type", "orthographic"}, {"orthographic", {{"xmag", 2.0}, {"ymag", 1.0}, {"znear", 0.5}, {"zfar", 50}}}}};
     b.json()["nodes"][size_t(cam)]["camera"] = 0;
     b.json()["nodes"][size_t(cam)]["translation"] = {0, 0, 5};
     b.finish_scene();
@@ -326,10 +326,27 @@ TEST_F(GltfShotTest, OrthographicCameraIsAFarEyeWithTheSameViewHeight) {
     EXPECT_EQ(scene.image.width, 1024);
     EXPECT_EQ(scene.image.height, 512);
     const core::CameraPose& pose = scene.camera.per_frame.at(1);
-    const double distance = pose.eye.z - 5.0;
-    EXPECT_GT(distance, 1e3);
-    // Half the view height at the camera's plane is ymag.
-    EXPECT_NEAR(distance * std::tan(glm::radians(pose.fov_y_deg) / 2.0), 1.0, 1e-9);
+    EXPECT_EQ(pose.eye, glm::dvec3(0, 0, 5));
+    ASSERT_TRUE(pose.ortho_height.has_value());
+    EXPECT_DOUBLE_EQ(*pose.ortho_height, 2.0);  // twice ymag
+    EXPECT_EQ(scene.camera.near, 0.5);
+    EXPECT_EQ(scene.camera.far, 50.0);
+
+    // Points a unit right and half a unit up land at the same pixels at every depth: xmag and
+    // ymag are half the view's width and height.
+    const core::Camera camera = core::camera_at(scene, 1, core::bounds_of(shot.rest().positions));
+    const core::Projection projection(camera, scene.image, glm::dmat4(1.0));
+    EXPECT_TRUE(projection.orthographic());
+    for (const double z : {4.0, 0.0, -40.0}) {
+        const glm::dvec2 px = projection.pixel({1.0, 0.5, z});
+        EXPECT_NEAR(px.x, 768.0, 1e-9);
+        EXPECT_NEAR(px.y, 128.0, 1e-9);
+        EXPECT_TRUE(projection.in_front(projection.clip({1.0, 0.5, z})));
+        EXPECT_NEAR(projection.depth(projection.clip({1.0, 0.5, z})), 5.0 - z, 1e-9);
+    }
+    // Behind the near plane, and behind the camera, nothing is drawn.
+    EXPECT_FALSE(projection.in_front(projection.clip({0.0, 0.0, 4.7})));
+    EXPECT_FALSE(projection.in_front(projection.clip({0.0, 0.0, 6.0})));
 }
 
 // Without a camera: a bare mesh's turntable, held still when the shot is animated; a scene's own

@@ -278,7 +278,7 @@ TEST(RaycastVisibility, OwnFacesNeverOccludeTheirEdge) {
     }
     for (double z : {4.0, -4.0}) {
         std::vector<uint8_t> hidden(queries.size(), 1);
-        raycast.occluded({0.3, 0.2, z}, queries, hidden);
+        raycast.occluded(glm::dvec3{0.3, 0.2, z}, queries, hidden);
         EXPECT_EQ(hidden, std::vector<uint8_t>(queries.size(), 0));
     }
 }
@@ -298,9 +298,9 @@ TEST(RaycastVisibility, AFaceInFrontOccludes) {
         queries.push_back({0.5 * (a + b), e});
     }
     std::vector<uint8_t> hidden(queries.size());
-    raycast.occluded({0.0, 0.0, 5.0}, queries, hidden);
+    raycast.occluded(glm::dvec3{0.0, 0.0, 5.0}, queries, hidden);
     for (size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(hidden[i], queries[i].p_object.z < 0.5 ? 1 : 0) << i;
-    raycast.occluded({0.0, 0.0, -5.0}, queries, hidden);
+    raycast.occluded(glm::dvec3{0.0, 0.0, -5.0}, queries, hidden);
     for (size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(hidden[i], 0) << i << ": the small triangle covers none of the big one's edges";
 }
 
@@ -357,7 +357,7 @@ TEST(RaycastVisibility, DegenerateFacesDoNotShiftFaceNumbers) {
         queries.push_back({0.5 * (a + b), e});
     }
     std::vector<uint8_t> hidden(queries.size());
-    raycast.occluded({0.0, 0.0, 5.0}, queries, hidden);
+    raycast.occluded(glm::dvec3{0.0, 0.0, 5.0}, queries, hidden);
     for (size_t i = 0; i < queries.size(); ++i) EXPECT_EQ(hidden[i], queries[i].p_object.z < 0.5 ? 1 : 0) << i;
 }
 
@@ -371,7 +371,7 @@ TEST(RaycastVisibility, MeshWithoutValidFacesOccludesNothing) {
     raycast.update_positions(mesh);
     const core::OcclusionQuery q{{0.5, 0.0, 0.0}, 0};
     uint8_t hidden = 1;
-    raycast.occluded({0.0, 0.0, 4.0}, {&q, 1}, {&hidden, 1});
+    raycast.occluded(glm::dvec3{0.0, 0.0, 4.0}, {&q, 1}, {&hidden, 1});
     EXPECT_EQ(hidden, 0);
 }
 

@@ -54,7 +54,7 @@ struct RunTotals {
 };
 
 using MeshAt = std::function<const core::Mesh&(int frame)>;
-using EyeAt = std::function<glm::dvec3(int frame)>;
+using EyeAt = std::function<core::Viewpoint(int frame)>;
 
 // Runs the tracker over frames [0, frames) and compares every frame with brute force.
 RunTotals run_against_brute(core::SilhouetteTracker& tracker, const core::EdgeTable& table, int frames,
@@ -63,7 +63,7 @@ RunTotals run_against_brute(core::SilhouetteTracker& tracker, const core::EdgeTa
     RunTotals t;
     for (int frame = 0; frame < frames; ++frame) {
         const core::Mesh& mesh = mesh_at(frame);
-        const glm::dvec3 eye = eye_at(frame);
+        const core::Viewpoint eye = eye_at(frame);
         const FeatureEdges brute = core::extract_feature_edges(mesh, table, eye, lines);
         const FeatureEdges tracked = tracker.update(mesh, eye, lines);
         const std::string diff = difference(brute, tracked);

@@ -123,7 +123,7 @@ TEST(SmoothContours, ChainsEndOnBoundaryEdges) {
     const core::Mesh half = test::hemisphere(64, 32, 1.0);
     const core::EdgeTable table = core::build_edge_table(half);
     core::SmoothContourTracer tracer(half, table);
-    const std::vector<core::Chain>& chains = tracer.trace(half, table, {0.0, 0.0, 4.0});
+    const std::vector<core::Chain>& chains = tracer.trace(half, table, glm::dvec3{0.0, 0.0, 4.0});
     ASSERT_EQ(chains.size(), 1u);
     const core::Chain& c = chains[0];
     EXPECT_FALSE(c.closed);
@@ -139,7 +139,7 @@ TEST(SmoothContours, ChainsEndOnBoundaryEdges) {
     EXPECT_EQ(tracer.stats().segments, c.faces.size());
     EXPECT_LT(tracer.stats().faces_tested, half.triangles.size()) << "the cones rule out the rest";
     core::SmoothContourTracer brute(half, table, {.mode = core::TrackerMode::kBrute});
-    brute.trace(half, table, {0.0, 0.0, 4.0});
+    brute.trace(half, table, glm::dvec3{0.0, 0.0, 4.0});
     EXPECT_EQ(brute.stats().faces_tested, half.triangles.size());
 }
 

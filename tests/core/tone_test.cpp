@@ -166,7 +166,7 @@ TEST(Tone, NoDotOnOccludedSurface) {
     const auto& [mesh, scene, result] = torus_frame();
     const core::FrameTone& tone = result.tone;
     const test::SegmentOcclusion exact(mesh);
-    const glm::dvec3 eye = projection_of(scene, result).eye_object();
+    const core::Viewpoint eye = projection_of(scene, result).eye_object();
     const double share = exact.hidden_share(eye, tone.dots);
     std::printf("tone occlusion: %zu dots drawn, %zu culled as hidden by ray casting; %.4f%% hidden by the exact "
                 "test\n",
@@ -178,7 +178,7 @@ TEST(Tone, NoDotOnOccludedSurface) {
     // the frame with ray casting and again with nothing culled, where the exact test must find
     // about as many hidden dots as ray casting culled.
     struct NothingHidden final : core::Occlusion {
-        void occluded(const glm::dvec3&, std::span<const core::OcclusionQuery>, std::span<uint8_t> r) const override {
+        void occluded(const core::Viewpoint&, std::span<const core::OcclusionQuery>, std::span<uint8_t> r) const override {
             std::fill(r.begin(), r.end(), uint8_t(0));
         }
     };

@@ -16,7 +16,7 @@ namespace {
 class HideBeyondX final : public core::Occlusion {
   public:
     explicit HideBeyondX(double x) : x_(x) {}
-    void occluded(const glm::dvec3&, std::span<const core::OcclusionQuery> queries,
+    void occluded(const core::Viewpoint&, std::span<const core::OcclusionQuery> queries,
                   std::span<uint8_t> r_occluded) const override {
         for (size_t i = 0; i < queries.size(); ++i) r_occluded[i] = queries[i].p_object.x > x_;
     }
@@ -28,7 +28,7 @@ class HideBeyondX final : public core::Occlusion {
 // Hides nothing and keeps every point it was asked about.
 class RecordQueries final : public core::Occlusion {
   public:
-    void occluded(const glm::dvec3&, std::span<const core::OcclusionQuery> queries,
+    void occluded(const core::Viewpoint&, std::span<const core::OcclusionQuery> queries,
                   std::span<uint8_t> r_occluded) const override {
         for (size_t i = 0; i < queries.size(); ++i) {
             points.push_back(queries[i].p_object);

@@ -16,6 +16,10 @@ namespace inkline::test {
 core::Camera camera_for(const View& view, const core::Mesh& mesh) {
     const core::Bounds b = core::bounds_of(mesh.positions);
     const double d = glm::length(view.eye - b.center());
+    if (view.ortho_height) {
+        return {view.eye, view.target, {0.0, 1.0, 0.0}, view.fov_y_deg, d - 2.0 * b.radius(), d + 2.0 * b.radius(),
+                view.ortho_height};
+    }
     return {view.eye, view.target, {0.0, 1.0, 0.0}, view.fov_y_deg,
             std::max(0.5 * (d - b.radius()), 1e-3), 2.0 * (d + b.radius())};
 }
@@ -24,7 +28,7 @@ core::Scene scene_for(const View& view, const core::Mesh& mesh) {
     const core::Camera camera = camera_for(view, mesh);
     core::Scene scene;
     scene.image = {view.size, view.size};
-    scene.camera.pose = {camera.eye, camera.target, camera.up, camera.fov_y_deg};
+    scene.camera.pose = {camera.eye, camera.target, camera.up, camera.fov_y_deg, camera.ortho_height};
     scene.camera.near = camera.near;
     scene.camera.far = camera.far;
     return scene;
@@ -32,7 +36,8 @@ core::Scene scene_for(const View& view, const core::Mesh& mesh) {
 
 std::vector<core::Chain> feature_chains(const core::Mesh& mesh, const View& view, const core::LineOptions& lines) {
     const core::EdgeTable table = core::build_edge_table(mesh);
-    return core::chain_feature_edges(core::extract_feature_edges(mesh, table, view.eye, lines), table);
+    const core::Viewpoint eye = core::viewpoint_of(camera_for(view, mesh));
+    return core::chain_feature_edges(core::extract_feature_edges(mesh, table, eye, lines), table);
 }
 
 Drawn draw(const core::Mesh& mesh, const core::Scene& scene) {

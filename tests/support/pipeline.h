@@ -11,6 +11,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <optional>
+
 namespace inkline::test {
 
 struct View {
@@ -18,9 +20,11 @@ struct View {
     glm::dvec3 target{0.0};
     double fov_y_deg = 35.0;
     int size = 1024;
+    std::optional<double> ortho_height{};  // set: an orthographic view this high
 };
 
-// The view's camera, near and far fitted to the mesh's bounding sphere.
+// The view's camera, near and far fitted to the mesh's bounding sphere (for an orthographic
+// view, the whole sphere, also behind the eye).
 core::Camera camera_for(const View& view, const core::Mesh& mesh);
 
 // A one-frame scene (frame 1) of `mesh` seen from `view` with camera_for's camera, size x size.

@@ -59,6 +59,11 @@ SegmentOcclusion::SegmentOcclusion(const core::Mesh& mesh) {
         corners_.emplace_back(mesh.positions[t.y]);
         corners_.emplace_back(mesh.positions[t.z]);
     }
+    if (!corners_.empty()) {
+        glm::dvec3 lo = corners_.front(), hi = lo;
+        for (const glm::dvec3& c : corners_) lo = glm::min(lo, c), hi = glm::max(hi, c);
+        reach_ = std::max(4.0 * glm::length(hi - lo), 1.0);
+    }
     order_.resize(mesh.triangles.size());
     for (uint32_t f = 0; f < order_.size(); ++f) order_[f] = f;
     nodes_.reserve(2 * order_.size() / kLeafFaces + 2);
@@ -104,8 +109,9 @@ uint32_t SegmentOcclusion::build(uint32_t first, uint32_t count) {
     return index;
 }
 
-bool SegmentOcclusion::hidden(const glm::dvec3& eye, const glm::dvec3& p, uint32_t own_face) const {
+bool SegmentOcclusion::hidden(const core::Viewpoint& viewpoint, const glm::dvec3& p, uint32_t own_face) const {
     if (nodes_.empty()) return false;
+    const glm::dvec3 eye = viewpoint.orthographic() ? p + viewpoint.xyz * reach_ : viewpoint.xyz;
     const glm::dvec3 d = p - eye;
     const glm::dvec3 inv_d = 1.0 / d;
     const double t_max = 1.0 - kEndGap;
@@ -134,7 +140,7 @@ glm::dvec3 SegmentOcclusion::point_of(const core::Dot& dot) const {
     return dot.barycentric.x * c[0] + dot.barycentric.y * c[1] + dot.barycentric.z * c[2];
 }
 
-double SegmentOcclusion::hidden_share(const glm::dvec3& eye, std::span<const core::Dot> dots) const {
+double SegmentOcclusion::hidden_share(const core::Viewpoint& eye, std::span<const core::Dot> dots) const {
     if (dots.empty()) return 0.0;
     size_t hidden_dots = 0;
     for (const core::Dot& dot : dots) hidden_dots += hidden(eye, point_of(dot), dot.face) ? 1 : 0;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/mesh/mesh.h"
+#include "core/scene/camera.h"
 #include "core/tone/stipple.h"
 
 #include <glm/vec3.hpp>
@@ -23,12 +24,12 @@ class SegmentOcclusion {
     explicit SegmentOcclusion(const core::Mesh& mesh);
 
     // Whether a face other than own_face meets the segment from eye to p (object space), short
-    // of its last 1e-6.
-    bool hidden(const glm::dvec3& eye, const glm::dvec3& p, uint32_t own_face) const;
+    // of its last 1e-6. From an eye at infinity the segment starts four mesh diagonals from p.
+    bool hidden(const core::Viewpoint& eye, const glm::dvec3& p, uint32_t own_face) const;
 
     // The share of the dots (their face and barycentric coordinates on this mesh) hidden seen from
     // eye (object space); 0 without dots.
-    double hidden_share(const glm::dvec3& eye, std::span<const core::Dot> dots) const;
+    double hidden_share(const core::Viewpoint& eye, std::span<const core::Dot> dots) const;
 
     // A dot's point on this mesh, object space.
     glm::dvec3 point_of(const core::Dot& dot) const;
@@ -42,6 +43,7 @@ class SegmentOcclusion {
     uint32_t build(uint32_t first, uint32_t count);
 
     std::vector<glm::dvec3> corners_;  // three per face
+    double reach_ = 1.0;               // four diagonals of the mesh's box
     std::vector<uint32_t> order_;      // faces, grouped by leaf
     std::vector<Node> nodes_;
 };

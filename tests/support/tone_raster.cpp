@@ -92,7 +92,7 @@ SurfacePixels sphere_pixels(const glm::dvec3& centre, double radius, const core:
     out.face.assign(size, 0);
     const glm::dmat4 object_from_clip = glm::inverse(projection.clip_from_object());
     const glm::dmat3 normals = normal_matrix(projection);
-    const glm::dvec3 eye = projection.eye_object();
+    const glm::dvec3 eye = projection.eye_object().xyz;  // a perspective camera's
     const glm::dvec3 oc = eye - centre;
     for (int y = 0; y < out.image.height; ++y) {
         for (int x = 0; x < out.image.width; ++x) {

@@ -390,15 +390,16 @@ void ConeTree::refit(const Mesh& mesh, std::span<const glm::dvec3> normals, std:
     }
 }
 
-ClusterFacing ConeTree::facing(uint32_t index, const glm::dvec3& eye) const {
+ClusterFacing ConeTree::facing(uint32_t index, const Viewpoint& eye) const {
     const ConeNode& node = nodes[index];
     if (!(node.spread < kMaxSpread)) return ClusterFacing::kUnknown;
 
-    // Over the box, v = eye - centroid has axis . v within along +- reach and |v| <= farthest.
-    const double pad = kBoxPad * std::max({max_abs(eye), max_abs(node.box_min), max_abs(node.box_max)});
+    // Over the box, v = eye.toward(centroid) has axis . v within along +- reach and |v| <=
+    // farthest. Towards an eye at infinity v is the same everywhere: the box shrinks to its pad.
+    const double pad = kBoxPad * std::max({max_abs(eye.xyz), eye.w * max_abs(node.box_min), eye.w * max_abs(node.box_max)});
     const glm::dvec3 center = 0.5 * (node.box_min + node.box_max);
-    const glm::dvec3 half = 0.5 * (node.box_max - node.box_min) + pad;
-    const glm::dvec3 to_eye = eye - center;
+    const glm::dvec3 half = eye.w * 0.5 * (node.box_max - node.box_min) + pad;
+    const glm::dvec3 to_eye = eye.toward(center);
     const double along = glm::dot(node.axis, to_eye);
     const double reach = glm::dot(glm::abs(node.axis), half);
     double nearest;  // least |axis . v| over the box, on the side the box lies

@@ -2,7 +2,7 @@
 // Hierarchy of face clusters, each bounded by a normal cone anchored at the box of its face
 // centroids: proves whole clusters front- or back-facing from an eye, or free of creases. Built
 // over corner normals instead, it bounds the normals at the faces' corners and is anchored at the
-// box of the corners: it proves the sign of n . (eye - corner) at every corner of a cluster, the
+// box of the corners: it proves the sign of n . eye.toward(corner) at every corner of a cluster, the
 // sign smooth contours follow.
 // Based on: P. Sander, X. Gu, S. Gortler, H. Hoppe, J. Snyder. Silhouette Clipping. SIGGRAPH 2000.
 //           A. Johannsen, M. Carter. Clustered Backface Culling. Journal of Graphics Tools, 1998.
@@ -10,6 +10,7 @@
 
 #include "core/mesh/mesh.h"
 #include "core/mesh/topology.h"
+#include "core/scene/camera.h"
 
 #include <glm/vec3.hpp>
 
@@ -69,9 +70,9 @@ class ConeTree {
 
     // kFront (kBack) when facing_value(mesh, f, eye) > 0 (<= 0) is certain for every face f of
     // the node, including floating-point error; kUnknown otherwise. Over corner normals: kFront
-    // (kBack) when glm::dot(n, corner - eye) < 0 (> 0) is certain for every corner of every face
-    // of the node, n the corner's normal.
-    ClusterFacing facing(uint32_t node, const glm::dvec3& eye) const;
+    // (kBack) when glm::dot(n, eye.toward(corner)) > 0 (< 0) is certain for every corner of
+    // every face of the node, n the corner's normal.
+    ClusterFacing facing(uint32_t node, const Viewpoint& eye) const;
 
     uint32_t leaf_faces() const { return leaf_faces_; }
     uint32_t leaf_count() const { return (uint32_t(faces.size()) + leaf_faces_ - 1) / leaf_faces_; }

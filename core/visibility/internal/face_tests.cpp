@@ -23,7 +23,7 @@ double raycast_scale(const std::vector<glm::vec3>& positions) {
     return largest > 0.0f && std::isfinite(largest) ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0;
 }
 
-ScaledRay occlusion_ray(const glm::dvec3& p_object, const glm::dvec3& eye_object, double reach, double scale) {
+ScaledRay occlusion_ray(const glm::dvec3& p_object, const Viewpoint& eye_object, double reach, double scale) {
     const glm::dvec3 far_end = occlusion_segment_end(p_object, eye_object, reach);
     ScaledRay ray;
     ray.origin = glm::vec3(p_object * scale);
@@ -69,7 +69,7 @@ bool RayTriangleTest::meets(const glm::dvec3& a, const glm::dvec3& b, const glm:
     return t_det < tnear_ * det && t_det >= tfar_ * det;
 }
 
-QuerySegment query_segment(const glm::dvec3& p_object, const glm::dvec3& eye_object, double reach) {
+QuerySegment query_segment(const glm::dvec3& p_object, const Viewpoint& eye_object, double reach) {
     const glm::dvec3 far_end = occlusion_segment_end(p_object, eye_object, reach);
     return {far_end, p_object + (far_end - p_object) * kSegmentEndGap};
 }

@@ -67,7 +67,7 @@ struct ScaledRay {
 
 // The ray cast for a point seen from the eye (object space): from the point (t = 0) to the eye,
 // or as far towards it as an occluder can be (t = 1, occlusion_segment_end), times `scale`.
-ScaledRay occlusion_ray(const glm::dvec3& p_object, const glm::dvec3& eye_object, double reach, double scale);
+ScaledRay occlusion_ray(const glm::dvec3& p_object, const Viewpoint& eye_object, double reach, double scale);
 
 // Ray against triangles, in double precision: Woop et al.'s watertight test, which is what
 // Embree's robust mode answers in float. A ray through the edge or corner of a triangle meets
@@ -99,7 +99,7 @@ struct QuerySegment {
     glm::dvec3 stop;     // kSegmentEndGap of the way from the point to far_end
 };
 
-QuerySegment query_segment(const glm::dvec3& p_object, const glm::dvec3& eye_object, double reach);
+QuerySegment query_segment(const glm::dvec3& p_object, const Viewpoint& eye_object, double reach);
 
 // Whether the segment meets the triangle (a, b, c): CGAL's exact predicates, the test exact
 // visibility makes for every face.
