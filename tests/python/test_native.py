@@ -57,3 +57,15 @@ def test_docs_show_the_worked_examples_as_they_are():
     for name in ("test_example_sphere_silhouette.py", "test_example_compare_renders.py"):
         text = (SOURCE / "tests" / "python" / name).read_text()
         assert "```python\n" + text + "```\n" in docs, f"docs/python.md does not show tests/python/{name} as it is"
+
+
+def test_an_orthographic_camera_draws_a_sphere_its_own_size_from_any_distance():
+    vertices, faces = icosphere(5)
+    for eye in ([0.0, 0.0, 3.0], [1.0, 2.0, 30.0]):
+        camera = {"eye": eye, "target": [0, 0, 0], "up": [0, 1, 0], "ortho_height": 3.0}
+        frame = inkline.scene(vertices, faces, image=(600, 600), visibility="exact", camera=camera).render(1)
+        assert frame.camera["ortho_height"] == 3.0 and "fov_y_deg" not in frame.camera
+        points = np.concatenate([s.points for s in frame.strokes if s.visible])
+        # A unit sphere is a circle of 200 px about the image centre (the target).
+        radii = np.linalg.norm(points - [300.0, 300.0], axis=1)
+        assert np.all(np.abs(radii - 200.0) < 0.25)
