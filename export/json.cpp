@@ -182,25 +182,30 @@ json hatch_json(const core::Hatch& h) {
             {"width", std::move(width)}};
 }
 
-// The tone object, its dots and hatches as marks.
+json stipple_stats_json(const core::StippleStats& s) {
+    return {{"samples", s.samples}, {"considered", s.considered}, {"wanted", s.wanted}, {"inked", s.inked},
+            {"occluded", s.occluded}};
+}
+
+json hatch_stats_json(const core::HatchStats& s) {
+    return {{"faces", s.faces}, {"segments", s.segments}, {"points", s.points}, {"occluded", s.occluded},
+            {"inked", s.inked}};
+}
+
+// The tone object, its dots and hatches as marks. `stats` are the scene's mode's; where objects
+// have modes of their own, `modes` lists those drawn and the other kind's stats follow.
 json tone_json(const core::FrameTone& tone) {
+    const bool stipple = tone.mode == core::ToneMode::kStipple;
+    const bool hatched = tone.has(core::ToneMode::kHatch) || tone.has(core::ToneMode::kCrosshatch);
     json out = {{"mode", core::tone_mode_name(tone.mode)}, {"dots", kDotsMark.value}};
-    if (tone.mode == core::ToneMode::kHatch || tone.mode == core::ToneMode::kCrosshatch) {
-        out["hatches"] = kHatchesMark.value;
-        const core::HatchStats& s = tone.hatch_stats;
-        out["stats"] = {{"faces", s.faces},
-                        {"segments", s.segments},
-                        {"points", s.points},
-                        {"occluded", s.occluded},
-                        {"inked", s.inked}};
-    }
-    if (tone.mode == core::ToneMode::kStipple) {
-        const core::StippleStats& s = tone.stipple_stats;
-        out["stats"] = {{"samples", s.samples},
-                        {"considered", s.considered},
-                        {"wanted", s.wanted},
-                        {"inked", s.inked},
-                        {"occluded", s.occluded}};
+    if (!stipple || hatched) out["hatches"] = kHatchesMark.value;
+    out["stats"] = stipple ? stipple_stats_json(tone.stipple_stats) : hatch_stats_json(tone.hatch_stats);
+    if (tone.modes.size() > 1 || (tone.modes.size() == 1 && tone.modes.front() != tone.mode)) {
+        json modes = json::array();
+        for (const core::ToneMode m : tone.modes) modes.push_back(core::tone_mode_name(m));
+        out["modes"] = std::move(modes);
+        if (stipple && hatched) out["hatch_stats"] = hatch_stats_json(tone.hatch_stats);
+        if (!stipple && tone.has(core::ToneMode::kStipple)) out["stipple_stats"] = stipple_stats_json(tone.stipple_stats);
     }
     return out;
 }

@@ -291,41 +291,31 @@ FrameResult FramePipeline::run(int frame) {
             tone_normals_ = vertex_normals(mesh);
         }
         out.tone.mode = scene_.tone.mode;
-        if (tone_faces_.empty() && !meshes_.objects().empty()) {
-            // Each object's curve (0: unshaded, else 1 + its index in tone_curves_); faces keep
-            // the scene's curve unless some object is unshaded or has one of its own.
-            const ToneCurve& scene_curve = scene_.tone.curve;
-            std::vector<uint16_t> curve_of_object;
-            bool own = false;
-            for (const MeshObject& object : meshes_.objects()) {
-                const std::optional<ToneCurve> curve = object_tone_curve(scene_, object.name);
-                if (!curve) {
-                    curve_of_object.push_back(0);
-                    own = true;
-                    continue;
-                }
-                own |= *curve != scene_curve;
-                auto it = std::find(tone_curves_.begin(), tone_curves_.end(), *curve);
-                if (it == tone_curves_.end()) it = tone_curves_.insert(it, *curve);
-                curve_of_object.push_back(uint16_t(1 + (it - tone_curves_.begin())));
-            }
-            if (own) {
-                tone_faces_.reserve(meshes_.face_objects().size());
-                for (uint32_t object : meshes_.face_objects()) tone_faces_.push_back(curve_of_object[object]);
-            }
-        }
-        const FaceTones face_tones{tone_faces_, tone_curves_};
+        if (tone_passes_.empty()) plan_tone_passes();
         const bool new_topology = change == MeshChange::kTopology;
-        if (scene_.tone.mode == ToneMode::kStipple) {
-            if (!stippler_) stippler_.emplace(scene_.tone);
-            out.tone.dots = stippler_->stipple(mesh, table, tone_normals_, projection, scene_.light, occlusion,
-                                               out.strokes.strokes, new_topology, face_tones);
-            out.tone.stipple_stats = stippler_->stats();
-        } else {
-            if (!hatcher_) hatcher_.emplace(scene_.tone);
-            out.tone.hatches = hatcher_->hatch(mesh, table, tone_normals_, projection, scene_.light, occlusion,
-                                               out.strokes.strokes, new_topology, face_tones);
-            out.tone.hatch_stats = hatcher_->stats();
+        for (const TonePass& pass : tone_passes_) {
+            const FaceTones face_tones{pass.faces, tone_curves_};
+            ToneOptions options = scene_.tone;
+            options.mode = pass.mode;
+            out.tone.modes.push_back(pass.mode);
+            if (pass.mode == ToneMode::kStipple) {
+                if (!stippler_) stippler_.emplace(options);
+                out.tone.dots = stippler_->stipple(mesh, table, tone_normals_, projection, scene_.light, occlusion,
+                                                   out.strokes.strokes, new_topology, face_tones);
+                out.tone.stipple_stats = stippler_->stats();
+                continue;
+            }
+            std::optional<Hatcher>& hatcher = pass.mode == ToneMode::kHatch ? hatcher_ : crosshatcher_;
+            if (!hatcher) hatcher.emplace(options);
+            std::vector<Hatch> hatches = hatcher->hatch(mesh, table, tone_normals_, projection, scene_.light, occlusion,
+                                                        out.strokes.strokes, new_topology, face_tones);
+            if (out.tone.hatches.empty()) {
+                out.tone.hatches = std::move(hatches);
+            } else {
+                out.tone.hatches.insert(out.tone.hatches.end(), std::make_move_iterator(hatches.begin()),
+                                        std::make_move_iterator(hatches.end()));
+            }
+            out.tone.hatch_stats += hatcher->stats();
         }
         tone_ms = step("tone");
     }
@@ -343,6 +333,59 @@ FrameResult FramePipeline::run(int frame) {
                 {"strokes", strokes_ms}};
     if (scene_.tone.mode != ToneMode::kNone) stats.ms.emplace_back("tone", tone_ms);
     return out;
+}
+
+void FramePipeline::plan_tone_passes() {
+    const ToneMode scene_mode = scene_.tone.mode;
+    if (meshes_.objects().empty()) {
+        tone_passes_.push_back({scene_mode, {}});
+        return;
+    }
+    // Each object's curve (0: unshaded, else 1 + its index in tone_curves_) and mode; faces
+    // keep the scene's curve in one pass of the scene's mode unless some object is unshaded or
+    // has a curve or a mode of its own.
+    const ToneCurve& scene_curve = scene_.tone.curve;
+    std::vector<uint16_t> curve_of_object;
+    std::vector<ToneMode> mode_of_object;
+    bool own = false;
+    for (const MeshObject& object : meshes_.objects()) {
+        const std::optional<ToneCurve> curve = object_tone_curve(scene_, object.name);
+        const ToneMode mode = object_tone_mode(scene_, object.name);
+        mode_of_object.push_back(mode);
+        if (!curve || mode == ToneMode::kNone) {
+            curve_of_object.push_back(0);
+            own = true;
+            continue;
+        }
+        own |= *curve != scene_curve || mode != scene_mode;
+        auto it = std::find(tone_curves_.begin(), tone_curves_.end(), *curve);
+        if (it == tone_curves_.end()) it = tone_curves_.insert(it, *curve);
+        curve_of_object.push_back(uint16_t(1 + (it - tone_curves_.begin())));
+    }
+    if (!own) {
+        tone_passes_.push_back({scene_mode, {}});
+        return;
+    }
+    // A pass per mode some object is shaded with, the scene's first (the scene's alone, every
+    // face unshaded, when no object is shaded).
+    const auto used = [&](ToneMode mode) {
+        return std::find(mode_of_object.begin(), mode_of_object.end(), mode) != mode_of_object.end();
+    };
+    std::vector<ToneMode> modes;
+    if (used(scene_mode)) modes.push_back(scene_mode);
+    for (const ToneMode mode : {ToneMode::kStipple, ToneMode::kHatch, ToneMode::kCrosshatch}) {
+        if (mode != scene_mode && used(mode)) modes.push_back(mode);
+    }
+    if (modes.empty()) modes.push_back(scene_mode);
+    const std::span<const uint32_t> face_objects = meshes_.face_objects();
+    for (const ToneMode mode : modes) {
+        TonePass pass{mode, {}};
+        pass.faces.reserve(face_objects.size());
+        for (const uint32_t object : face_objects) {
+            pass.faces.push_back(mode_of_object[object] == mode ? curve_of_object[object] : 0);
+        }
+        tone_passes_.push_back(std::move(pass));
+    }
 }
 
 }  // namespace inkline::core

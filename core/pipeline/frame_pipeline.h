@@ -137,13 +137,21 @@ class FramePipeline {
     Bounds object_bounds_;              // of the mesh, while it holds still
     VertexNormalCache stroke_normals_;  // the strokes' vertex normals, while the mesh holds still
     DrawingOrder drawing_order_;
-    std::optional<Stippler> stippler_;  // with a scene "tone" of mode stipple
-    std::optional<Hatcher> hatcher_;    // ... of mode hatch or crosshatch
+    // The tone's marks of each mode, with the state each keeps from frame to frame.
+    std::optional<Stippler> stippler_;
+    std::optional<Hatcher> hatcher_, crosshatcher_;
     std::vector<glm::dvec3> tone_normals_;  // the mesh's vertex normals, for the tone
-    // Per face: 0 where its object is unshaded, else 1 + the index of its object's tone curve in
-    // tone_curves_; empty: every face on the scene's curve.
-    std::vector<uint16_t> tone_faces_;
+    // One mode's marks on the faces shaded with it (scene "objects" may give an object a mode
+    // of its own).
+    struct TonePass {
+        ToneMode mode = ToneMode::kNone;
+        // Per face: 0 where it is unshaded in this pass, else 1 + the index of its object's
+        // tone curve in tone_curves_; empty: every face on the scene's curve.
+        std::vector<uint16_t> faces;
+    };
+    std::vector<TonePass> tone_passes_;  // set on the first frame with tone
     std::vector<ToneCurve> tone_curves_;
+    void plan_tone_passes();
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;
     bool trace_intersections_ = false;

@@ -328,17 +328,20 @@ ToneCurvePatch read_tone_curve(const Reader& r) {
     return c;
 }
 
+// The "mode" of a "tone" block.
+ToneMode read_tone_mode(const Reader& r) {
+    const std::optional<ToneMode> mode = tone_mode_from_name(r.string("mode"));
+    if (!mode) r.fail("mode", "expected \"stipple\", \"hatch\", \"crosshatch\" or \"none\"");
+    return *mode;
+}
+
 // The scene's "tone" block (docs/tone.md).
 ToneOptions read_tone(const Reader& r) {
     r.allow_only({"mode", "gamma", "levels", "min", "max", "dot_radius_px", "fade", "line_width_px", "direction",
                   "cross_direction", "cross_from", "color", "opacity", "seed"});
     ToneOptions t;
     t.mode = ToneMode::kStipple;
-    if (r.has("mode")) {
-        const std::optional<ToneMode> mode = tone_mode_from_name(r.string("mode"));
-        if (!mode) r.fail("mode", "expected \"stipple\", \"hatch\", \"crosshatch\" or \"none\"");
-        t.mode = *mode;
-    }
+    if (r.has("mode")) t.mode = read_tone_mode(r);
     read_tone_curve(r).apply_to(t.curve);
     t.dot_radius_px = r.number_or("dot_radius_px", t.dot_radius_px);
     if (!(t.dot_radius_px >= 0.25 && t.dot_radius_px <= 64.0)) r.fail("dot_radius_px", "must be between 0.25 and 64");
@@ -603,11 +606,14 @@ std::vector<ObjectRule> read_object_rules(const Reader& r) {
         rule.pattern = pattern;
         if (o.has("tone") && o.at("tone").is_object()) {
             const Reader t = o.child("tone");
-            t.allow_only({"gamma", "levels", "min", "max"});
+            t.allow_only({"mode", "gamma", "levels", "min", "max"});
             rule.tone = true;
             rule.tone_curve = read_tone_curve(t);
+            if (t.has("mode")) rule.tone_mode = read_tone_mode(t);
         } else if (o.has("tone")) {
-            if (!o.at("tone").is_boolean()) o.fail("tone", "expected true, false or {\"gamma\", \"levels\", \"min\", \"max\"}");
+            if (!o.at("tone").is_boolean()) {
+                o.fail("tone", "expected true, false or {\"mode\", \"gamma\", \"levels\", \"min\", \"max\"}");
+            }
             rule.tone = o.boolean_or("tone", true);
         }
         if (o.has("lines")) {
@@ -651,6 +657,15 @@ std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std
 
 bool object_draws_tone(const Scene& scene, const std::string& object_name) {
     return object_tone_curve(scene, object_name).has_value();
+}
+
+ToneMode object_tone_mode(const Scene& scene, const std::string& object_name) {
+    if (scene.tone.mode == ToneMode::kNone || !object_draws_tone(scene, object_name)) return ToneMode::kNone;
+    ToneMode mode = scene.tone.mode;
+    for (const ObjectRule& rule : scene.objects) {
+        if (rule.tone_mode && ::fnmatch(rule.pattern.c_str(), object_name.c_str(), 0) == 0) mode = *rule.tone_mode;
+    }
+    return mode;
 }
 
 std::optional<ToneCurve> object_tone_curve(const Scene& scene, const std::string& object_name) {

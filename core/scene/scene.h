@@ -71,6 +71,7 @@ struct ObjectRule {
     std::optional<bool> silhouette, boundary, crease, intersection;  // override the scene's lines.*
     std::optional<bool> tone;  // false: no tone on the object (a holdout has none either)
     ToneCurvePatch tone_curve;  // "tone": {...}: the object's own gamma, levels, min, max
+    std::optional<ToneMode> tone_mode;  // "tone": {"mode": ...}: the object's own marks
 };
 
 // The longest write-on (s): a day.
@@ -109,6 +110,10 @@ std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std
 // Whether an object is shaded by the scene's tone: not a holdout, and no matching rule says
 // "tone": false (the last matching rule that says either way decides).
 bool object_draws_tone(const Scene& scene, const std::string& object_name);
+// The marks an object is shaded with: the scene's tone.mode, or the last matching rule's "tone"
+// "mode"; kNone where the scene has no tone (an object's mode does not turn it on) or
+// object_draws_tone says it is not shaded.
+ToneMode object_tone_mode(const Scene& scene, const std::string& object_name);
 // The tone curve an object is shaded with: the scene's, with the keys of every matching rule's
 // "tone" block applied in order; none where object_draws_tone says it is not shaded.
 std::optional<ToneCurve> object_tone_curve(const Scene& scene, const std::string& object_name);

@@ -52,6 +52,12 @@ struct HatchStats {
     size_t points = 0;    // of which points tested for occlusion
     size_t occluded = 0;
     size_t inked = 0;     // points under a visible stroke's ink
+
+    HatchStats& operator+=(const HatchStats& other) {
+        faces += other.faces, segments += other.segments, points += other.points;
+        occluded += other.occluded, inked += other.inked;
+        return *this;
+    }
 };
 
 // Hatches frame after frame, keeping each family's planes on the rest shape.

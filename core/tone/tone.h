@@ -7,16 +7,23 @@
 #include "core/tone/stipple.h"
 #include "core/tone/tone_options.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace inkline::core {
 
 struct FrameTone {
-    ToneMode mode = ToneMode::kNone;
+    ToneMode mode = ToneMode::kNone;  // the scene's
+    // The modes drawn: the scene's alone, or where objects have modes of their own (scene
+    // "objects") each mode some object is shaded with, the scene's first. A frame can then have
+    // both dots and hatches.
+    std::vector<ToneMode> modes;
     std::vector<Dot> dots;        // stipple: ascending by sample
-    std::vector<Hatch> hatches;   // hatch, crosshatch: by family, then as traced
+    std::vector<Hatch> hatches;   // hatch, crosshatch: by mode, by family, then as traced
     StippleStats stipple_stats;   // with stipple
-    HatchStats hatch_stats;       // with hatch and crosshatch
+    HatchStats hatch_stats;       // with hatch and crosshatch (their sum, with both)
+
+    bool has(ToneMode m) const { return std::find(modes.begin(), modes.end(), m) != modes.end(); }
 };
 
 }  // namespace inkline::core

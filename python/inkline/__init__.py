@@ -91,6 +91,12 @@ class Tone:
     # Hatching: one dict per hatch: family, plane, level (ints); points (k, 2), world (k, 3), width (k,)
     # float64; edges (k,) uint32.
     hatches: list = field(default_factory=list)
+    # The modes drawn: [mode], or where objects have modes of their own each mode some object is
+    # shaded with; then the other kind's stats too (hatch_stats with a stippled scene, else
+    # stipple_stats).
+    modes: list = field(default_factory=list)
+    hatch_stats: Optional[dict] = None
+    stipple_stats: Optional[dict] = None
 
     def __len__(self) -> int:
         """Dots, or hatches with hatching."""
@@ -384,4 +390,6 @@ def _tone_from_json(t: dict) -> Tone:
     return Tone(mode=str(t["mode"]), points=column("point", np.float64, 2), world=column("world", np.float64, 3),
                 faces=column("face", np.uint32, 0), barycentric=column("barycentric", np.float64, 3),
                 radius=column("radius", np.float64, 0), tone=column("tone", np.float64, 0),
-                samples=column("sample", np.uint32, 0), stats=dict(t.get("stats", {})), hatches=hatches)
+                samples=column("sample", np.uint32, 0), stats=dict(t.get("stats", {})), hatches=hatches,
+                modes=list(t.get("modes", [t["mode"]])), hatch_stats=t.get("hatch_stats"),
+                stipple_stats=t.get("stipple_stats"))

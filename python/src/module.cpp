@@ -216,22 +216,26 @@ py::object tone_of(const Frame& frame) {
         radius.push_back(d.radius_px);
         value.push_back(d.tone);
     }
-    py::dict stats;
-    if (tone.mode == core::ToneMode::kStipple) {
-        const core::StippleStats& s = tone.stipple_stats;
-        stats["samples"] = s.samples;
-        stats["considered"] = s.considered;
-        stats["wanted"] = s.wanted;
-        stats["inked"] = s.inked;
-        stats["occluded"] = s.occluded;
-    } else {
-        const core::HatchStats& s = tone.hatch_stats;
-        stats["faces"] = s.faces;
-        stats["segments"] = s.segments;
-        stats["points"] = s.points;
-        stats["occluded"] = s.occluded;
-        stats["inked"] = s.inked;
-    }
+    const auto stipple_stats = [](const core::StippleStats& s) {
+        py::dict d;
+        d["samples"] = s.samples;
+        d["considered"] = s.considered;
+        d["wanted"] = s.wanted;
+        d["inked"] = s.inked;
+        d["occluded"] = s.occluded;
+        return d;
+    };
+    const auto hatch_stats = [](const core::HatchStats& s) {
+        py::dict d;
+        d["faces"] = s.faces;
+        d["segments"] = s.segments;
+        d["points"] = s.points;
+        d["occluded"] = s.occluded;
+        d["inked"] = s.inked;
+        return d;
+    };
+    const bool stipple = tone.mode == core::ToneMode::kStipple;
+    const py::dict stats = stipple ? stipple_stats(tone.stipple_stats) : hatch_stats(tone.hatch_stats);
     // Hatches: one dict of arrays each, as the JSON lists them.
     py::list hatches;
     for (const core::Hatch& h : tone.hatches) {
@@ -256,6 +260,14 @@ py::object tone_of(const Frame& frame) {
     out["samples"] = array_of(samples);
     out["hatches"] = hatches;
     out["stats"] = stats;
+    // Where objects have modes of their own: the modes drawn, and the other kind's stats.
+    py::list modes;
+    for (const core::ToneMode m : tone.modes) modes.append(core::tone_mode_name(m));
+    out["modes"] = modes;
+    if (stipple && (tone.has(core::ToneMode::kHatch) || tone.has(core::ToneMode::kCrosshatch))) {
+        out["hatch_stats"] = hatch_stats(tone.hatch_stats);
+    }
+    if (!stipple && tone.has(core::ToneMode::kStipple)) out["stipple_stats"] = stipple_stats(tone.stipple_stats);
     return out;
 }
 

@@ -118,6 +118,41 @@ TEST_F(Tone, AnObjectCanHaveAToneCurveOfItsOwn) {
     }
 }
 
+// One object stippled, the other hatched: each object's marks are exactly those of a scene of
+// that mode in which the other object is unshaded (it still hides them).
+TEST_F(Tone, ObjectsCanHaveModesOfTheirOwn) {
+    const std::string lit = R"(, "tone": {"mode": "stipple", "max": 0.6})";
+    const auto run = [&](const std::string& extra, const std::string& name) {
+        const test::RunResult r = render(two_spheres_scene(dir, extra), name, "", true);
+        EXPECT_EQ(r.code, 0) << r.output;
+        return json(name)["tone"];
+    };
+    const nlohmann::json mixed = run(lit + R"(, "objects": {"Right": {"tone": {"mode": "crosshatch"}}})", "mixed");
+    const nlohmann::json dots_only = run(lit + R"(, "objects": {"Right": {"tone": false}})", "dots_only");
+    const nlohmann::json hatch_only =
+        run(R"(, "tone": {"mode": "crosshatch", "max": 0.6}, "objects": {"Left": {"tone": false}})", "hatch_only");
+    EXPECT_EQ(mixed["mode"], "stipple");
+    EXPECT_EQ(mixed["modes"], nlohmann::json::array({"stipple", "crosshatch"}));
+    ASSERT_GT(mixed["dots"].size(), 100u);
+    ASSERT_GT(mixed["hatches"].size(), 10u);
+    EXPECT_EQ(mixed["dots"], dots_only["dots"]);
+    EXPECT_EQ(mixed["hatches"], hatch_only["hatches"]);
+    EXPECT_EQ(marks_left_and_right(mixed), std::make_pair(mixed["dots"].size(), marks_left_and_right(hatch_only).second));
+    EXPECT_EQ(mixed["stats"], dots_only["stats"]);
+    EXPECT_EQ(mixed["hatch_stats"], hatch_only["stats"]);
+    EXPECT_FALSE(dots_only.contains("modes")) << "one mode: the JSON is as before";
+    // The SVG's tone layer holds both kinds of marks.
+    const std::string text = svg("mixed");
+    EXPECT_EQ(circle_samples(text).size(), mixed["dots"].size());
+    EXPECT_NE(text.find("data-family=\"1\""), std::string::npos) << "the second family of crosshatching";
+    // An object's mode does not turn tone on, and --tone none turns it off.
+    EXPECT_FALSE(run(R"(, "objects": {"Right": {"tone": {"mode": "hatch"}}})", "off").contains("dots"));
+    const test::RunResult none = render(two_spheres_scene(dir, lit + R"(, "objects": {"Right": {"tone": {"mode": "hatch"}}})"),
+                                        "none", "--tone none");
+    ASSERT_EQ(none.code, 0) << none.output;
+    EXPECT_FALSE(json("none").contains("tone"));
+}
+
 TEST_F(Tone, BogusModeFailsWithOneLineAndExitCode2) {
     const test::RunResult r = test::run_inkline("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1 --tone bogus -o " +
                                                 (dir / "out").string());

@@ -360,7 +360,7 @@ TEST(Scene, ToneErrorsNameTheKey) {
         {R"("tone": {"opacity": 2})", "key 'tone.opacity'"},
         {R"("tone": {"seed": -3})", "key 'tone.seed'"},
         {R"("tone": "stipple")", "key 'tone': expected an object"},
-        {R"("objects": {"Ground": {"tone": 1}})", "key 'objects.Ground.tone': expected true, false or {\"gamma\""},
+        {R"("objects": {"Ground": {"tone": 1}})", "key 'objects.Ground.tone': expected true, false or {\"mode\", \"gamma\""},
     };
     for (const auto& [tone, expected] : cases) {
         const std::string json = R"({"mesh": "m.obj", )" + camera + ", " + tone + "}";
@@ -408,12 +408,31 @@ TEST(Scene, AnObjectsToneBlockSetsItsOwnCurveKeyByKey) {
              {R"({"A": {"tone": {"max": 2}}})", "key 'objects.A.tone.max': must be between 0 and 0.9"},
              {R"({"A": {"tone": {"gamma": 0}}})", "key 'objects.A.tone.gamma': must be above 0"},
              {R"({"A": {"tone": {"levels": -1}}})", "key 'objects.A.tone.levels': must be between 0 and 256"},
-             {R"({"A": {"tone": {"mode": "hatch"}}})", "objects.A.tone"},
+             {R"({"A": {"tone": {"mode": "smudge"}}})", "key 'objects.A.tone.mode': expected \"stipple\", \"hatch\""},
              {R"({"A": {"tone": "dark"}})", "objects.A.tone"}}) {
         const std::string json = R"({"mesh": "m.obj", )" + camera + R"(, "objects": )" + objects + "}";
         const std::string error = error_of(json);
         EXPECT_NE(error.find(expected), std::string::npos) << json << "\n  gave: " << error;
     }
+}
+
+TEST(Scene, AnObjectsToneModeOverridesTheScenesOnlyWhereTheSceneHasTone) {
+    const std::string objects = R"("objects": {"Vase*": {"tone": {"mode": "hatch"}}, "Vase.2": {"tone": {"mode": "crosshatch"}},
+                                               "Cup": {"tone": {"mode": "none"}}, "Wall": {"lines": false, "tone": {"mode": "stipple"}},
+                                               "Plate": {"tone": false}})";
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, "tone": {"mode": "stipple"}, )" + objects + "}",
+        "scene.json");
+    EXPECT_EQ(core::object_tone_mode(s, "Ball"), core::ToneMode::kStipple) << "the scene's";
+    EXPECT_EQ(core::object_tone_mode(s, "Vase.1"), core::ToneMode::kHatch) << "the glob's";
+    EXPECT_EQ(core::object_tone_mode(s, "Vase.2"), core::ToneMode::kCrosshatch) << "the exact name's, after the glob";
+    EXPECT_EQ(core::object_tone_mode(s, "Cup"), core::ToneMode::kNone);
+    EXPECT_EQ(core::object_tone_mode(s, "Wall"), core::ToneMode::kNone) << "a holdout is never shaded";
+    EXPECT_EQ(core::object_tone_mode(s, "Plate"), core::ToneMode::kNone);
+    EXPECT_TRUE(core::object_tone_curve(s, "Cup")) << "mode none leaves the curve as it is";
+    const core::Scene off = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, )" + objects + "}", "scene.json");
+    EXPECT_EQ(core::object_tone_mode(off, "Vase.1"), core::ToneMode::kNone) << "an object's mode does not turn tone on";
 }
 
 TEST(Scene, BrushTipResolvesAgainstTheSceneFolder) {

@@ -119,3 +119,28 @@ def test_hatches_are_the_jsons_and_read_back():
     svg = frame.to_svg()
     assert svg.count("<path data-family=") == len(tone.hatches)
     assert 'data-mode="crosshatch"' in svg
+
+
+def test_objects_with_modes_of_their_own_give_dots_and_hatches(tmp_path):
+    vertices, faces = icosphere(3)
+    lines = []
+    for name, dx, base in (("Left", -1.2, 0), ("Right", 1.2, len(vertices))):
+        lines.append(f"o {name}")
+        lines += [f"v {x + dx!r} {y!r} {z!r}" for x, y, z in vertices]
+        lines += [f"f {a + base + 1} {b + base + 1} {c + base + 1}" for a, b, c in faces]
+    (tmp_path / "spheres.obj").write_text("\n".join(lines) + "\n")
+    scene = tmp_path / "spheres.json"
+    scene.write_text(json.dumps({
+        "mesh": "spheres.obj", "image": {"width": 320, "height": 160},
+        "camera": {"eye": [0, 0, 6], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 30},
+        "light": {"direction": [0.0, -0.3, -1.0]}, "tone": {"mode": "stipple", "max": 0.6},
+        "objects": {"Right": {"tone": {"mode": "hatch"}}}}))
+    frame = inkline.open(scene, frames=1, visibility="exact").render(1)
+    tone = frame.tone
+    assert tone.mode == "stipple" and tone.modes == ["stipple", "hatch"]
+    assert len(tone.points) > 100 and np.all(tone.points[:, 0] < 160)
+    assert tone.hatches and all(np.all(h["points"][:, 0] > 160) for h in tone.hatches)
+    assert tone.hatch_stats["segments"] > 0 and tone.stipple_stats is None
+    back = inkline.read_json(frame.to_json()).tone
+    assert back.modes == tone.modes and back.hatch_stats == tone.hatch_stats
+    assert len(back.hatches) == len(tone.hatches) and np.array_equal(back.samples, tone.samples)
