@@ -23,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <numbers>
 #include <string>
 
 namespace inkline {
@@ -246,6 +247,24 @@ TEST(Preview, UnderlayShadesTheMeshUnderTheLines) {
             EXPECT_GT(in_band[0] + in_band[1] + in_band[2], opaque * 8 / 10) << "flat bands, ink aside";
         }
     }
+}
+
+// An orthographic camera: the lines land where Cairo draws them, and the shaded surface under
+// them covers the sphere's disc, 1 unit of 3 at 300 px: a radius of 100 px at any distance.
+TEST(Preview, OrthographicViewMatchesCairoAndCoversTheSphere) {
+    const Frame frame = frame_of(test::icosphere(5), {.eye = {0.6, 1.2, 7.0}, .size = 300, .ortho_height = 3.0});
+    gl::PreviewOptions options;
+    options.underlay = gl::Underlay::kToon;
+    const gl::PreviewImage lines = preview(gl::Backend::kAuto, frame, gl::default_brush_tip());
+    const double overlap = test::iou(coverage(lines), coverage(cairo_png(frame)));
+    EXPECT_GE(overlap, kMinCoverageIou);
+    const gl::PreviewImage image = preview(gl::Backend::kAuto, frame, gl::default_brush_tip(), options);
+    size_t opaque = 0;
+    for (size_t i = 0; i < image.rgba.size(); i += 4) opaque += image.rgba[i + 3] == 255;
+    const double disc = std::numbers::pi * 100.0 * 100.0;
+    std::printf("[ preview ] orthographic: ink IoU with Cairo %.4f, %zu opaque px against a disc of %.0f\n", overlap,
+                opaque, disc);
+    EXPECT_NEAR(double(opaque), disc, 0.03 * disc);
 }
 
 TEST(Preview, RendersFrameAfterFrame) {
