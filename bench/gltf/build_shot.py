@@ -8,9 +8,10 @@
 # The shot: a ground plane; a box parented under a turning empty with a smooth ball parented
 # to the box; a bending tube skinned to a two-bone armature; a sphere sunk a little into the
 # ground (an intersection line) whose shape key swells it; a camera that moves and turns to keep
-# the box in view. The OBJ frames name each object ("o NAME"), as the glTF file does.
+# the box in view. The OBJ frames name each object ("o NAME"), as the glTF file does. With
+# --ortho SCALE the camera is orthographic, its Orthographic Scale SCALE.
 #
-#   blender -b --factory-startup --python bench/gltf/build_shot.py -- OUT [--frames N] [--detail K]
+#   blender -b --factory-startup --python bench/gltf/build_shot.py -- OUT [--frames N] [--detail K] [--ortho SCALE]
 import math
 import os
 import sys
@@ -21,15 +22,17 @@ import bmesh
 
 def args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    out, frames, detail = argv[0] if argv else "shot", 24, 1
+    out, frames, detail, ortho = argv[0] if argv else "shot", 24, 1, None
     i = 1
     while i < len(argv):
         if argv[i] == "--frames":
             frames = int(argv[i + 1])
         elif argv[i] == "--detail":
             detail = int(argv[i + 1])
+        elif argv[i] == "--ortho":
+            ortho = float(argv[i + 1])
         i += 2
-    return out, frames, detail
+    return out, frames, detail, ortho
 
 
 def key(obj, path, frame, value):
@@ -37,7 +40,7 @@ def key(obj, path, frame, value):
     obj.keyframe_insert(path, frame=frame)
 
 
-def build(frames, detail):
+def build(frames, detail, ortho):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     scene.frame_start, scene.frame_end = 1, frames
@@ -120,6 +123,9 @@ def build(frames, detail):
     bpy.ops.object.camera_add(location=(6, -7, 4))
     cam = bpy.context.object
     cam.name = "Camera"
+    if ortho:
+        cam.data.type = "ORTHO"
+        cam.data.ortho_scale = ortho
     scene.camera = cam
     key(cam, "location", 1, (6, -7, 4))
     key(cam, "location", frames, (7, -4, 3))
@@ -168,9 +174,12 @@ def write_frames(out, scene, cam, frames):
         forward = -mw.col[2].xyz
         up = mw.col[1].xyz
         aspect = scene.render.resolution_x / scene.render.resolution_y
-        fov_y = 2.0 * math.atan(math.tan(cam.data.angle / 2.0) / aspect)  # sensor fit AUTO, landscape
-        cameras.append({"frame": frame, "eye": list(gl(eye)), "target": list(gl(eye + forward)),
-                        "up": list(gl(up)), "fov_y_deg": math.degrees(fov_y)})
+        view = {"frame": frame, "eye": list(gl(eye)), "target": list(gl(eye + forward)), "up": list(gl(up))}
+        if cam.data.type == "ORTHO":
+            view["ortho_height"] = cam.data.ortho_scale / aspect  # sensor fit AUTO, landscape: the scale is the width
+        else:
+            view["fov_y_deg"] = math.degrees(2.0 * math.atan(math.tan(cam.data.angle / 2.0) / aspect))
+        cameras.append(view)
     import json
     with open(os.path.join(out, "reference.json"), "w") as f:
         json.dump({"mesh": {"sequence": "frames/f%04d.obj"}, "frames": [1, frames],
@@ -178,9 +187,9 @@ def write_frames(out, scene, cam, frames):
 
 
 def main():
-    out, frames, detail = args()
+    out, frames, detail, ortho = args()
     os.makedirs(out, exist_ok=True)
-    scene, cam = build(frames, detail)
+    scene, cam = build(frames, detail, ortho)
     bpy.ops.export_scene.gltf(filepath=os.path.join(out, "shot.glb"), export_format="GLB", export_cameras=True,
                               export_animations=True, export_skins=True, export_morph=True, export_apply=False)
     write_frames(out, scene, cam, frames)
