@@ -37,18 +37,10 @@ test::View ortho_view(const glm::dvec3& eye) { return {.eye = eye, .size = kSize
 
 core::FrameResult render(const core::Mesh& mesh, const test::View& view, core::VisibilityMode mode,
                          core::ContourMode contour = core::ContourMode::kMesh) {
-    core::Scene scene = test::scene_for(view, mesh);
-    scene.lines.contour = contour;
-    core::MeshFrames meshes(mesh);
-    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(mode));
-    return pipeline.run(scene.first_frame);
+    return test::render_frame(mesh, view, mode, contour);
 }
 
-double visible_length(const core::FrameLines& lines) {
-    double sum = 0.0;
-    for (const core::Polyline& line : lines.polylines) sum += line.visible ? line.length_px() : 0.0;
-    return sum;
-}
+using test::visible_length;
 
 std::vector<core::VisibilityMode> cpu_modes() {
     std::vector<core::VisibilityMode> modes{core::VisibilityMode::kExact};

@@ -403,20 +403,10 @@ TEST(SmoothContours, TheOutlineIsCutOutOfTheCreases) {
 // Frame 1 of `mesh` seen from `view` with smooth contours, under a visibility mode.
 core::FrameResult render(const core::Mesh& mesh, const test::View& view, core::VisibilityMode mode,
                          core::ContourMode contour = core::ContourMode::kSmooth) {
-    core::Scene scene = test::scene_for(view, mesh);
-    scene.lines.contour = contour;
-    core::MeshFrames meshes(mesh);
-    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(mode));
-    return pipeline.run(scene.first_frame);
+    return test::render_frame(mesh, view, mode, contour);
 }
 
-double visible_length(const core::FrameLines& lines) {
-    double sum = 0.0;
-    for (const core::Polyline& line : lines.polylines) {
-        if (line.visible) sum += line.length_px();
-    }
-    return sum;
-}
+using test::visible_length;
 
 TEST(SmoothContours, TheOutlineRunsOnAlongCreasesWithOrWithoutCreaseLines) {
     // A closed cylinder seen from above: its outline is the back of the top rim, the two side

@@ -53,4 +53,19 @@ core::FrameLines trace(const core::Mesh& mesh, const View& view, const core::Lin
     return draw(mesh, scene).lines;
 }
 
+core::FrameResult render_frame(const core::Mesh& mesh, const View& view, core::VisibilityMode mode,
+                               core::ContourMode contour) {
+    core::Scene scene = scene_for(view, mesh);
+    scene.lines.contour = contour;
+    core::MeshFrames meshes(mesh);
+    core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(mode));
+    return pipeline.run(scene.first_frame);
+}
+
+double visible_length(const core::FrameLines& lines) {
+    double sum = 0.0;
+    for (const core::Polyline& line : lines.polylines) sum += line.visible ? line.length_px() : 0.0;
+    return sum;
+}
+
 }  // namespace inkline::test

@@ -6,6 +6,7 @@
 #include "core/lines/chaining.h"
 #include "core/mesh/mesh.h"
 #include "core/pipeline/frame_lines.h"
+#include "core/pipeline/frame_pipeline.h"
 #include "core/scene/scene.h"
 #include "core/strokes/strokes.h"
 
@@ -43,5 +44,13 @@ Drawn draw(const core::Mesh& mesh, const core::Scene& scene);
 
 // The lines of scene_for(view, mesh) with `lines` as its line options.
 core::FrameLines trace(const core::Mesh& mesh, const View& view, const core::LineOptions& lines = {});
+
+// Frame 1 of scene_for(view, mesh) with `contour` silhouettes, under a CPU visibility mode (the
+// result's `mesh` is not valid).
+core::FrameResult render_frame(const core::Mesh& mesh, const View& view, core::VisibilityMode mode,
+                               core::ContourMode contour);
+
+// Summed pixel length of the visible polylines.
+double visible_length(const core::FrameLines& lines);
 
 }  // namespace inkline::test
