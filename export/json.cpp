@@ -205,7 +205,9 @@ json tone_json(const core::FrameTone& tone) {
         for (const core::ToneMode m : tone.modes) modes.push_back(core::tone_mode_name(m));
         out["modes"] = std::move(modes);
         if (stipple && hatched) out["hatch_stats"] = hatch_stats_json(tone.hatch_stats);
-        if (!stipple && tone.has(core::ToneMode::kStipple)) out["stipple_stats"] = stipple_stats_json(tone.stipple_stats);
+        if (!stipple && tone.has(core::ToneMode::kStipple)) {
+            out["stipple_stats"] = stipple_stats_json(tone.stipple_stats);
+        }
     }
     return out;
 }

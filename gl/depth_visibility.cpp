@@ -253,7 +253,8 @@ struct DepthOcclusion::Impl {
     }
 
     // True when a face seen at the four texels around the point crosses the segment from -> p.
-    bool seen_faces_cover(const glm::dvec3& from, const core::OcclusionQuery& query, const internal::DepthSample& sample) const {
+    bool seen_faces_cover(const glm::dvec3& from, const core::OcclusionQuery& query,
+                          const internal::DepthSample& sample) const {
         const core::Mesh& mesh = *frame_mesh;
         const glm::dvec3& p = query.p_object;
         seen.clear();
@@ -420,8 +421,9 @@ void DepthOcclusion::occluded(const core::Viewpoint& eye_object, std::span<const
     INKLINE_CHECK(m.projection.has_value());  // prepare() comes first
     const core::Projection& projection = *m.projection;
     // The caller's eye must be the prepared one; a stale depth map would answer silently.
-    INKLINE_CHECK(eye_object.w == projection.eye_object().w &&
-                  glm::length(eye_object.xyz - projection.eye_object().xyz) <= 1e-9 * (1.0 + glm::length(eye_object.xyz)));
+    const core::Viewpoint& prepared = projection.eye_object();
+    INKLINE_CHECK(eye_object.w == prepared.w &&
+                  glm::length(eye_object.xyz - prepared.xyz) <= 1e-9 * (1.0 + glm::length(eye_object.xyz)));
     const glm::dvec2 size(m.map.width, m.map.height);
     for (size_t i = 0; i < queries.size(); ++i) {
         const glm::dvec4 clip = projection.clip(queries[i].p_object);

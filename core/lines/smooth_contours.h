@@ -5,11 +5,11 @@
 // g(p) = n(p) . (p - eye) is evaluated at every vertex with the area-weighted vertex normal and
 // taken as linear over each face (Hertzmann and Zorin, "Illustrating smooth surfaces", SIGGRAPH
 // 2000); for an orthographic camera, p - eye is the view direction (-eye.toward(p), Viewpoint in
-// core/scene/camera.h). A vertex faces away from the eye where g > 0 and towards it where g <= 0. The contour
-// crosses each edge whose two vertices differ, at the point where g interpolated along the edge
-// is zero, and each face with two such edges as one straight segment. Segments through shared
-// edges chain into closed loops, or into open curves that end on an edge of one face (a
-// boundary) or of three and more (non-manifold).
+// core/scene/camera.h). A vertex faces away from the eye where g > 0 and towards it where
+// g <= 0. The contour crosses each edge whose two vertices differ, at the point where g
+// interpolated along the edge is zero, and each face with two such edges as one straight
+// segment. Segments through shared edges chain into closed loops, or into open curves that end
+// on an edge of one face (a boundary) or of three and more (non-manifold).
 //
 // Creases split the surface into smooth pieces: a vertex on a crease has a normal per piece (its
 // corners whose faces join without crossing a crease edge), and the contour of each piece ends

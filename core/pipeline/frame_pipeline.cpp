@@ -309,12 +309,8 @@ FrameResult FramePipeline::run(int frame) {
             if (!hatcher) hatcher.emplace(options);
             std::vector<Hatch> hatches = hatcher->hatch(mesh, table, tone_normals_, projection, scene_.light, occlusion,
                                                         out.strokes.strokes, new_topology, face_tones);
-            if (out.tone.hatches.empty()) {
-                out.tone.hatches = std::move(hatches);
-            } else {
-                out.tone.hatches.insert(out.tone.hatches.end(), std::make_move_iterator(hatches.begin()),
-                                        std::make_move_iterator(hatches.end()));
-            }
+            out.tone.hatches.insert(out.tone.hatches.end(), std::make_move_iterator(hatches.begin()),
+                                    std::make_move_iterator(hatches.end()));
             out.tone.hatch_stats += hatcher->stats();
         }
         tone_ms = step("tone");

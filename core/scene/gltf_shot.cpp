@@ -1086,7 +1086,8 @@ void apply_gltf_camera(const GltfShot& shot, Scene& r_scene, int first, int last
             pose.ortho_height = 2.0 * half_y;
             if (!(*pose.ortho_height >= kMinOrthoHeight)) {
                 throw InputError(shot_file(shot) + ": the orthographic camera's view height (" +
-                                 std::to_string(*pose.ortho_height) + " at this image size) is below the limit of 1e-18");
+                                 std::to_string(*pose.ortho_height) +
+                                 " at this image size) is below the limit of 1e-18");
             }
             r_scene.camera.per_frame[frame] = pose;
             continue;

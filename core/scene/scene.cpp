@@ -211,7 +211,8 @@ void check_pose(const Reader& r, const CameraPose& pose) {
     if (!(pose.fov_y_deg >= kMinFovDeg && pose.fov_y_deg < 180.0))
         r.fail("fov_y_deg", "must be at least " + number_text(kMinFovDeg) + " and below 180 degrees");
     if (pose.ortho_height && !(*pose.ortho_height >= kMinOrthoHeight && *pose.ortho_height <= kMaxOrthoHeight)) {
-        r.fail("ortho_height", "must be between " + number_text(kMinOrthoHeight) + " and " + number_text(kMaxOrthoHeight));
+        r.fail("ortho_height",
+               "must be between " + number_text(kMinOrthoHeight) + " and " + number_text(kMaxOrthoHeight));
     }
     const glm::dvec3 view = pose.target - pose.eye;
     const double magnitude = std::max({std::abs(pose.eye.x), std::abs(pose.eye.y), std::abs(pose.eye.z),

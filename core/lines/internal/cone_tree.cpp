@@ -396,7 +396,8 @@ ClusterFacing ConeTree::facing(uint32_t index, const Viewpoint& eye) const {
 
     // Over the box, v = eye.toward(centroid) has axis . v within along +- reach and |v| <=
     // farthest. Towards an eye at infinity v is the same everywhere: the box shrinks to its pad.
-    const double pad = kBoxPad * std::max({max_abs(eye.xyz), eye.w * max_abs(node.box_min), eye.w * max_abs(node.box_max)});
+    const double pad =
+        kBoxPad * std::max({max_abs(eye.xyz), eye.w * max_abs(node.box_min), eye.w * max_abs(node.box_max)});
     const glm::dvec3 center = 0.5 * (node.box_min + node.box_max);
     const glm::dvec3 half = eye.w * 0.5 * (node.box_max - node.box_min) + pad;
     const glm::dvec3 to_eye = eye.toward(center);

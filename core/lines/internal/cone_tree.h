@@ -2,8 +2,8 @@
 // Hierarchy of face clusters, each bounded by a normal cone anchored at the box of its face
 // centroids: proves whole clusters front- or back-facing from an eye, or free of creases. Built
 // over corner normals instead, it bounds the normals at the faces' corners and is anchored at the
-// box of the corners: it proves the sign of n . eye.toward(corner) at every corner of a cluster, the
-// sign smooth contours follow.
+// box of the corners: it proves the sign of n . eye.toward(corner) at every corner of a cluster,
+// the sign smooth contours follow.
 // Based on: P. Sander, X. Gu, S. Gortler, H. Hoppe, J. Snyder. Silhouette Clipping. SIGGRAPH 2000.
 //           A. Johannsen, M. Carter. Clustered Backface Culling. Journal of Graphics Tools, 1998.
 #pragma once
