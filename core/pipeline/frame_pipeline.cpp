@@ -295,18 +295,22 @@ FrameResult FramePipeline::run(int frame) {
         const bool new_topology = change == MeshChange::kTopology;
         for (const TonePass& pass : tone_passes_) {
             const FaceTones face_tones{pass.faces, tone_curves_};
-            ToneOptions options = scene_.tone;
-            options.mode = pass.mode;
             out.tone.modes.push_back(pass.mode);
+            // The scene's options with the pass's mode, for the marks' first frame.
+            const auto options = [&] {
+                ToneOptions o = scene_.tone;
+                o.mode = pass.mode;
+                return o;
+            };
             if (pass.mode == ToneMode::kStipple) {
-                if (!stippler_) stippler_.emplace(options);
+                if (!stippler_) stippler_.emplace(options());
                 out.tone.dots = stippler_->stipple(mesh, table, tone_normals_, projection, scene_.light, occlusion,
                                                    out.strokes.strokes, new_topology, face_tones);
                 out.tone.stipple_stats = stippler_->stats();
                 continue;
             }
             std::optional<Hatcher>& hatcher = pass.mode == ToneMode::kHatch ? hatcher_ : crosshatcher_;
-            if (!hatcher) hatcher.emplace(options);
+            if (!hatcher) hatcher.emplace(options());
             std::vector<Hatch> hatches = hatcher->hatch(mesh, table, tone_normals_, projection, scene_.light, occlusion,
                                                         out.strokes.strokes, new_topology, face_tones);
             out.tone.hatches.insert(out.tone.hatches.end(), std::make_move_iterator(hatches.begin()),

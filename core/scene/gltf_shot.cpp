@@ -32,8 +32,6 @@ constexpr double kMaxEyeCoordinate = 1e19;
 
 // The narrowest vertical field of view drawn, degrees (as in a scene file).
 constexpr double kMinFovDeg = 1e-3;
-// The narrowest orthographic view, world units (core/scene/scene.cpp keeps the same limit).
-constexpr double kMinOrthoHeight = 1e-18;
 
 // The most influences a vertex may have (JOINTS_n/WEIGHTS_n sets times four).
 constexpr size_t kMaxInfluenceSets = 16;

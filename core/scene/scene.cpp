@@ -49,9 +49,7 @@ constexpr double kMaxWorldCoordinate = 1e19;
 // the limit keeps clip-space values inside float range for the GL pass.
 constexpr double kMinFovDeg = 1e-3;
 
-// The range of an orthographic camera's view height, world units: 2 / height times a
-// coordinate at the limit stays inside float range for the GL pass.
-constexpr double kMinOrthoHeight = 1e-18;
+// The widest orthographic view, world units (the narrowest: kMinOrthoHeight, scene.h).
 constexpr double kMaxOrthoHeight = kMaxWorldCoordinate;
 
 // v scaled to unit length without overflow or underflow of its squared length; nullopt for the

@@ -29,6 +29,11 @@ namespace inkline::core {
 // (`--max-image-side` changes it).
 inline constexpr int kMaxImageSide = 16384;
 
+// The narrowest orthographic view, world units (a scene's camera.ortho_height, a glTF camera's
+// 2 ymag): 2 / height times a coordinate at the limit of 1e19 stays inside float range for the
+// GL pass.
+inline constexpr double kMinOrthoHeight = 1e-18;
+
 struct Rotation {
     glm::dvec3 axis{0.0, 1.0, 0.0};
     double degrees = 0.0;  // over the scene's frame range
