@@ -168,10 +168,20 @@ ToneLayer tone_layer(const core::FrameTone& tone, const core::ToneOptions& optio
     layer.mode = tone.mode;
     layer.color = hex_color(options.color);
     layer.opacity = options.opacity;
+    if (!tone.inks.empty()) {
+        layer.color = hex_color(tone.inks.front().color);
+        layer.opacity = tone.inks.front().opacity;
+        layer.style = tone.inks.front().style;
+    }
+    if (tone.inks.size() > 1) {
+        for (const core::ToneInk& ink : tone.inks) layer.inks.push_back({hex_color(ink.color), ink.opacity, ink.style});
+    }
     layer.dots.reserve(tone.dots.size());
-    for (const core::Dot& dot : tone.dots) layer.dots.push_back({dot.sample, dot.point_px, dot.radius_px});
+    for (const core::Dot& dot : tone.dots) layer.dots.push_back({dot.sample, dot.point_px, dot.radius_px, dot.ink});
     layer.hatches.reserve(tone.hatches.size());
-    for (const core::Hatch& hatch : tone.hatches) layer.hatches.push_back({hatch.family, hatch.plane, hatch.outline});
+    for (const core::Hatch& hatch : tone.hatches) {
+        layer.hatches.push_back({hatch.family, hatch.plane, hatch.outline, hatch.ink});
+    }
     return layer;
 }
 

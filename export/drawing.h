@@ -106,6 +106,7 @@ struct ToneDot {
     uint32_t sample = 0;  // the surface sample it stands for (written as data-sample)
     glm::dvec2 center_px{0.0};
     double radius_px = 0.0;
+    uint16_t ink = 0;  // index in ToneLayer::inks, when it has several
 };
 
 // A hatch of tone (core::Hatch as the writers draw it): its filled outline.
@@ -113,18 +114,31 @@ struct ToneHatch {
     uint32_t family = 0;  // written as data-family
     uint64_t plane = 0;   // written as data-plane
     std::vector<std::vector<glm::dvec2>> rings;  // px, filled together (nonzero)
+    uint16_t ink = 0;  // index in ToneLayer::inks, when it has several
 };
 
-// The frame's tone, drawn under the lines as one layer ("tone") in one colour and opacity.
+// An ink of the tone layer (core::ToneInk as the writers draw it).
+struct ToneLayerInk {
+    std::string color = "#000000";  // "#rrggbb"
+    double opacity = 1.0;           // of the ink's marks together
+    std::string style;              // the style rule that gave it; empty: none
+};
+
+// The frame's tone, drawn under the lines as one layer ("tone"): in one ink, or where objects
+// have inks of their own (scene "objects" and "styles"), a group of marks per ink.
 struct ToneLayer {
     core::ToneMode mode = core::ToneMode::kNone;  // kNone: no tone layer at all
-    std::string color = "#000000";                // "#rrggbb"
-    double opacity = 1.0;                         // of the whole layer: overlapping marks do not add up
+    // With one ink: its colour, opacity (of the whole layer: overlapping marks do not add up)
+    // and style; with several, ink 0's.
+    std::string color = "#000000";  // "#rrggbb"
+    double opacity = 1.0;
+    std::string style;
+    std::vector<ToneLayerInk> inks;  // two or more, or empty: every mark in `color`
     std::vector<ToneDot> dots;
     std::vector<ToneHatch> hatches;
 };
 
-// The tone layer of a frame's tone, in `options`' colour and opacity.
+// The tone layer of a frame's tone, in its inks, else in `options`' colour and opacity.
 ToneLayer tone_layer(const core::FrameTone& tone, const core::ToneOptions& options);
 
 struct Drawing {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "export/json.h"
 
+#include "core/strokes/brush.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -153,33 +155,37 @@ constexpr Mark kDotsMark{"\x01" "inkline-dots", "\"\\u0001inkline-dots\""};
 constexpr Mark kHatchesMark{"\x01" "inkline-hatches", "\"\\u0001inkline-hatches\""};
 
 // A dot: where on the surface (sample, face, barycentric coordinates, world point), where in the
-// image, how large, and the tone asked for there.
-json dot_json(const core::Dot& d) {
-    return {{"sample", d.sample},
+// image, how large, the tone asked for there, and with several inks its ink.
+json dot_json(const core::Dot& d, bool inks) {
+    json out = {{"sample", d.sample},
             {"face", d.face},
             {"barycentric", vec3(d.barycentric)},
             {"point", json::array({round_px(d.point_px.x), round_px(d.point_px.y)})},
             {"world", vec3(d.point_world)},
             {"radius", round_px(d.radius_px)},
             {"tone", std::round(d.tone * 1e4) / 1e4}};
+    if (inks) out["ink"] = d.ink;
+    return out;
 }
 
 // A hatch: family, plane and level, and per point where in the image, the world point, the mesh
-// edge it lies on and the width.
-json hatch_json(const core::Hatch& h) {
+// edge it lies on and the width; with several inks its ink.
+json hatch_json(const core::Hatch& h, bool inks) {
     json points = json::array(), world = json::array(), width = json::array();
     for (size_t i = 0; i < h.points_px.size(); ++i) {
         points.push_back(json::array({round_px(h.points_px[i].x), round_px(h.points_px[i].y)}));
         world.push_back(vec3(h.points_world[i]));
         width.push_back(round_px(h.width_px[i]));
     }
-    return {{"family", h.family},
-            {"plane", h.plane},
-            {"level", h.level},
-            {"points", std::move(points)},
-            {"world", std::move(world)},
-            {"edges", h.edges},
-            {"width", std::move(width)}};
+    json out = {{"family", h.family},
+                {"plane", h.plane},
+                {"level", h.level},
+                {"points", std::move(points)},
+                {"world", std::move(world)},
+                {"edges", h.edges},
+                {"width", std::move(width)}};
+    if (inks) out["ink"] = h.ink;
+    return out;
 }
 
 json stipple_stats_json(const core::StippleStats& s) {
@@ -208,6 +214,13 @@ json tone_json(const core::FrameTone& tone) {
         if (!stipple && tone.has(core::ToneMode::kStipple)) {
             out["stipple_stats"] = stipple_stats_json(tone.stipple_stats);
         }
+    }
+    if (!tone.inks.empty()) {
+        json inks = json::array();
+        for (const core::ToneInk& ink : tone.inks) {
+            inks.push_back({{"color", core::color_hex(ink.color)}, {"opacity", ink.opacity}, {"style", ink.style}});
+        }
+        out["inks"] = std::move(inks);
     }
     return out;
 }
@@ -280,8 +293,11 @@ std::string polylines_json(const core::FrameLines& frame, const core::FrameStrok
     if (!tone || tone->mode == core::ToneMode::kNone) return doc.dump() + "\n";
     doc["tone"] = tone_json(*tone);
     std::string text = doc.dump();
-    text = splice(std::move(text), kHatchesMark, std::span<const core::Hatch>(tone->hatches), hatch_json);
-    text = splice(std::move(text), kDotsMark, std::span<const core::Dot>(tone->dots), dot_json);
+    const bool inks = tone->inks.size() > 1;
+    text = splice(std::move(text), kHatchesMark, std::span<const core::Hatch>(tone->hatches),
+                  [&](const core::Hatch& h) { return hatch_json(h, inks); });
+    text = splice(std::move(text), kDotsMark, std::span<const core::Dot>(tone->dots),
+                  [&](const core::Dot& d) { return dot_json(d, inks); });
     return text + "\n";
 }
 

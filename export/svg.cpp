@@ -399,25 +399,30 @@ void line_groups(Writer& w, const Drawing& d, const WriteOn& write_on, LayerGrou
     }
 }
 
-// The tone layer, under the lines: a circle per dot and a filled path per hatch, in the layer's
-// colour, the layer's opacity on the group (overlapping marks do not darken each other).
-void tone_group(Writer& w, const ToneLayer& tone) {
-    if (tone.mode == core::ToneMode::kNone) return;
-    w << "  <g id=\"tone\" inkscape:groupmode=\"layer\" inkscape:label=\"tone\" data-mode=\""
-      << core::tone_mode_name(tone.mode) << "\" fill=\"" << tone.color << "\"";
-    if (tone.opacity < 1.0) {
+// A tone group's fill, opacity and style name, as attributes.
+void ink_attributes(Writer& w, const std::string& color, double opacity, const std::string& style) {
+    if (!style.empty()) w << " data-style=\"" << xml_escaped(style) << "\"";
+    w << " fill=\"" << color << "\"";
+    if (opacity < 1.0) {
         w << " opacity=\"";
-        w.number(tone.opacity) << "\"";
+        w.number(opacity) << "\"";
     }
-    w << ">\n";
+}
+
+// The marks of one ink (all of them when the layer has one): a circle per dot and a filled path
+// per hatch.
+void tone_marks(Writer& w, const ToneLayer& tone, size_t ink, const char* indent) {
+    const bool all = tone.inks.empty();
     for (const ToneDot& dot : tone.dots) {
-        w << "    <circle data-sample=\"" << long(dot.sample) << "\" cx=\"";
+        if (!all && dot.ink != ink) continue;
+        w << indent << "<circle data-sample=\"" << long(dot.sample) << "\" cx=\"";
         w.number(dot.center_px.x) << "\" cy=\"";
         w.number(dot.center_px.y) << "\" r=\"";
         w.number(dot.radius_px) << "\"/>\n";
     }
     for (const ToneHatch& hatch : tone.hatches) {
-        w << "    <path data-family=\"" << long(hatch.family) << "\" data-plane=\"" << std::to_string(hatch.plane)
+        if (!all && hatch.ink != ink) continue;
+        w << indent << "<path data-family=\"" << long(hatch.family) << "\" data-plane=\"" << std::to_string(hatch.plane)
           << "\" d=\"";
         bool first = true;
         for (const std::vector<glm::dvec2>& ring : hatch.rings) {
@@ -430,6 +435,28 @@ void tone_group(Writer& w, const ToneLayer& tone) {
             if (!ring.empty()) w << " Z";
         }
         w << "\"/>\n";
+    }
+}
+
+// The tone layer, under the lines, in the layer's colour, the layer's opacity on the group
+// (overlapping marks do not darken each other); with several inks, a group per ink in it.
+void tone_group(Writer& w, const ToneLayer& tone) {
+    if (tone.mode == core::ToneMode::kNone) return;
+    w << "  <g id=\"tone\" inkscape:groupmode=\"layer\" inkscape:label=\"tone\" data-mode=\""
+      << core::tone_mode_name(tone.mode) << "\"";
+    if (tone.inks.empty()) {
+        ink_attributes(w, tone.color, tone.opacity, tone.style);
+        w << ">\n";
+        tone_marks(w, tone, 0, "    ");
+    } else {
+        w << ">\n";
+        for (size_t ink = 0; ink < tone.inks.size(); ++ink) {
+            w << "    <g id=\"tone-ink-" << long(ink + 1) << "\"";
+            ink_attributes(w, tone.inks[ink].color, tone.inks[ink].opacity, tone.inks[ink].style);
+            w << ">\n";
+            tone_marks(w, tone, ink, "      ");
+            w << "    </g>\n";
+        }
     }
     w << "  </g>\n";
 }

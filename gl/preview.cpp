@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstddef>
 #include <new>
+#include <optional>
 #include <string>
 
 namespace inkline::gl {
@@ -63,11 +64,13 @@ void main() {
 // Sides of the polygon a dot is drawn as.
 constexpr int kDotSides = 16;
 
-// The triangles of a frame's tone: each dot a polygon round its centre, each hatch a quad per
-// segment, its corners offset across the line by half its width at each end.
-std::vector<glm::vec2> tone_triangles(const core::FrameTone& tone) {
+// The triangles of a frame's tone in one ink (every ink when `ink` is empty): each dot a polygon
+// round its centre, each hatch a quad per segment, its corners offset across the line by half its
+// width at each end.
+std::vector<glm::vec2> tone_triangles(const core::FrameTone& tone, std::optional<uint16_t> ink) {
     std::vector<glm::vec2> out;
     for (const core::Dot& dot : tone.dots) {
+        if (ink && dot.ink != *ink) continue;
         const glm::dvec2 c = dot.point_px;
         for (int k = 0; k < kDotSides; ++k) {
             const double a0 = 2.0 * glm::pi<double>() * k / kDotSides;
@@ -78,6 +81,7 @@ std::vector<glm::vec2> tone_triangles(const core::FrameTone& tone) {
         }
     }
     for (const core::Hatch& hatch : tone.hatches) {
+        if (ink && hatch.ink != *ink) continue;
         const std::vector<glm::dvec2>& p = hatch.points_px;
         for (size_t i = 0; i + 1 < p.size(); ++i) {
             const glm::dvec2 d = p[i + 1] - p[i];
@@ -488,10 +492,24 @@ struct PreviewRenderer::Impl {
         fn.Disable(GL_DEPTH_TEST);
     }
 
-    // The tone's triangles, each sample inked once: the stencil marks what is inked.
+    // The tone's triangles, each sample inked once per ink: the stencil marks what is inked.
     void draw_tone(const PreviewTone& tone, core::ImageSize image) {
-        const std::vector<glm::vec2> triangles = tone_triangles(*tone.tone);
-        stats.tone_triangles = triangles.size() / 3;
+        const std::vector<core::ToneInk>& inks = tone.tone->inks;
+        stats.tone_triangles = 0;
+        if (inks.size() < 2) {
+            const glm::dvec3 color = inks.empty() ? tone.color : inks.front().color;
+            const double opacity = inks.empty() ? tone.opacity : inks.front().opacity;
+            draw_tone_ink(tone_triangles(*tone.tone, std::nullopt), color, opacity, image);
+            return;
+        }
+        for (size_t ink = 0; ink < inks.size(); ++ink) {
+            draw_tone_ink(tone_triangles(*tone.tone, uint16_t(ink)), inks[ink].color, inks[ink].opacity, image);
+        }
+    }
+
+    void draw_tone_ink(const std::vector<glm::vec2>& triangles, const glm::dvec3& color, double opacity,
+                       core::ImageSize image) {
+        stats.tone_triangles += triangles.size() / 3;
         if (triangles.empty()) return;
         fn.UseProgram(tone_program);
         fn.BindVertexArray(tone_vao);
@@ -499,8 +517,8 @@ struct PreviewRenderer::Impl {
         fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(triangles.size() * sizeof(glm::vec2)), triangles.data(),
                       GL_STREAM_DRAW);
         fn.Uniform2f(tu.image_size, float(image.width), float(image.height));
-        fn.Uniform3f(tu.ink, float(tone.color.r), float(tone.color.g), float(tone.color.b));
-        fn.Uniform1f(tu.opacity, float(tone.opacity));
+        fn.Uniform3f(tu.ink, float(color.r), float(color.g), float(color.b));
+        fn.Uniform1f(tu.opacity, float(opacity));
         fn.Enable(GL_BLEND);
         fn.BlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
         fn.Enable(GL_STENCIL_TEST);
@@ -510,7 +528,7 @@ struct PreviewRenderer::Impl {
         fn.DrawArrays(GL_TRIANGLES, 0, GLsizei(triangles.size()));
         fn.Disable(GL_STENCIL_TEST);
         fn.Disable(GL_BLEND);
-        // The strokes count their own stencil values from a clean slate.
+        // The next ink, and the strokes, count their own stencil values from a clean slate.
         fn.ClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
         check_gl(fn, "drawing the tone");
     }

@@ -291,7 +291,7 @@ FrameResult FramePipeline::run(int frame) {
             tone_normals_ = vertex_normals(mesh);
         }
         out.tone.mode = scene_.tone.mode;
-        if (tone_passes_.empty()) plan_tone_passes();
+        if (tone_passes_.empty()) plan_tone_passes(mesh.triangles.size());
         const bool new_topology = change == MeshChange::kTopology;
         for (const TonePass& pass : tone_passes_) {
             const FaceTones face_tones{pass.faces, tone_curves_};
@@ -317,6 +317,7 @@ FrameResult FramePipeline::run(int frame) {
                                     std::make_move_iterator(hatches.end()));
             out.tone.hatch_stats += hatcher->stats();
         }
+        ink_tone_marks(out.tone, table);
         tone_ms = step("tone");
     }
     if (ahead_after_tone_) find_lines_ahead(frame + 1);
@@ -335,31 +336,47 @@ FrameResult FramePipeline::run(int frame) {
     return out;
 }
 
-void FramePipeline::plan_tone_passes() {
+void FramePipeline::plan_tone_passes(size_t faces) {
     const ToneMode scene_mode = scene_.tone.mode;
-    if (meshes_.objects().empty()) {
-        tone_passes_.push_back({scene_mode, {}});
-        return;
+    const ToneCurve& scene_curve = scene_.tone.curve;
+    const ToneInk scene_ink{scene_.tone.color, scene_.tone.opacity, ""};
+    // Each object's tone; a mesh without objects is one object, which only style rules without
+    // an object selector apply to.
+    std::vector<ObjectTone> tones;
+    if (meshes_.objects().empty()) tones.push_back(object_tone(scene_, std::nullopt));
+    for (const MeshObject& object : meshes_.objects()) tones.push_back(object_tone(scene_, object.name));
+    const std::span<const uint32_t> face_objects = meshes_.face_objects();
+    const auto object_of_face = [&](size_t f) { return face_objects.empty() ? 0u : face_objects[f]; };
+
+    // The inks of the shaded objects, the scene's first where some object is drawn in it.
+    const auto shaded_in = [&](const ToneInk& ink) {
+        return std::any_of(tones.begin(), tones.end(),
+                           [&](const ObjectTone& t) { return t.mode != ToneMode::kNone && t.ink == ink; });
+    };
+    if (shaded_in(scene_ink)) tone_inks_.push_back(scene_ink);
+    for (const ObjectTone& t : tones) {
+        auto it = std::find(tone_inks_.begin(), tone_inks_.end(), t.ink);
+        if (t.mode != ToneMode::kNone && it == tone_inks_.end()) it = tone_inks_.insert(tone_inks_.end(), t.ink);
+        ink_of_object_.push_back(uint16_t(it == tone_inks_.end() ? 0 : it - tone_inks_.begin()));
     }
+    if (tone_inks_.size() == 1 && tone_inks_.front() == scene_ink) tone_inks_.clear();
+
     // Each object's curve (0: unshaded, else 1 + its index in tone_curves_) and mode; faces
     // keep the scene's curve in one pass of the scene's mode unless some object is unshaded or
     // has a curve or a mode of its own.
-    const ToneCurve& scene_curve = scene_.tone.curve;
     std::vector<uint16_t> curve_of_object;
     std::vector<ToneMode> mode_of_object;
     bool own = false;
-    for (const MeshObject& object : meshes_.objects()) {
-        const std::optional<ToneCurve> curve = object_tone_curve(scene_, object.name);
-        const ToneMode mode = object_tone_mode(scene_, object.name);
-        mode_of_object.push_back(mode);
-        if (!curve || mode == ToneMode::kNone) {
+    for (const ObjectTone& t : tones) {
+        mode_of_object.push_back(t.mode);
+        if (t.mode == ToneMode::kNone) {
             curve_of_object.push_back(0);
             own = true;
             continue;
         }
-        own |= *curve != scene_curve || mode != scene_mode;
-        auto it = std::find(tone_curves_.begin(), tone_curves_.end(), *curve);
-        if (it == tone_curves_.end()) it = tone_curves_.insert(it, *curve);
+        own |= t.curve != scene_curve || t.mode != scene_mode;
+        auto it = std::find(tone_curves_.begin(), tone_curves_.end(), t.curve);
+        if (it == tone_curves_.end()) it = tone_curves_.insert(it, t.curve);
         curve_of_object.push_back(uint16_t(1 + (it - tone_curves_.begin())));
     }
     if (!own) {
@@ -377,14 +394,28 @@ void FramePipeline::plan_tone_passes() {
         if (mode != scene_mode && used(mode)) modes.push_back(mode);
     }
     if (modes.empty()) modes.push_back(scene_mode);
-    const std::span<const uint32_t> face_objects = meshes_.face_objects();
     for (const ToneMode mode : modes) {
         TonePass pass{mode, {}};
-        pass.faces.reserve(face_objects.size());
-        for (const uint32_t object : face_objects) {
+        pass.faces.reserve(faces);
+        for (size_t f = 0; f < faces; ++f) {
+            const uint32_t object = object_of_face(f);
             pass.faces.push_back(mode_of_object[object] == mode ? curve_of_object[object] : 0);
         }
         tone_passes_.push_back(std::move(pass));
+    }
+}
+
+// Each mark's ink: its object's.
+void FramePipeline::ink_tone_marks(FrameTone& r_tone, const EdgeTable& table) const {
+    r_tone.inks = tone_inks_;
+    if (tone_inks_.size() < 2) return;
+    const std::span<const uint32_t> face_objects = meshes_.face_objects();
+    const auto ink_of_face = [&](uint32_t face) {
+        return ink_of_object_[face_objects.empty() ? 0u : face_objects[face]];
+    };
+    for (Dot& dot : r_tone.dots) dot.ink = ink_of_face(dot.face);
+    for (Hatch& hatch : r_tone.hatches) {
+        if (!hatch.edges.empty()) hatch.ink = ink_of_face(table.faces_of(hatch.edges.front()).front());
     }
 }
 

@@ -151,7 +151,12 @@ class FramePipeline {
     };
     std::vector<TonePass> tone_passes_;  // set on the first frame with tone
     std::vector<ToneCurve> tone_curves_;
-    void plan_tone_passes();
+    // The inks of the shaded objects (FrameTone::inks; empty: the scene's alone) and each
+    // object's index in them (one entry for a mesh without objects).
+    std::vector<ToneInk> tone_inks_;
+    std::vector<uint16_t> ink_of_object_;
+    void plan_tone_passes(size_t faces);
+    void ink_tone_marks(FrameTone& r_tone, const EdgeTable& table) const;
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;
     bool trace_intersections_ = false;

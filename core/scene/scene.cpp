@@ -307,24 +307,22 @@ glm::dvec3 read_color(const Reader& r, const std::string& key) {
     return color;
 }
 
-// The tone curve's keys of a "tone" block, those it has (docs/tone.md).
-ToneCurvePatch read_tone_curve(const Reader& r) {
-    ToneCurvePatch c;
+// The tone curve's keys of a "tone" block, those it has (docs/tone.md), into `r_patch`.
+void read_tone_curve(const Reader& r, TonePatch& r_patch) {
     if (r.has("gamma")) {
-        c.gamma = r.number_or("gamma", 1.0);
-        if (!(*c.gamma > 0.0 && *c.gamma <= 16.0)) r.fail("gamma", "must be above 0 and at most 16");
+        r_patch.gamma = r.number_or("gamma", 1.0);
+        if (!(*r_patch.gamma > 0.0 && *r_patch.gamma <= 16.0)) r.fail("gamma", "must be above 0 and at most 16");
     }
     if (r.has("levels")) {
-        c.levels = r.integer("levels");
-        if (*c.levels < 0 || *c.levels > 256) r.fail("levels", "must be between 0 and 256");
+        r_patch.levels = r.integer("levels");
+        if (*r_patch.levels < 0 || *r_patch.levels > 256) r.fail("levels", "must be between 0 and 256");
     }
     for (const char* key : {"min", "max"}) {
         if (!r.has(key)) continue;
         const double v = r.number_or(key, 0.0);
         if (!(v >= 0.0 && v <= 0.9)) r.fail(key, "must be between 0 and 0.9");
-        (std::string_view(key) == "min" ? c.min : c.max) = v;
+        (std::string_view(key) == "min" ? r_patch.min : r_patch.max) = v;
     }
-    return c;
 }
 
 // The "mode" of a "tone" block.
@@ -341,7 +339,9 @@ ToneOptions read_tone(const Reader& r) {
     ToneOptions t;
     t.mode = ToneMode::kStipple;
     if (r.has("mode")) t.mode = read_tone_mode(r);
-    read_tone_curve(r).apply_to(t.curve);
+    TonePatch curve;
+    read_tone_curve(r, curve);
+    curve.apply_to(t.curve);
     t.dot_radius_px = r.number_or("dot_radius_px", t.dot_radius_px);
     if (!(t.dot_radius_px >= 0.25 && t.dot_radius_px <= 64.0)) r.fail("dot_radius_px", "must be between 0.25 and 64");
     t.fade = r.number_or("fade", t.fade);
@@ -361,6 +361,28 @@ ToneOptions read_tone(const Reader& r) {
         t.seed = uint64_t(seed);
     }
     return t;
+}
+
+// The "tone" block of an "objects" or "styles" rule: the keys it sets of the scene's tone.
+TonePatch read_tone_patch(const Reader& r) {
+    r.allow_only({"mode", "gamma", "levels", "min", "max", "color", "opacity"});
+    TonePatch patch;
+    if (r.has("mode")) patch.mode = read_tone_mode(r);
+    read_tone_curve(r, patch);
+    if (r.has("color")) patch.color = read_color(r, "color");
+    if (r.has("opacity")) {
+        patch.opacity = r.number_or("opacity", 1.0);
+        if (!(*patch.opacity >= 0.0 && *patch.opacity <= 1.0)) r.fail("opacity", "must be between 0 and 1");
+    }
+    return patch;
+}
+
+// Applies a rule's tone keys to an object's tone.
+void apply_tone_patch(const TonePatch& patch, ObjectTone& r_tone) {
+    if (patch.mode) r_tone.mode = *patch.mode;
+    patch.apply_to(r_tone.curve);
+    if (patch.color) r_tone.ink.color = *patch.color;
+    if (patch.opacity) r_tone.ink.opacity = *patch.opacity;
 }
 
 // The brush keys a style rule may set, as "brush" has them.
@@ -565,7 +587,7 @@ std::vector<StyleRule> read_styles(const Reader& r) {
     std::set<std::string> names;
     for (size_t i = 0; i < r.value().size(); ++i) {
         const Reader item = r.item(i);
-        std::vector<const char*> keys = {"name", "select"};
+        std::vector<const char*> keys = {"name", "select", "tone"};
         keys.insert(keys.end(), kStyleBrushKeys.begin(), kStyleBrushKeys.end());
         item.allow_only(keys);
         StyleRule rule;
@@ -578,6 +600,16 @@ std::vector<StyleRule> read_styles(const Reader& r) {
         if (!names.insert(rule.name).second) item.fail("name", "'" + rule.name + "' names an earlier rule too");
         if (item.has("select")) rule.select = read_selector(item.child("select"));
         rule.set = read_brush_patch(item);
+        if (item.has("tone")) {
+            if (!item.at("tone").is_object()) {
+                item.fail("tone", "expected {\"mode\", \"gamma\", \"levels\", \"min\", \"max\", \"color\", \"opacity\"}");
+            }
+            // The surface has no line kind and no role: a rule that shades it selects by object.
+            if (rule.select.kinds != 0 || rule.select.role) {
+                item.fail("tone", "a rule with a tone selects by object only, not by kind or role");
+            }
+            rule.tone = read_tone_patch(item.child("tone"));
+        }
         rules.push_back(std::move(rule));
     }
     return rules;
@@ -604,14 +636,12 @@ std::vector<ObjectRule> read_object_rules(const Reader& r) {
         ObjectRule rule;
         rule.pattern = pattern;
         if (o.has("tone") && o.at("tone").is_object()) {
-            const Reader t = o.child("tone");
-            t.allow_only({"mode", "gamma", "levels", "min", "max"});
             rule.tone = true;
-            rule.tone_curve = read_tone_curve(t);
-            if (t.has("mode")) rule.tone_mode = read_tone_mode(t);
+            rule.tone_set = read_tone_patch(o.child("tone"));
         } else if (o.has("tone")) {
             if (!o.at("tone").is_boolean()) {
-                o.fail("tone", "expected true, false or {\"mode\", \"gamma\", \"levels\", \"min\", \"max\"}");
+                o.fail("tone", "expected true, false or {\"mode\", \"gamma\", \"levels\", \"min\", \"max\", \"color\", "
+                               "\"opacity\"}");
             }
             rule.tone = o.boolean_or("tone", true);
         }
@@ -654,37 +684,44 @@ std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std
     return kinds;
 }
 
+ObjectTone object_tone(const Scene& scene, std::optional<std::string_view> object_name) {
+    ObjectTone t;
+    t.mode = scene.tone.mode;
+    t.curve = scene.tone.curve;
+    t.ink = {scene.tone.color, scene.tone.opacity, ""};
+    const std::string name(object_name.value_or(""));
+    const auto matches = [&](const std::string& pattern) {
+        return object_name && ::fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
+    };
+    bool lines = true;
+    for (const ObjectRule& rule : scene.objects) {
+        if (!matches(rule.pattern)) continue;
+        lines = rule.lines;
+        if (rule.tone) t.shaded = *rule.tone;
+        apply_tone_patch(rule.tone_set, t);
+    }
+    for (const StyleRule& rule : scene.styles) {
+        if (!rule.tone || (!rule.select.object.empty() && !matches(rule.select.object))) continue;
+        apply_tone_patch(*rule.tone, t);
+        t.ink.style = rule.name;
+    }
+    t.shaded = t.shaded && lines;
+    if (!t.shaded || scene.tone.mode == ToneMode::kNone) t.mode = ToneMode::kNone;
+    return t;
+}
+
 bool object_draws_tone(const Scene& scene, const std::string& object_name) {
-    return object_tone_curve(scene, object_name).has_value();
+    return object_tone(scene, object_name).shaded;
 }
 
 ToneMode object_tone_mode(const Scene& scene, const std::string& object_name) {
-    if (scene.tone.mode == ToneMode::kNone || !object_draws_tone(scene, object_name)) return ToneMode::kNone;
-    ToneMode mode = scene.tone.mode;
-    for (const ObjectRule& rule : scene.objects) {
-        if (rule.tone_mode && ::fnmatch(rule.pattern.c_str(), object_name.c_str(), 0) == 0) mode = *rule.tone_mode;
-    }
-    return mode;
+    return object_tone(scene, object_name).mode;
 }
 
 std::optional<ToneCurve> object_tone_curve(const Scene& scene, const std::string& object_name) {
-    bool lines = true, tone = true;
-    ToneCurve curve = scene.tone.curve;
-    for (const ObjectRule& rule : scene.objects) {
-        if (::fnmatch(rule.pattern.c_str(), object_name.c_str(), 0) != 0) continue;
-        lines = rule.lines;
-        if (rule.tone) tone = *rule.tone;
-        rule.tone_curve.apply_to(curve);
-    }
-    if (!lines || !tone) return std::nullopt;
-    return curve;
-}
-
-void ToneCurvePatch::apply_to(ToneCurve& r_curve) const {
-    if (gamma) r_curve.gamma = *gamma;
-    if (levels) r_curve.levels = *levels;
-    if (min) r_curve.min = *min;
-    if (max) r_curve.max = *max;
+    const ObjectTone t = object_tone(scene, object_name);
+    if (!t.shaded) return std::nullopt;
+    return t.curve;
 }
 
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file, int max_image_side) {

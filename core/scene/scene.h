@@ -63,20 +63,12 @@ struct GltfSettings {
 };
 
 // Line settings for the objects whose names match a glob (scene "objects"; docs/scene.md).
-// Keys of a tone curve that a rule sets (the others stay as they were).
-struct ToneCurvePatch {
-    std::optional<double> gamma, min, max;
-    std::optional<int> levels;
-    void apply_to(ToneCurve& r_curve) const;
-};
-
 struct ObjectRule {
     std::string pattern;  // fnmatch(3) glob over object names ("Ground", "Tree.*")
     bool lines = true;    // false: a holdout, which hides lines and draws none
     std::optional<bool> silhouette, boundary, crease, intersection;  // override the scene's lines.*
     std::optional<bool> tone;  // false: no tone on the object (a holdout has none either)
-    ToneCurvePatch tone_curve;  // "tone": {...}: the object's own gamma, levels, min, max
-    std::optional<ToneMode> tone_mode;  // "tone": {"mode": ...}: the object's own marks
+    TonePatch tone_set;        // "tone": {...}: the object's own mode, curve, colour and opacity
 };
 
 // The longest write-on (s): a day.
@@ -111,6 +103,18 @@ struct Scene {
 
 // Which kinds of line an object draws: the scene's lines.* with every matching rule applied.
 std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std::string& object_name);
+
+// How an object is shaded: the scene's "tone", then the keys of every matching "objects" rule's
+// "tone" in their order, then those of every "styles" rule with a "tone" whose object selector
+// matches, in order (docs/tone.md). `object_name` is nullopt for a mesh without objects, which
+// only style rules without an object selector apply to.
+struct ObjectTone {
+    bool shaded = true;  // false: a holdout, or an "objects" rule says "tone": false
+    ToneMode mode = ToneMode::kNone;  // kNone where the scene has no tone or the object is not shaded
+    ToneCurve curve;
+    ToneInk ink;
+};
+ObjectTone object_tone(const Scene& scene, std::optional<std::string_view> object_name);
 
 // Whether an object is shaded by the scene's tone: not a holdout, and no matching rule says
 // "tone": false (the last matching rule that says either way decides).

@@ -9,6 +9,7 @@
 #include "core/scene/camera.h"
 #include "core/strokes/brush_style.h"
 #include "core/strokes/stroke_path.h"
+#include "core/tone/tone_options.h"
 
 #include <glm/vec3.hpp>
 
@@ -57,6 +58,9 @@ struct StyleRule {
     std::string name;
     StyleSelector select;
     BrushPatch set;
+    // "tone": {...}: how the surface of the objects the rule selects is shaded (a rule with a
+    // tone selects by object alone; docs/tone.md).
+    std::optional<TonePatch> tone;
 };
 
 // What a rule can tell about a stroke.

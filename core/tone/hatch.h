@@ -44,6 +44,7 @@ struct Hatch {
     std::vector<uint32_t> edges;           // the mesh edge of each point
     std::vector<double> width_px;          // its width at each point (faded in: less than line_width_px)
     std::vector<Ring> outline;             // the ink: one ring, filled (nonzero), ends cut square
+    uint16_t ink = 0;                      // index in FrameTone::inks
 };
 
 struct HatchStats {

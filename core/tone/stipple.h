@@ -86,6 +86,7 @@ struct Dot {
     glm::dvec3 point_world{0.0};
     double radius_px = 0.0;
     double tone = 0.0;  // the tone asked for there
+    uint16_t ink = 0;   // index in FrameTone::inks
 };
 
 struct StippleStats {

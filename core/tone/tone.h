@@ -18,6 +18,10 @@ struct FrameTone {
     // "objects") each mode some object is shaded with, the scene's first. A frame can then have
     // both dots and hatches.
     std::vector<ToneMode> modes;
+    // The inks the marks are drawn in (a mark's `ink` indexes it): the scene's tone colour and
+    // opacity, or where rules of "objects" and "styles" give objects inks of their own, each ink
+    // some shaded object has. Empty: the scene's alone.
+    std::vector<ToneInk> inks;
     std::vector<Dot> dots;        // stipple: ascending by sample
     std::vector<Hatch> hatches;   // hatch, crosshatch: by mode, by family, then as traced
     StippleStats stipple_stats;   // with stipple

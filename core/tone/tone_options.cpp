@@ -30,5 +30,11 @@ double tone_of(double intensity, const ToneCurve& curve) {
     return curve.min + (curve.max - curve.min) * t;
 }
 
+void TonePatch::apply_to(ToneCurve& r_curve) const {
+    if (gamma) r_curve.gamma = *gamma;
+    if (levels) r_curve.levels = *levels;
+    if (min) r_curve.min = *min;
+    if (max) r_curve.max = *max;
+}
 
 }  // namespace inkline::core

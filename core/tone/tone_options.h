@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace inkline::core {
@@ -55,6 +56,26 @@ struct ToneOptions {
     // The most surface samples kept: bounds memory when a camera comes very close (then the
     // density there stops growing).
     size_t max_samples = 8'000'000;
+};
+
+// The keys of a tone that a rule sets: an object's ("objects": {"NAME": {"tone": {...}}}) or a
+// style's ("styles": [{"tone": {...}}]). The keys it does not set stay as they were.
+struct TonePatch {
+    std::optional<ToneMode> mode;
+    std::optional<double> gamma, min, max;
+    std::optional<int> levels;
+    std::optional<glm::dvec3> color;  // sRGB in [0, 1]
+    std::optional<double> opacity;
+
+    void apply_to(ToneCurve& r_curve) const;
+};
+
+// The ink marks are drawn in: the scene's tone colour and opacity, or those a rule gives objects.
+struct ToneInk {
+    glm::dvec3 color{0.09, 0.08, 0.07};  // sRGB in [0, 1]
+    double opacity = 1.0;
+    std::string style;  // the last style rule that set the object's tone; empty: none did
+    bool operator==(const ToneInk&) const = default;
 };
 
 // The mode of that name; nullopt for any other text.

@@ -25,17 +25,19 @@ void trace_path(cairo_t* cr, const Shape& shape) {
     }
 }
 
-// The tone's dots and hatches, filled together with the nonzero rule (the dots are all turned
-// the same way, so it fills their union) and composited as one group, as the SVG's tone layer is.
-void paint_tone(cairo_t* cr, const ToneLayer& tone) {
-    if (tone.mode == core::ToneMode::kNone || (tone.dots.empty() && tone.hatches.empty())) return;
-    const Rgb rgb = parse_color(tone.color, "tone color");
+// The tone's dots and hatches of one ink (all of them when the layer has one), filled together
+// with the nonzero rule (the dots are all turned the same way, so it fills their union) and
+// composited as one group, as the SVG's tone layer (or the ink's group in it) is.
+void paint_tone_ink(cairo_t* cr, const ToneLayer& tone, size_t ink) {
+    const bool all = tone.inks.empty();
+    const std::string& color = all ? tone.color : tone.inks[ink].color;
+    const Rgb rgb = parse_color(color, "tone color");
     cairo_push_group(cr);
     cairo_set_source_rgb(cr, rgb.r, rgb.g, rgb.b);
     cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
     cairo_new_path(cr);
     for (const ToneDot& dot : tone.dots) {
-        if (!(dot.radius_px > 0.0)) continue;
+        if (!(dot.radius_px > 0.0) || (!all && dot.ink != ink)) continue;
         cairo_new_sub_path(cr);
         cairo_arc(cr, dot.center_px.x, dot.center_px.y, dot.radius_px, 0.0, 2.0 * std::numbers::pi);
     }
@@ -43,6 +45,7 @@ void paint_tone(cairo_t* cr, const ToneLayer& tone) {
     // Each hatch on its own, so that a hatch whose ring turns the other way round than its
     // neighbour's does not cancel it where they overlap.
     for (const ToneHatch& hatch : tone.hatches) {
+        if (!all && hatch.ink != ink) continue;
         for (const std::vector<glm::dvec2>& ring : hatch.rings) {
             for (size_t i = 0; i < ring.size(); ++i) (i == 0 ? cairo_move_to : cairo_line_to)(cr, ring[i].x, ring[i].y);
             cairo_close_path(cr);
@@ -50,7 +53,12 @@ void paint_tone(cairo_t* cr, const ToneLayer& tone) {
         cairo_fill(cr);
     }
     cairo_pop_group_to_source(cr);
-    cairo_paint_with_alpha(cr, tone.opacity);
+    cairo_paint_with_alpha(cr, all ? tone.opacity : tone.inks[ink].opacity);
+}
+
+void paint_tone(cairo_t* cr, const ToneLayer& tone) {
+    if (tone.mode == core::ToneMode::kNone || (tone.dots.empty() && tone.hatches.empty())) return;
+    for (size_t ink = 0; ink < std::max<size_t>(1, tone.inks.size()); ++ink) paint_tone_ink(cr, tone, ink);
 }
 
 // Saves the state and sets what every part of a drawing is painted with: clipped to the image,

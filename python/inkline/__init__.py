@@ -97,6 +97,11 @@ class Tone:
     modes: list = field(default_factory=list)
     hatch_stats: Optional[dict] = None
     stipple_stats: Optional[dict] = None
+    # Where objects have inks of their own (scene "objects" and "styles"): one dict per ink, color
+    # ("#rrggbb"), opacity and style (the style rule's name, or ""); empty: the scene's ink alone.
+    # `ink` gives each dot's index in it, as each hatch's "ink" does (0 with one ink or none).
+    inks: list = field(default_factory=list)
+    ink: Optional[np.ndarray] = None  # (n,) uint32
 
     def __len__(self) -> int:
         """Dots, or hatches with hatching."""
@@ -385,11 +390,13 @@ def _tone_from_json(t: dict) -> Tone:
     hatches = [{"family": int(h["family"]), "plane": int(h["plane"]), "level": int(h["level"]),
                 "points": np.asarray(h["points"], np.float64).reshape(-1, 2),
                 "world": np.asarray(h["world"], np.float64).reshape(-1, 3),
-                "edges": np.asarray(h["edges"], np.uint32), "width": np.asarray(h["width"], np.float64)}
+                "edges": np.asarray(h["edges"], np.uint32), "width": np.asarray(h["width"], np.float64),
+                "ink": int(h.get("ink", 0))}
                for h in t.get("hatches", [])]
     return Tone(mode=str(t["mode"]), points=column("point", np.float64, 2), world=column("world", np.float64, 3),
                 faces=column("face", np.uint32, 0), barycentric=column("barycentric", np.float64, 3),
                 radius=column("radius", np.float64, 0), tone=column("tone", np.float64, 0),
                 samples=column("sample", np.uint32, 0), stats=dict(t.get("stats", {})), hatches=hatches,
                 modes=list(t.get("modes", [t["mode"]])), hatch_stats=t.get("hatch_stats"),
-                stipple_stats=t.get("stipple_stats"))
+                stipple_stats=t.get("stipple_stats"), inks=list(t.get("inks", [])),
+                ink=np.asarray([d.get("ink", 0) for d in dots], np.uint32))

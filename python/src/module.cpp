@@ -205,9 +205,10 @@ py::object tone_of(const Frame& frame) {
     if (tone.mode == core::ToneMode::kNone) return py::none();
     std::vector<glm::dvec2> points;
     std::vector<glm::dvec3> world, barycentric;
-    std::vector<uint32_t> faces, samples;
+    std::vector<uint32_t> faces, samples, inks;
     std::vector<double> radius, value;
     for (const core::Dot& d : tone.dots) {
+        inks.push_back(d.ink);
         points.push_back(d.point_px);
         world.push_back(d.point_world);
         barycentric.push_back(d.barycentric);
@@ -247,6 +248,7 @@ py::object tone_of(const Frame& frame) {
         hatch["world"] = rows_of(h.points_world);
         hatch["edges"] = array_of(h.edges);
         hatch["width"] = array_of(h.width_px);
+        hatch["ink"] = h.ink;
         hatches.append(hatch);
     }
     py::dict out;
@@ -258,7 +260,19 @@ py::object tone_of(const Frame& frame) {
     out["radius"] = array_of(radius);
     out["tone"] = array_of(value);
     out["samples"] = array_of(samples);
+    out["ink"] = array_of(inks);
     out["hatches"] = hatches;
+    // The inks the marks are drawn in where objects have inks of their own (scene "objects" and
+    // "styles"), as the JSON's tone.inks; empty: the scene's alone.
+    py::list ink_list;
+    for (const core::ToneInk& ink : tone.inks) {
+        py::dict d;
+        d["color"] = core::color_hex(ink.color);
+        d["opacity"] = ink.opacity;
+        d["style"] = ink.style;
+        ink_list.append(d);
+    }
+    out["inks"] = ink_list;
     out["stats"] = stats;
     // Where objects have modes of their own: the modes drawn, and the other kind's stats.
     py::list modes;

@@ -153,6 +153,101 @@ TEST_F(Tone, ObjectsCanHaveModesOfTheirOwn) {
     EXPECT_FALSE(json("none").contains("tone"));
 }
 
+// The marks of a tone without their inks: what a scene without inks of its own draws.
+nlohmann::json without_inks(nlohmann::json tone) {
+    for (const char* kind : {"dots", "hatches"}) {
+        if (!tone.contains(kind)) continue;
+        for (auto& mark : tone[kind]) mark.erase("ink");
+    }
+    return tone;
+}
+
+// The circles of an SVG group, by its id.
+std::vector<long> group_samples(const std::string& svg, const std::string& id) {
+    const size_t at = svg.find("<g id=\"" + id + "\"");
+    if (at == std::string::npos) return {};
+    return circle_samples(svg.substr(at, svg.find("</g>", at) - at));
+}
+
+// A style's tone gives the objects it selects an ink of its own: the marks stay the same, each
+// drawn in its object's ink in every output.
+TEST_F(Tone, StylesGiveObjectsInksOfTheirOwn) {
+    const std::string lit = R"(, "tone": {"mode": "stipple", "max": 0.6})";
+    const auto run = [&](const std::string& extra, const std::string& name) {
+        const test::RunResult r = render(two_spheres_scene(dir, lit + extra), name, "", true);
+        EXPECT_EQ(r.code, 0) << r.output;
+        return json(name)["tone"];
+    };
+    const nlohmann::json plain = run("", "plain");
+    const nlohmann::json inked = run(R"(, "styles": [{"name": "warm", "select": {"object": "Right"},
+                                                     "tone": {"color": "#a03010", "opacity": 0.7}}])", "inked");
+    EXPECT_FALSE(plain.contains("inks")) << "the scene's ink alone: the JSON is as before";
+    EXPECT_EQ(inked["inks"], nlohmann::json::parse(R"([{"color": "#171412", "opacity": 1.0, "style": ""},
+                                                       {"color": "#a03010", "opacity": 0.7, "style": "warm"}])"));
+    ASSERT_GT(plain["dots"].size(), 200u);
+    EXPECT_TRUE(without_inks(inked)["dots"] == plain["dots"]) << "an ink moves no dot";
+    size_t left = 0, right = 0;
+    for (const auto& dot : inked["dots"]) {
+        const bool on_right = dot["point"][0].get<double>() > 160.0;
+        EXPECT_EQ(dot["ink"].get<int>(), on_right ? 1 : 0);
+        (on_right ? right : left) += 1;
+    }
+    // The SVG: a group per ink inside the tone layer.
+    const std::string text = svg("inked");
+    EXPECT_NE(text.find("<g id=\"tone-ink-1\" fill=\"#171412\">"), std::string::npos);
+    EXPECT_NE(text.find("<g id=\"tone-ink-2\" data-style=\"warm\" fill=\"#a03010\" opacity=\"0.7\">"), std::string::npos);
+    EXPECT_EQ(group_samples(text, "tone-ink-1").size(), left);
+    EXPECT_EQ(group_samples(text, "tone-ink-2").size(), right);
+    EXPECT_EQ(svg("plain").find("tone-ink"), std::string::npos);
+    // The PNG: the warm ink on the right sphere only.
+    const test::Pixels png = test::png_file_pixels(dir / "inked.png");
+    size_t warm_left = 0, warm_right = 0;
+    for (int y = 0; y < png.height; ++y) {
+        for (int x = 0; x < png.width; ++x) {
+            const auto& p = png.rgba[size_t(y) * size_t(png.width) + size_t(x)];
+            if (p[3] > 64 && p[0] > 120 && p[1] < 90) (x < 160 ? warm_left : warm_right) += 1;
+        }
+    }
+    EXPECT_EQ(warm_left, 0u);
+    EXPECT_GT(warm_right, 100u);
+
+    // Hatches take their object's ink too; an objects rule's colour, and a style over it.
+    const nlohmann::json mixed = run(R"(, "objects": {"Left": {"tone": {"color": "#0030a0"}}, "Right": {"tone": {"color": "#00ff00"}}},
+        "styles": [{"name": "warm", "select": {"object": "Right"}, "tone": {"color": "#a03010", "mode": "crosshatch"}}])", "mixed");
+    EXPECT_EQ(mixed["inks"], nlohmann::json::parse(R"([{"color": "#0030a0", "opacity": 1.0, "style": ""},
+                                                       {"color": "#a03010", "opacity": 1.0, "style": "warm"}])"));
+    ASSERT_GT(mixed["hatches"].size(), 10u);
+    for (const auto& dot : mixed["dots"]) EXPECT_EQ(dot["ink"].get<int>(), 0);
+    for (const auto& hatch : mixed["hatches"]) EXPECT_EQ(hatch["ink"].get<int>(), 1);
+    nlohmann::json plain_left = nlohmann::json::array();
+    for (const auto& dot : plain["dots"]) {
+        if (dot["point"][0].get<double>() < 160.0) plain_left.push_back(dot);
+    }
+    EXPECT_TRUE(without_inks(mixed)["dots"] == plain_left) << "the left sphere's dots, as without inks";
+
+    // A style without a selector inks a mesh without objects: one ink, named in the tone layer.
+    test::write_obj(dir / "ball.obj", test::icosphere(3));
+    test::write_text(dir / "ball_scene.json", R"({"mesh": "ball.obj", "frames": [1, 1], "image": {"width": 160, "height": 160},
+        "camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 40}, "tone": {"max": 0.6},
+        "styles": [{"name": "sepia", "tone": {"color": "#704214"}}]})");
+    const test::RunResult ball = render(dir / "ball_scene.json", "ball", "");
+    ASSERT_EQ(ball.code, 0) << ball.output;
+    EXPECT_NE(svg("ball").find("data-mode=\"stipple\" data-style=\"sepia\" fill=\"#704214\">"), std::string::npos);
+    EXPECT_EQ(json("ball")["tone"]["inks"], nlohmann::json::parse(R"([{"color": "#704214", "opacity": 1.0, "style": "sepia"}])"));
+    EXPECT_FALSE(json("ball")["tone"]["dots"][0].contains("ink")) << "one ink: no ink per dot";
+}
+
+// A style with a tone selects surfaces, which have no kind and no role.
+TEST_F(Tone, AStyleWithAToneAndAKindFailsWithOneLineAndExitCode2) {
+    const test::RunResult r = render(two_spheres_scene(dir, R"(, "tone": {}, "styles": [{"select": {"kind": "silhouette"},
+        "tone": {"max": 0.2}}])"), "f", "");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("key 'styles[0].tone': a rule with a tone selects by object only, not by kind or role"),
+              std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1);
+    EXPECT_FALSE(fs::exists(dir / "f.svg"));
+}
+
 TEST_F(Tone, BogusModeFailsWithOneLineAndExitCode2) {
     const test::RunResult r = test::run_inkline("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1 --tone bogus -o " +
                                                 (dir / "out").string());

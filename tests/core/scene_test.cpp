@@ -435,6 +435,69 @@ TEST(Scene, AnObjectsToneModeOverridesTheScenesOnlyWhereTheSceneHasTone) {
     EXPECT_EQ(core::object_tone_mode(off, "Vase.1"), core::ToneMode::kNone) << "an object's mode does not turn tone on";
 }
 
+TEST(Scene, StylesShadeTheObjectsTheySelectOverTheObjectsRules) {
+    // The scene's tone, then the "objects" rules, then the "styles" rules with a tone, in order,
+    // key by key; an ink is named after the last style that set the object's tone.
+    const core::Scene s = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]},
+            "tone": {"mode": "stipple", "max": 0.5, "color": "#101010", "opacity": 0.9},
+            "objects": {"Tree*": {"tone": {"color": "#00ff00", "max": 0.3}}, "Rock": {"tone": false}},
+            "styles": [{"name": "lines", "select": {"kind": "crease"}, "color": "#ff0000"},
+                       {"name": "trees", "select": {"object": "Tree.*"}, "color": "#2f4f2f",
+                        "tone": {"color": "#2f4f2f", "mode": "hatch", "gamma": 2}},
+                       {"name": "paper", "tone": {"opacity": 0.5}},
+                       {"name": "rock", "select": {"object": "Rock"}, "tone": {"mode": "crosshatch"}}]})",
+        "scene.json");
+    const core::ObjectTone ball = core::object_tone(s, "Ball");
+    EXPECT_TRUE(ball.shaded);
+    EXPECT_EQ(ball.mode, core::ToneMode::kStipple);
+    EXPECT_EQ(ball.curve.max, 0.5);
+    EXPECT_EQ(ball.ink.color, glm::dvec3(16.0 / 255.0));
+    EXPECT_EQ(ball.ink.opacity, 0.5) << "the rule without a selector shades every object";
+    EXPECT_EQ(ball.ink.style, "paper");
+    const core::ObjectTone tree = core::object_tone(s, "Tree.1");
+    EXPECT_EQ(tree.mode, core::ToneMode::kHatch);
+    EXPECT_EQ(tree.curve.max, 0.3) << "the objects rule's";
+    EXPECT_EQ(tree.curve.gamma, 2.0) << "the style's";
+    EXPECT_EQ(tree.ink.color, glm::dvec3(0x2f, 0x4f, 0x2f) / 255.0) << "the style's over the objects rule's";
+    EXPECT_EQ(tree.ink.opacity, 0.5);
+    EXPECT_EQ(tree.ink.style, "paper") << "the last style that set its tone";
+    EXPECT_EQ(core::object_tone(s, "Treehouse").ink.color, glm::dvec3(0.0, 1.0, 0.0)) << "the objects rule's alone";
+    const core::ObjectTone rock = core::object_tone(s, "Rock");
+    EXPECT_FALSE(rock.shaded) << "a style's mode does not shade what an objects rule leaves unshaded";
+    EXPECT_EQ(rock.mode, core::ToneMode::kNone);
+    // A mesh without objects: only the rule without an object selector applies.
+    const core::ObjectTone whole = core::object_tone(s, std::nullopt);
+    EXPECT_EQ(whole.mode, core::ToneMode::kStipple);
+    EXPECT_EQ(whole.ink.opacity, 0.5);
+    EXPECT_EQ(whole.ink.style, "paper");
+    EXPECT_EQ(core::object_tone_mode(s, "Tree.2"), core::ToneMode::kHatch) << "object_tone_mode reads the styles too";
+    // Without the scene's tone, a style's mode turns nothing on.
+    const core::Scene off = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]},
+            "styles": [{"tone": {"mode": "hatch"}}]})", "scene.json");
+    EXPECT_EQ(core::object_tone(off, "Ball").mode, core::ToneMode::kNone);
+}
+
+TEST(Scene, AStylesToneSelectsByObjectOnlyAndItsKeysAreChecked) {
+    const std::string camera = R"("camera": {"eye": [0,0,4], "target": [0,0,0]})";
+    for (const auto& [styles, expected] : std::vector<std::pair<std::string, std::string>>{
+             {R"([{"select": {"kind": "crease"}, "tone": {"max": 0.2}}])",
+              "key 'styles[0].tone': a rule with a tone selects by object only, not by kind or role"},
+             {R"([{"select": {"object": "A", "role": "outer"}, "tone": {}}])", "key 'styles[0].tone': a rule with a tone"},
+             {R"([{"tone": {"max": 2}}])", "key 'styles[0].tone.max': must be between 0 and 0.9"},
+             {R"([{"tone": {"color": "red"}}])", "key 'styles[0].tone.color'"},
+             {R"([{"tone": {"opacity": 1.5}}])", "key 'styles[0].tone.opacity': must be between 0 and 1"},
+             {R"([{"tone": {"dot_radius_px": 2}}])", "styles[0].tone"},
+             {R"([{"tone": true}])", "key 'styles[0].tone': expected {"}}) {
+        const std::string json = R"({"mesh": "m.obj", )" + camera + R"(, "styles": )" + styles + "}";
+        const std::string error = error_of(json);
+        EXPECT_NE(error.find(expected), std::string::npos) << json << "\n  gave: " << error;
+    }
+    const std::string error = error_of(R"({"mesh": "m.obj", )" + camera + R"(, "objects": {"A": {"tone": {"opacity": -1}}}})");
+    EXPECT_NE(error.find("key 'objects.A.tone.opacity': must be between 0 and 1"), std::string::npos) << error;
+}
+
 TEST(Scene, BrushTipResolvesAgainstTheSceneFolder) {
     namespace fs = std::filesystem;
     const fs::path dir = test::fresh_temp_dir("BrushTipResolvesAgainstTheSceneFolder");

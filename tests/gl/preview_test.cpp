@@ -359,5 +359,44 @@ TEST(Preview, ToneMatchesCairo) {
     }
 }
 
+// Marks of several inks (objects shaded in inks of their own): each ink's marks in its colour
+// and opacity, as Cairo paints them.
+TEST(Preview, ToneInksColourTheirOwnMarks) {
+    const Frame frame = cube_frame();
+    core::FrameTone tone;
+    tone.mode = core::ToneMode::kStipple;
+    tone.modes = {core::ToneMode::kStipple};
+    tone.inks = {{.color = {0.8, 0.1, 0.1}, .opacity = 1.0, .style = ""}, {.color = {0.1, 0.2, 0.9}, .opacity = 0.5, .style = "cool"}};
+    for (int k = 0; k < 6; ++k) {
+        for (const uint16_t ink : {0, 1}) {
+            core::Dot dot;
+            dot.sample = uint32_t(10 * ink + k);
+            dot.point_px = {ink == 0 ? 20.0 : 364.0, 30.0 + 50.0 * k};
+            dot.radius_px = 6.0;
+            dot.ink = ink;
+            tone.dots.push_back(dot);
+        }
+    }
+    const auto context = context_or_skip(gl::Backend::kAuto);
+    gl::PreviewRenderer renderer(*context, {}, gl::default_brush_tip());
+    const gl::PreviewImage image = renderer.render(frame.lines, frame.strokes, {}, {.tone = &tone});
+    EXPECT_EQ(renderer.last_render().tone_triangles, 12u * 16u);
+    output::Drawing drawing = output::brush_drawing(frame.lines, frame.strokes, {}, false);
+    drawing.tone = output::tone_layer(tone, {});
+    const std::string png = output::png_image(drawing);
+    // The centre pixel of each dot: its ink's colour and opacity, in both renderings.
+    const auto pixel = [&](const glm::dvec2& p) {
+        const size_t i = 4 * (size_t(p.y) * size_t(image.width) + size_t(p.x));
+        return glm::dvec4(image.rgba[i], image.rgba[i + 1], image.rgba[i + 2], image.rgba[i + 3]) / 255.0;
+    };
+    for (const core::Dot& dot : tone.dots) {
+        const core::ToneInk& ink = tone.inks[dot.ink];
+        const glm::dvec4 p = pixel(dot.point_px);
+        EXPECT_NEAR(p.a, ink.opacity, 0.02) << dot.sample;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], ink.color[c], 0.02) << dot.sample;
+    }
+    EXPECT_GE(test::iou(coverage(image), coverage(png)), 0.9) << "the same dots in Cairo";
+}
+
 }  // namespace
 }  // namespace inkline

@@ -134,7 +134,8 @@ def test_objects_with_modes_of_their_own_give_dots_and_hatches(tmp_path):
         "mesh": "spheres.obj", "image": {"width": 320, "height": 160},
         "camera": {"eye": [0, 0, 6], "target": [0, 0, 0], "up": [0, 1, 0], "fov_y_deg": 30},
         "light": {"direction": [0.0, -0.3, -1.0]}, "tone": {"mode": "stipple", "max": 0.6},
-        "objects": {"Right": {"tone": {"mode": "hatch"}}}}))
+        "objects": {"Right": {"tone": {"mode": "hatch"}}},
+        "styles": [{"name": "warm", "select": {"object": "Right"}, "tone": {"color": "#a03010", "opacity": 0.7}}]}))
     frame = inkline.open(scene, frames=1, visibility="exact").render(1)
     tone = frame.tone
     assert tone.mode == "stipple" and tone.modes == ["stipple", "hatch"]
@@ -144,3 +145,11 @@ def test_objects_with_modes_of_their_own_give_dots_and_hatches(tmp_path):
     back = inkline.read_json(frame.to_json()).tone
     assert back.modes == tone.modes and back.hatch_stats == tone.hatch_stats
     assert len(back.hatches) == len(tone.hatches) and np.array_equal(back.samples, tone.samples)
+    # The style gives the hatched sphere an ink of its own.
+    assert tone.inks == [{"color": "#171412", "opacity": 1.0, "style": ""},
+                         {"color": "#a03010", "opacity": 0.7, "style": "warm"}]
+    assert tone.ink.dtype == np.uint32 and np.all(tone.ink == 0) and len(tone.ink) == len(tone.points)
+    assert all(h["ink"] == 1 for h in tone.hatches)
+    assert back.inks == tone.inks and np.array_equal(back.ink, tone.ink)
+    assert [h["ink"] for h in back.hatches] == [h["ink"] for h in tone.hatches]
+    assert 'id="tone-ink-2" data-style="warm" fill="#a03010" opacity="0.7"' in frame.to_svg()

@@ -3,6 +3,7 @@
 
 #include <cairo.h>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -83,6 +84,30 @@ double png_alpha_sum(const std::string& png_bytes) {
 std::vector<uint8_t> png_file_coverage(const std::filesystem::path& png, Ink ink) {
     return coverage(Surface(cairo_image_surface_create_from_png(png.c_str()), cairo_surface_destroy), ink,
                     png.string());
+}
+
+Pixels png_file_pixels(const std::filesystem::path& png) {
+    const Surface surface(cairo_image_surface_create_from_png(png.c_str()), cairo_surface_destroy);
+    cairo_surface_t* s = surface.get();
+    if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS) {
+        throw std::runtime_error(png.string() + ": " + cairo_status_to_string(cairo_surface_status(s)));
+    }
+    Pixels out{cairo_image_surface_get_width(s), cairo_image_surface_get_height(s), {}};
+    const int stride = cairo_image_surface_get_stride(s);
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    const bool has_alpha = cairo_image_surface_get_format(s) == CAIRO_FORMAT_ARGB32;
+    out.rgba.reserve(size_t(out.width) * size_t(out.height));
+    for (int y = 0; y < out.height; ++y) {
+        for (int x = 0; x < out.width; ++x) {
+            uint32_t p = 0;
+            std::memcpy(&p, data + size_t(y) * size_t(stride) + 4 * size_t(x), sizeof p);
+            const uint32_t a = has_alpha ? p >> 24 : 255;
+            // Premultiplied: the colour is divided by the alpha again.
+            const auto straight = [&](uint32_t c) { return uint8_t(a == 0 ? 0 : std::min<uint32_t>(255, (c * 255 + a / 2) / a)); };
+            out.rgba.push_back({straight((p >> 16) & 0xff), straight((p >> 8) & 0xff), straight(p & 0xff), uint8_t(a)});
+        }
+    }
+    return out;
 }
 
 double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {

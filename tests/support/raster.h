@@ -3,6 +3,7 @@
 // and the preview benchmark compare two renderings of one frame.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -25,6 +26,14 @@ std::vector<uint8_t> png_file_coverage(const std::filesystem::path& png, Ink ink
 // The sum over all pixels of their alpha (0..1): the total ink of a PNG in memory. Throws
 // std::runtime_error when it cannot be decoded.
 double png_alpha_sum(const std::string& png_bytes);
+// A PNG file's pixels, straight-alpha RGBA, rows from the top. Throws std::runtime_error when it
+// cannot be decoded.
+struct Pixels {
+    int width = 0, height = 0;
+    std::vector<std::array<uint8_t, 4>> rgba;
+};
+Pixels png_file_pixels(const std::filesystem::path& png);
+
 // Intersection over union of two coverages of one image size (1 when neither has ink). Throws
 // std::invalid_argument when the sizes differ.
 double iou(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
