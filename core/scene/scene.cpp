@@ -335,7 +335,8 @@ ToneMode read_tone_mode(const Reader& r) {
 // The scene's "tone" block (docs/tone.md).
 ToneOptions read_tone(const Reader& r) {
     r.allow_only({"mode", "gamma", "levels", "min", "max", "dot_radius_px", "fade", "line_width_px", "direction",
-                  "cross_direction", "cross_from", "color", "opacity", "seed"});
+                  "cross_direction", "cross_from", "space", "angle_deg", "cross_angle_deg", "color", "opacity",
+                  "seed"});
     ToneOptions t;
     t.mode = ToneMode::kStipple;
     if (r.has("mode")) t.mode = read_tone_mode(r);
@@ -348,8 +349,28 @@ ToneOptions read_tone(const Reader& r) {
     if (!(t.fade >= 0.0 && t.fade <= 4.0)) r.fail("fade", "must be between 0 and 4");
     t.line_width_px = r.number_or("line_width_px", t.line_width_px);
     if (!(t.line_width_px >= 0.1 && t.line_width_px <= 64.0)) r.fail("line_width_px", "must be between 0.1 and 64");
+    if (r.has("space")) {
+        const std::string space = r.string("space");
+        if (space == "screen") t.space = HatchSpace::kScreen;
+        else if (space != "object") r.fail("space", "expected \"object\" or \"screen\"");
+    }
+    // Each space has its own way of giving the lines' direction.
+    const bool screen = t.space == HatchSpace::kScreen;
+    for (const char* key : {"direction", "cross_direction", "angle_deg", "cross_angle_deg"}) {
+        const bool screen_key = std::string_view(key).ends_with("angle_deg");
+        if (r.has(key) && screen_key != screen) {
+            r.fail(key, screen ? "is for \"space\": \"object\" (in screen space the lines take angle_deg)"
+                               : "is for \"space\": \"screen\" (on the surface the lines take direction)");
+        }
+    }
     if (r.has("direction")) t.direction = r.direction("direction");
     if (r.has("cross_direction")) t.cross_direction = r.direction("cross_direction");
+    for (const char* key : {"angle_deg", "cross_angle_deg"}) {
+        if (!r.has(key)) continue;
+        const double angle = r.number_or(key, 0.0);
+        if (!(angle >= -360.0 && angle <= 360.0)) r.fail(key, "must be between -360 and 360");
+        (std::string_view(key) == "angle_deg" ? t.angle_deg : t.cross_angle_deg) = angle;
+    }
     t.cross_from = r.number_or("cross_from", t.cross_from);
     if (!(t.cross_from >= 0.0 && t.cross_from <= 0.9)) r.fail("cross_from", "must be between 0 and 0.9");
     if (r.has("color")) t.color = read_color(r, "color");
@@ -602,7 +623,8 @@ std::vector<StyleRule> read_styles(const Reader& r) {
         rule.set = read_brush_patch(item);
         if (item.has("tone")) {
             if (!item.at("tone").is_object()) {
-                item.fail("tone", "expected {\"mode\", \"gamma\", \"levels\", \"min\", \"max\", \"color\", \"opacity\"}");
+                item.fail("tone",
+                          "expected {\"mode\", \"gamma\", \"levels\", \"min\", \"max\", \"color\", \"opacity\"}");
             }
             // The surface has no line kind and no role: a rule that shades it selects by object.
             if (rule.select.kinds != 0 || rule.select.role) {

@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <algorithm>
 #include <bit>
@@ -110,11 +111,22 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
         face_edges_ = face_edges(mesh, table);
         const size_t count = options_.mode == ToneMode::kCrosshatch ? 2 : 1;
         for (size_t f = 0; f < count; ++f) {
-            const glm::dvec3 d = glm::normalize(f == 0 ? options_.direction : options_.cross_direction);
             Family family;
             family.h.resize(mesh.positions.size());
             double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-            for (size_t v = 0; v < mesh.positions.size(); ++v) {
+            if (options_.space == HatchSpace::kScreen) {
+                // Lines along the angle on the page (y down): planes across it, spanning the image.
+                const double angle = glm::radians(f == 0 ? options_.angle_deg : options_.cross_angle_deg);
+                family.across = {std::sin(angle), std::cos(angle)};
+                const ImageSize image = projection.image();
+                for (const glm::dvec2 corner : {glm::dvec2(0.0), glm::dvec2(image.width, 0.0),
+                                                glm::dvec2(0.0, image.height), glm::dvec2(image.width, image.height)}) {
+                    lo = std::min(lo, glm::dot(family.across, corner));
+                    hi = std::max(hi, glm::dot(family.across, corner));
+                }
+            }
+            const glm::dvec3 d = glm::normalize(f == 0 ? options_.direction : options_.cross_direction);
+            for (size_t v = 0; v < mesh.positions.size() && options_.space == HatchSpace::kObject; ++v) {
                 const double h = glm::dot(d, glm::dvec3(mesh.positions[v]));
                 family.h[v] = float(h);
                 lo = std::min(lo, double(family.h[v]));
@@ -162,6 +174,18 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             vertex_clip[v] = projection.clip(p);
         }
     });
+
+    // In screen space each vertex's place across the lines is this frame's.
+    const bool screen = options_.space == HatchSpace::kScreen;
+    for (Family& family : families_) {
+        if (!screen) break;
+        internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
+            for (size_t v = begin; v < end; ++v) {
+                const bool seen = projection.in_front(vertex_clip[v]);
+                family.h[v] = seen ? float(glm::dot(family.across, projection.pixel_from_clip(vertex_clip[v]))) : 0.0f;
+            }
+        });
+    }
 
     const internal::InkGrid ink(strokes, image, width);
     const size_t faces = mesh.triangles.size();
@@ -227,7 +251,13 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                     // From the side's own first vertex: both of its faces compute the same point.
                     const glm::uvec2 ends = table.edge_vertices[edge];
                     const double h0 = family.h[ends.x], h1 = family.h[ends.y];
-                    const double along = (c - h0) / (h1 - h0);
+                    double along = (c - h0) / (h1 - h0);
+                    if (screen) {
+                        // h runs evenly on the image, not along the edge in space: the point of
+                        // the edge whose image lies on the line.
+                        const double w0 = vertex_clip[ends.x].w, w1 = vertex_clip[ends.y].w;
+                        along = along * w0 / (along * w0 + (1.0 - along) * w1);
+                    }
                     const glm::dvec3 e0(mesh.positions[ends.x]), e1(mesh.positions[ends.y]);
                     line.sides[found] = edge;
                     line.points[found] = e0 + along * (e1 - e0);

@@ -9,6 +9,8 @@
 // of screen spacing s, the levels up to the one that spacing needs are drawn and the finest of
 // them fades in (its width grows), so a darker tone or a closer camera adds lines between the
 // others, never moving them. Crosshatch adds a second family once the tone passes cross_from.
+// In screen space (ToneOptions::space) the planes are across an angle on the image instead: each
+// line is straight on the page, through the points of the surface whose images lie on it.
 #pragma once
 
 #include "core/mesh/mesh.h"
@@ -75,9 +77,12 @@ class Hatcher {
 
   private:
     struct Family {
-        std::vector<float> h;  // per vertex: the rest position along the family's direction
-        double first = 0.0;    // the first plane
-        double step0 = 1.0;    // spacing of level 0's planes
+        // Per vertex: the rest position along the family's direction; in screen space, this
+        // frame's image position across the lines (px).
+        std::vector<float> h;
+        double first = 0.0;  // the first plane
+        double step0 = 1.0;  // spacing of level 0's planes
+        glm::dvec2 across{0.0};  // screen space: the unit normal of the lines on the image
     };
 
     ToneOptions options_;

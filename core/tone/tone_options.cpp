@@ -16,6 +16,8 @@ const char* tone_mode_name(ToneMode mode) {
     return "none";
 }
 
+const char* hatch_space_name(HatchSpace space) { return space == HatchSpace::kScreen ? "screen" : "object"; }
+
 std::optional<ToneMode> tone_mode_from_name(std::string_view name) {
     for (ToneMode mode : {ToneMode::kNone, ToneMode::kStipple, ToneMode::kHatch, ToneMode::kCrosshatch}) {
         if (name == tone_mode_name(mode)) return mode;

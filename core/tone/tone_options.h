@@ -24,6 +24,14 @@ enum class ToneMode : uint8_t {
 // "none", "stipple", "hatch" or "crosshatch".
 const char* tone_mode_name(ToneMode mode);
 
+// Where hatch lines are laid (scene "tone" "space").
+enum class HatchSpace : uint8_t {
+    kObject,  // on the surface: sections by planes across an object-space direction
+    kScreen,  // on the image: straight lines at an angle on the page
+};
+// "object" or "screen".
+const char* hatch_space_name(HatchSpace space);
+
 // How dark the surface is shaded at a light intensity I in [0, 1]: t = x^gamma with x = 1 - I,
 // rounded to `levels` steps (0 or 1: not rounded), then tone = min + (max - min) t.
 struct ToneCurve {
@@ -50,6 +58,13 @@ struct ToneOptions {
     glm::dvec3 direction{0.0, 1.0, 0.0};
     glm::dvec3 cross_direction{1.0, 0.0, 0.0};
     double cross_from = 0.25;
+    // Where the hatch lines are laid: on the surface (object space, across `direction`), or on
+    // the image (screen space: straight lines at `angle_deg` on the page).
+    HatchSpace space = HatchSpace::kObject;
+    // Screen space: the lines' direction on the image, degrees anticlockwise from its x axis,
+    // and crosshatch's second family's.
+    double angle_deg = 45.0;
+    double cross_angle_deg = -45.0;
     glm::dvec3 color{0.09, 0.08, 0.07};  // sRGB in [0, 1]
     double opacity = 1.0;
     uint64_t seed = 1;

@@ -195,7 +195,8 @@ TEST_F(Tone, StylesGiveObjectsInksOfTheirOwn) {
     // The SVG: a group per ink inside the tone layer.
     const std::string text = svg("inked");
     EXPECT_NE(text.find("<g id=\"tone-ink-1\" fill=\"#171412\">"), std::string::npos);
-    EXPECT_NE(text.find("<g id=\"tone-ink-2\" data-style=\"warm\" fill=\"#a03010\" opacity=\"0.7\">"), std::string::npos);
+    EXPECT_NE(text.find("<g id=\"tone-ink-2\" data-style=\"warm\" fill=\"#a03010\" opacity=\"0.7\">"),
+              std::string::npos);
     EXPECT_EQ(group_samples(text, "tone-ink-1").size(), left);
     EXPECT_EQ(group_samples(text, "tone-ink-2").size(), right);
     EXPECT_EQ(svg("plain").find("tone-ink"), std::string::npos);
@@ -233,7 +234,8 @@ TEST_F(Tone, StylesGiveObjectsInksOfTheirOwn) {
     const test::RunResult ball = render(dir / "ball_scene.json", "ball", "");
     ASSERT_EQ(ball.code, 0) << ball.output;
     EXPECT_NE(svg("ball").find("data-mode=\"stipple\" data-style=\"sepia\" fill=\"#704214\">"), std::string::npos);
-    EXPECT_EQ(json("ball")["tone"]["inks"], nlohmann::json::parse(R"([{"color": "#704214", "opacity": 1.0, "style": "sepia"}])"));
+    EXPECT_EQ(json("ball")["tone"]["inks"],
+              nlohmann::json::parse(R"([{"color": "#704214", "opacity": 1.0, "style": "sepia"}])"));
     EXPECT_FALSE(json("ball")["tone"]["dots"][0].contains("ink")) << "one ink: no ink per dot";
 }
 

@@ -340,6 +340,21 @@ TEST(Scene, ToneCurveFollowsTheLight) {
     EXPECT_NEAR(core::tone_of(0.1, t), 0.5, 1e-12);
 }
 
+TEST(Scene, ToneHatchesInScreenSpaceAtAngles) {
+    const auto tone_of = [](const std::string& block) {
+        return core::parse_scene(R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, "tone": )" + block + "}",
+                                 "scene.json")
+            .tone;
+    };
+    const core::ToneOptions object = tone_of(R"({"mode": "hatch"})");
+    EXPECT_EQ(object.space, core::HatchSpace::kObject) << "the default";
+    const core::ToneOptions screen = tone_of(R"({"mode": "crosshatch", "space": "screen", "angle_deg": 30})");
+    EXPECT_EQ(screen.space, core::HatchSpace::kScreen);
+    EXPECT_EQ(screen.angle_deg, 30.0);
+    EXPECT_EQ(screen.cross_angle_deg, -45.0) << "the default";
+    EXPECT_EQ(tone_of(R"({"space": "screen", "cross_angle_deg": 120})").cross_angle_deg, 120.0);
+}
+
 TEST(Scene, ToneErrorsNameTheKey) {
     const std::string camera = R"("camera": {"eye": [0,0,4], "target": [0,0,0]})";
     const std::vector<std::pair<std::string, std::string>> cases = {
@@ -360,6 +375,12 @@ TEST(Scene, ToneErrorsNameTheKey) {
         {R"("tone": {"opacity": 2})", "key 'tone.opacity'"},
         {R"("tone": {"seed": -3})", "key 'tone.seed'"},
         {R"("tone": "stipple")", "key 'tone': expected an object"},
+        {R"("tone": {"space": "page"})", "key 'tone.space': expected \"object\" or \"screen\""},
+        {R"("tone": {"space": "screen", "direction": [1, 0, 0]})",
+         "key 'tone.direction': is for \"space\": \"object\" (in screen space the lines take angle_deg)"},
+        {R"("tone": {"angle_deg": 30})", "key 'tone.angle_deg': is for \"space\": \"screen\""},
+        {R"("tone": {"space": "screen", "cross_angle_deg": "steep"})", "key 'tone.cross_angle_deg'"},
+        {R"("tone": {"space": "screen", "angle_deg": 400})", "key 'tone.angle_deg': must be between -360 and 360"},
         {R"("objects": {"Ground": {"tone": 1}})", "key 'objects.Ground.tone': expected true, false or {\"mode\", \"gamma\""},
     };
     for (const auto& [tone, expected] : cases) {
@@ -494,7 +515,8 @@ TEST(Scene, AStylesToneSelectsByObjectOnlyAndItsKeysAreChecked) {
         const std::string error = error_of(json);
         EXPECT_NE(error.find(expected), std::string::npos) << json << "\n  gave: " << error;
     }
-    const std::string error = error_of(R"({"mesh": "m.obj", )" + camera + R"(, "objects": {"A": {"tone": {"opacity": -1}}}})");
+    const std::string error =
+        error_of(R"({"mesh": "m.obj", )" + camera + R"(, "objects": {"A": {"tone": {"opacity": -1}}}})");
     EXPECT_NE(error.find("key 'objects.A.tone.opacity': must be between 0 and 1"), std::string::npos) << error;
 }
 

@@ -366,7 +366,8 @@ TEST(Preview, ToneInksColourTheirOwnMarks) {
     core::FrameTone tone;
     tone.mode = core::ToneMode::kStipple;
     tone.modes = {core::ToneMode::kStipple};
-    tone.inks = {{.color = {0.8, 0.1, 0.1}, .opacity = 1.0, .style = ""}, {.color = {0.1, 0.2, 0.9}, .opacity = 0.5, .style = "cool"}};
+    tone.inks = {{.color = {0.8, 0.1, 0.1}, .opacity = 1.0, .style = ""},
+                 {.color = {0.1, 0.2, 0.9}, .opacity = 0.5, .style = "cool"}};
     for (int k = 0; k < 6; ++k) {
         for (const uint16_t ink : {0, 1}) {
             core::Dot dot;

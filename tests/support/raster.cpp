@@ -103,7 +103,9 @@ Pixels png_file_pixels(const std::filesystem::path& png) {
             std::memcpy(&p, data + size_t(y) * size_t(stride) + 4 * size_t(x), sizeof p);
             const uint32_t a = has_alpha ? p >> 24 : 255;
             // Premultiplied: the colour is divided by the alpha again.
-            const auto straight = [&](uint32_t c) { return uint8_t(a == 0 ? 0 : std::min<uint32_t>(255, (c * 255 + a / 2) / a)); };
+            const auto straight = [&](uint32_t c) {
+                return uint8_t(a == 0 ? 0 : std::min<uint32_t>(255, (c * 255 + a / 2) / a));
+            };
             out.rgba.push_back({straight((p >> 16) & 0xff), straight((p >> 8) & 0xff), straight(p & 0xff), uint8_t(a)});
         }
     }
