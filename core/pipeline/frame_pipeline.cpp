@@ -347,6 +347,14 @@ void FramePipeline::plan_tone_passes(size_t faces) {
     for (const MeshObject& object : meshes_.objects()) tones.push_back(object_tone(scene_, object.name));
     const std::span<const uint32_t> face_objects = meshes_.face_objects();
     const auto object_of_face = [&](size_t f) { return face_objects.empty() ? 0u : face_objects[f]; };
+    // Faces keep their curve and their ink in 16 bits.
+    const auto index16 = [&](size_t index, const char* what) {
+        if (index >= 0xffffu) {
+            const std::string file = scene_.file.empty() ? "scene" : scene_.file.string();
+            throw InputError(file + ": key 'objects': more than 65,534 distinct tone " + what + " among the objects");
+        }
+        return uint16_t(index);
+    };
 
     // The inks of the shaded objects, the scene's first where some object is drawn in it.
     const auto shaded_in = [&](const ToneInk& ink) {
@@ -357,7 +365,7 @@ void FramePipeline::plan_tone_passes(size_t faces) {
     for (const ObjectTone& t : tones) {
         auto it = std::find(tone_inks_.begin(), tone_inks_.end(), t.ink);
         if (t.mode != ToneMode::kNone && it == tone_inks_.end()) it = tone_inks_.insert(tone_inks_.end(), t.ink);
-        ink_of_object_.push_back(uint16_t(it == tone_inks_.end() ? 0 : it - tone_inks_.begin()));
+        ink_of_object_.push_back(index16(it == tone_inks_.end() ? 0 : size_t(it - tone_inks_.begin()), "inks"));
     }
     if (tone_inks_.size() == 1 && tone_inks_.front() == scene_ink) tone_inks_.clear();
 
@@ -377,7 +385,7 @@ void FramePipeline::plan_tone_passes(size_t faces) {
         own |= t.curve != scene_curve || t.mode != scene_mode;
         auto it = std::find(tone_curves_.begin(), tone_curves_.end(), t.curve);
         if (it == tone_curves_.end()) it = tone_curves_.insert(it, t.curve);
-        curve_of_object.push_back(uint16_t(1 + (it - tone_curves_.begin())));
+        curve_of_object.push_back(index16(size_t(1 + (it - tone_curves_.begin())), "curves"));
     }
     if (!own) {
         tone_passes_.push_back({scene_mode, {}});
