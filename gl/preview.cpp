@@ -117,6 +117,11 @@ uniform vec2 free_ends;       // 1 where the start, the end is free: it shows th
 uniform vec3 ink;             // sRGB
 uniform float opacity;
 uniform vec3 pressure;        // width_min_px, 1 / (width_max_px - width_min_px) or 0, darkening
+uniform float dash[32];       // the style's dash pattern along u, px: on, off, on, ... (even count)
+uniform int dash_count;       // 0: solid
+uniform float dash_period;    // the pattern's length, px
+uniform int cap;              // the dashes' ends: 0 round, 1 butt, 2 square
+uniform float widen;          // strip half-widths per brush half-width
 layout(location = 0) out vec4 colour;
 
 // Along-coordinates of the middle (by u) and of the head and tail (by s, clamped to their zones),
@@ -150,7 +155,28 @@ Along along() {
     return a;
 }
 
+// Whether a sample at u, `side` brush half-widths off the centerline, is in a dash with its caps
+// (docs/styles.md): round caps reach half a width past a dash's ends as a disc does, square caps
+// as a square does, butt caps not at all; a dash of length 0 is a dot.
+bool in_dash(float side) {
+    float m = mod(u, dash_period);
+    float half_width = max(0.5 * width, 1e-6);
+    for (int shift = -1; shift <= 1; ++shift) {
+        float at = float(shift) * dash_period;
+        for (int i = 0; i < dash_count; i += 2) {
+            float a = at, b = at + dash[i];
+            float past = max(max(a - m, m - b), 0.0) / half_width;
+            if (cap == 0 && past * past + side * side <= 1.0) return true;
+            if (cap == 1 && past == 0.0 && b > a) return true;
+            if (cap == 2 && past <= 1.0) return true;
+            at = b + dash[i + 1];
+        }
+    }
+    return false;
+}
+
 void main() {
+    if (dash_count > 0 && !in_dash(across.x * widen)) discard;
     float r = length(across);
     float v = 0.5 + 0.5 * (across.x < 0.0 ? -r : r);
     // Mip level from the continuous coordinates: the middle's wrap-around would otherwise pick
@@ -227,6 +253,7 @@ void check_gl(const internal::Functions& fn, const char* step) {
 
 // One stroke's range in the frame's index buffer and what its shader needs.
 struct StrokeDraw {
+    const core::BrushStyle* brush = nullptr;  // its style's: ink, pressure and dashes
     size_t first_index = 0;
     GLsizei index_count = 0;
     float length_px = 0.0f;
@@ -268,7 +295,8 @@ struct PreviewRenderer::Impl {
     PreviewStats stats;
 
     struct StrokeUniforms {
-        GLint image_size, tip, tip_length, zones, stroke_length, period, free_ends, ink, opacity, pressure;
+        GLint image_size, tip, tip_length, zones, stroke_length, period, free_ends, ink, opacity, pressure, dash,
+            dash_count, dash_period, cap, widen;
     } su{};
     struct ToneUniforms {
         GLint image_size, ink, opacity;
@@ -304,7 +332,8 @@ struct PreviewRenderer::Impl {
         su = {stroke_uniform("image_size"), stroke_uniform("tip"),           stroke_uniform("tip_length"),
               stroke_uniform("zones"),      stroke_uniform("stroke_length"), stroke_uniform("period"),
               stroke_uniform("free_ends"),  stroke_uniform("ink"),           stroke_uniform("opacity"),
-              stroke_uniform("pressure")};
+              stroke_uniform("pressure"),   stroke_uniform("dash"),          stroke_uniform("dash_count"),
+              stroke_uniform("dash_period"), stroke_uniform("cap"),          stroke_uniform("widen")};
         auto surface_uniform = [&](const char* name) { return fn.GetUniformLocation(surface_program, name); };
         fu = {surface_uniform("clip_from_object"),
               surface_uniform("world_from_object"),
@@ -430,6 +459,9 @@ struct PreviewRenderer::Impl {
             internal::QuadStrip strip = internal::quad_strip(stroke, strip_options);
             if (strip.indices.empty()) continue;
             StrokeDraw draw;
+            // A styled stroke in its style's brush; the others in the renderer's.
+            const bool styled = stroke.style != 0 && stroke.style < strokes.styles.size();
+            draw.brush = styled ? &strokes.styles[stroke.style].brush : &style;
             draw.first_index = indices.size();
             draw.index_count = GLsizei(strip.indices.size());
             draw.length_px = float(strip.length_px);
@@ -543,11 +575,7 @@ struct PreviewRenderer::Impl {
         fn.Uniform1f(su.tip_length, float(tip_length_px));
         const double middle = 1.0 - tip_layout.head_fraction - tip_layout.tail_fraction;
         fn.Uniform3f(su.zones, float(tip_layout.head_fraction), float(middle), float(tip_layout.tail_fraction));
-        fn.Uniform3f(su.ink, float(style.color.r), float(style.color.g), float(style.color.b));
-        fn.Uniform1f(su.opacity, float(style.opacity));
-        const double range = style.width_max_px - style.width_min_px;
-        fn.Uniform3f(su.pressure, float(style.width_min_px), range > 0.0 ? float(1.0 / range) : 0.0f,
-                     float(options.pressure_darkening));
+        fn.Uniform1f(su.widen, float(1.0 / (1.0 - 2.0 * tip_layout.edge_margin)));
         // Premultiplied "over": strokes layer like ink.
         fn.Enable(GL_BLEND);
         fn.BlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -557,7 +585,12 @@ struct PreviewRenderer::Impl {
         fn.StencilMask(0xff);
         fn.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
         int value = 0;
+        const core::BrushStyle* brush = nullptr;
         for (const StrokeDraw& d : draws) {
+            if (d.brush != brush) {
+                brush = d.brush;
+                set_brush(*brush);
+            }
             if (++value > kStencilValues) {
                 fn.ClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
                 value = 1;
@@ -571,6 +604,25 @@ struct PreviewRenderer::Impl {
         }
         fn.Disable(GL_STENCIL_TEST);
         fn.Disable(GL_BLEND);
+    }
+
+    // The uniforms of a stroke's brush: ink, opacity, pressure and dashes.
+    void set_brush(const core::BrushStyle& brush) {
+        fn.Uniform3f(su.ink, float(brush.color.r), float(brush.color.g), float(brush.color.b));
+        fn.Uniform1f(su.opacity, float(brush.opacity));
+        const double range = brush.width_max_px - brush.width_min_px;
+        fn.Uniform3f(su.pressure, float(brush.width_min_px), range > 0.0 ? float(1.0 / range) : 0.0f,
+                     float(options.pressure_darkening));
+        // An odd pattern repeats once more, as SVG's stroke-dasharray does: on and off swap.
+        std::vector<float> dash(brush.dash_px.begin(), brush.dash_px.end());
+        if (dash.size() % 2 == 1) dash.insert(dash.end(), brush.dash_px.begin(), brush.dash_px.end());
+        double period = 0.0;
+        for (const float d : dash) period += d;
+        const bool dashed = !dash.empty() && period > 0.0;
+        fn.Uniform1i(su.dash_count, dashed ? GLint(dash.size()) : 0);
+        if (dashed) fn.Uniform1fv(su.dash, GLsizei(dash.size()), dash.data());
+        fn.Uniform1f(su.dash_period, float(period));
+        fn.Uniform1i(su.cap, brush.cap == core::LineCap::kButt ? 1 : brush.cap == core::LineCap::kSquare ? 2 : 0);
     }
 
     PreviewImage read_back() {

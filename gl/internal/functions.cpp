@@ -90,6 +90,7 @@ Functions load_functions(const Context& context) {
     INKLINE_GL_LOAD(Uniform2f);
     INKLINE_GL_LOAD(Uniform3f);
     INKLINE_GL_LOAD(Uniform4f);
+    INKLINE_GL_LOAD(Uniform1fv);
     INKLINE_GL_LOAD(RenderbufferStorageMultisample);
     INKLINE_GL_LOAD(BlitFramebuffer);
 #undef INKLINE_GL_LOAD

@@ -80,6 +80,7 @@ struct Functions {
     PFNGLGENERATEMIPMAPPROC GenerateMipmap = nullptr;
     PFNGLUNIFORM1IPROC Uniform1i = nullptr;
     PFNGLUNIFORM1FPROC Uniform1f = nullptr;
+    PFNGLUNIFORM1FVPROC Uniform1fv = nullptr;
     PFNGLUNIFORM2FPROC Uniform2f = nullptr;
     PFNGLUNIFORM3FPROC Uniform3f = nullptr;
     PFNGLUNIFORM4FPROC Uniform4f = nullptr;

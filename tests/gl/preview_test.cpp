@@ -120,6 +120,67 @@ TEST(Preview, InkCoverageMatchesCairoOutlines) {
     }
 }
 
+// Styled strokes in the preview: each in its style's colour, dashed along u as Cairo dashes their
+// outlines, dots and caps included.
+TEST(Preview, StylesColourAndDashTheirStrokes) {
+    // A cube seen corner-on: its outline outer, the three edges inside it inner.
+    core::Mesh mesh = test::cube(0.8);
+    core::Scene scene = test::scene_for({.eye = {2.2, 1.7, 3.0}, .fov_y_deg = 40.0, .size = 384}, mesh);
+    scene.brush.width_min_px = scene.brush.width_max_px = 4.0;  // wide enough for the dashes' caps to show
+    const glm::dvec3 red(0.8, 0.05, 0.05), blue(0.05, 0.1, 0.8);
+    const auto render = [&](const std::vector<double>& dash, core::LineCap cap) {
+        scene.styles.assign(2, {});
+        scene.styles[0].name = "outer";
+        scene.styles[0].select.role = core::LineRole::kOuter;
+        scene.styles[0].set.color = red;
+        scene.styles[1].name = "inner";
+        scene.styles[1].select.role = core::LineRole::kInner;
+        scene.styles[1].set.color = blue;
+        scene.styles[1].set.dash_px = dash;
+        scene.styles[1].set.cap = cap;
+        test::Drawn drawn = test::draw(mesh, scene);
+        const auto context = context_or_skip(gl::Backend::kAuto);
+        gl::PreviewRenderer renderer(*context, scene.brush, solid_tip());
+        const gl::PreviewImage image = renderer.render(drawn.lines, drawn.strokes);
+        const std::string png = output::png_image(output::brush_drawing(drawn.lines, drawn.strokes, {}, false));
+        return std::pair{image, png};
+    };
+    // Pixels inked mostly red, mostly blue.
+    const auto hues = [](const gl::PreviewImage& image) {
+        std::pair<size_t, size_t> out{0, 0};
+        for (size_t i = 0; i < image.rgba.size(); i += 4) {
+            if (image.rgba[i + 3] < 128) continue;
+            if (image.rgba[i] > 2 * image.rgba[i + 2]) ++out.first;
+            if (image.rgba[i + 2] > 2 * image.rgba[i]) ++out.second;
+        }
+        return out;
+    };
+    const auto [solid, solid_png] = render({}, core::LineCap::kRound);
+    const auto [solid_red, solid_blue] = hues(solid);
+    ASSERT_GT(solid_red, 500u) << "the outline in the outer style's red";
+    ASSERT_GT(solid_blue, 200u) << "the inner lines in blue";
+    EXPECT_GE(test::iou(coverage(solid), coverage(solid_png)), kMinCoverageIou);
+    for (const core::LineCap cap : {core::LineCap::kButt, core::LineCap::kRound}) {
+        SCOPED_TRACE(int(cap));
+        // 9 px on, 9 off: about half the inner lines' ink, less with butt ends, more with round caps.
+        const auto [dashed, dashed_png] = render({9.0, 9.0}, cap);
+        const auto [red_px, blue_px] = hues(dashed);
+        // (A few pixels where the dashes meet the outline change their blend.)
+        EXPECT_NEAR(double(red_px), double(solid_red), 0.01 * double(solid_red)) << "the outer style is not dashed";
+        const double share = double(blue_px) / double(solid_blue);
+        EXPECT_GT(share, cap == core::LineCap::kButt ? 0.35 : 0.5);
+        EXPECT_LT(share, cap == core::LineCap::kButt ? 0.6 : 0.8);
+        const double overlap = test::iou(coverage(dashed), coverage(dashed_png));
+        EXPECT_GE(overlap, kMinCoverageIou);
+        std::printf("[ preview ] dashes (%s caps): %.2f of the solid inner ink, IoU with Cairo %.4f\n",
+                    cap == core::LineCap::kButt ? "butt" : "round", share, overlap);
+    }
+    // Dots: dashes of length 0 with round caps, a disc of the stroke's width each.
+    const auto [dots, dots_png] = render({0.0, 12.0}, core::LineCap::kRound);
+    EXPECT_GT(hues(dots).second, 0u);
+    EXPECT_GE(test::iou(coverage(dots), coverage(dots_png)), kMinCoverageIou);
+}
+
 TEST(Preview, EglAndOsmesaGiveTheSameImage) {
     const Frame frame = torus_frame();
     const gl::BrushTip tip = gl::default_brush_tip();
