@@ -183,6 +183,7 @@ json hatch_json(const core::Hatch& h, bool inks) {
                 {"points", std::move(points)},
                 {"world", std::move(world)},
                 {"edges", h.edges},
+                {"faces", h.faces},
                 {"width", std::move(width)}};
     if (inks) out["ink"] = h.ink;
     return out;

@@ -24,11 +24,21 @@ namespace {
 constexpr int kFinest = 24;
 constexpr double kFinestSteps = double(1u << kFinest);
 // The most lines traced across one face in one family (a face that would need more is drawn at
-// a coarser level: a closer camera stops adding lines there).
-constexpr uint64_t kMaxLinesPerFace = 256;
+// a coarser level: a closer camera stops adding lines there). A ground plane filling a 4K image
+// in perspective needs about a thousand near the camera.
+constexpr uint64_t kMaxLinesPerFace = 4096;
 // A point whose line has faded in less than this share of its width is not drawn: hairlines
 // across the lit side read as noise, not tone.
 constexpr double kMinWeight = 0.1;
+// Where a line crosses a face farther than kLongCrossingPx on the image, points inside the face
+// are added along it every kPointSpacingPx, each tested and sized on its own: a large face (a
+// ground plane of two triangles) is clipped by the image, hidden by what stands before it and
+// spaced under perspective point by point, not only where its line meets its edges. Shorter
+// crossings, most of a detailed mesh's, keep their two points.
+constexpr double kLongCrossingPx = 24.0;
+constexpr double kPointSpacingPx = 4.0;
+// The most points added across one face by one line.
+constexpr int kMaxPointsAcrossFace = 4096;
 
 uint32_t level_of(uint64_t plane) {
     if (plane == 0) return 0;
@@ -175,6 +185,28 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
         }
     });
 
+    // h's gradient on the image (h per px) at a point of a face (clip: its clip coordinates; n:
+    // the face's unit normal; along: h's gradient along the face, object space): carried through
+    // the pixel Jacobian there, so that under perspective the lines' spacing is known point by
+    // point. 1 in screen space, where h is the image position.
+    const glm::dmat4& m = projection.clip_from_object();
+    const glm::dvec3 mx(m[0][0], m[1][0], m[2][0]), my(m[0][1], m[1][1], m[2][1]), mw(m[0][3], m[1][3], m[2][3]);
+    const double half_w = 0.5 * image.width, half_h = 0.5 * image.height;
+    const auto gradient_at = [&](const glm::dvec3& along, const glm::dvec4& clip, const glm::dvec3& n) {
+        if (options_.space == HatchSpace::kScreen) return 1.0;
+        const glm::dvec3 jx = (mx - clip.x / clip.w * mw) * (half_w / clip.w);
+        const glm::dvec3 jy = (my - clip.y / clip.w * mw) * (half_h / clip.w);
+        // An orthonormal basis of the face's plane, and the pixel Jacobian and h's gradient in it.
+        const glm::dvec3 t1 = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1.0, 0.0, 0.0))
+                                                                  : glm::cross(n, glm::dvec3(0.0, 1.0, 0.0)));
+        const glm::dvec3 t2 = glm::cross(n, t1);
+        const double a = glm::dot(jx, t1), b = glm::dot(jx, t2), c = glm::dot(jy, t1), e = glm::dot(jy, t2);
+        const double det = a * e - b * c;
+        if (!(std::abs(det) > 0.0)) return 0.0;
+        const double q1 = glm::dot(along, t1), q2 = glm::dot(along, t2);
+        return glm::length(glm::dvec2(q1 * e - q2 * c, a * q2 - b * q1)) / std::abs(det);
+    };
+
     // In screen space each vertex's place across the lines is this frame's.
     const bool screen = options_.space == HatchSpace::kScreen;
     for (Family& family : families_) {
@@ -212,17 +244,25 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             const glm::dvec2 box_hi = glm::max(q[0], glm::max(q[1], q[2]));
             if (box_hi.x < 0.0 || box_hi.y < 0.0 || box_lo.x > image.width || box_lo.y > image.height) return;
 
-            // h's gradient on screen, in h per pixel: the lines of level 0 lie step0 / |g| px apart.
             const glm::dvec2 a = q[1] - q[0], b = q[2] - q[0];
-            const double det = a.x * b.y - a.y * b.x;
-            if (std::abs(det) < 1e-12) return;
-            const glm::dvec2 g = ((h[1] - h[0]) * glm::dvec2(b.y, -b.x) - (h[2] - h[0]) * glm::dvec2(a.y, -a.x)) / det;
-            const double gradient = glm::length(g);
+            if (std::abs(a.x * b.y - a.y * b.x) < 1e-12) return;  // edge-on
+            const glm::dvec3 u1 = p[1] - p[0], u2 = p[2] - p[0];
+            const glm::dvec3 unit_n = glm::normalize(glm::cross(u1, u2));
+            // h's gradient along the face as it is now (h lies on the rest shape: the face may
+            // have turned, stretched or bent since).
+            const double g11 = glm::dot(u1, u1), g12 = glm::dot(u1, u2), g22 = glm::dot(u2, u2);
+            const double gram = g11 * g22 - g12 * g12;
+            if (!(gram > 0.0)) return;
+            const double dh1 = h[1] - h[0], dh2 = h[2] - h[0];
+            const glm::dvec3 h_along = ((g22 * dh1 - g12 * dh2) * u1 + (g11 * dh2 - g12 * dh1) * u2) / gram;
 
+            // The finest level any point of the face asks for: at its darkest corner, where h's
+            // gradient on the image is least (the lines of level 0 lie step0 / |g| px apart).
             int finest = -1;
             for (int c = 0; c < 3; ++c) {
                 const double intensity = vertex_intensity[t[c]];
                 const double tone = curve == scene_curve ? vertex_tone[t[c]] : std::isnan(intensity) ? 0.0 : tone_of(intensity, curve);
+                const double gradient = gradient_at(h_along, vertex_clip[t[c]], unit_n);
                 finest = std::max(finest, finest_level(family_tone(tone, f, options_), family.step0, gradient, width));
             }
             if (finest < 0) return;
@@ -263,6 +303,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                     line.points[found] = e0 + along * (e1 - e0);
                     const glm::dvec3 normal = normals[ends.x] + along * (normals[ends.y] - normals[ends.x]);
                     const double tone = family_tone(tone_at(line.points[found], normal, curve), f, options_);
+                    const double gradient = gradient_at(h_along, projection.clip(line.points[found]), unit_n);
                     line.width[found] = width * line_weight(level_of(plane), tone, family.step0, gradient, width);
                     ++found;
                 }
@@ -311,15 +352,57 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
         // Chains of lines through their shared sides, then cut where points are not drawn.
         std::vector<uint8_t> used(lines.size(), 0);
         struct ChainPoint {
-            uint32_t edge;
+            uint32_t edge;  // the edge it lies on; inside a face, the face's first edge
             glm::dvec3 p_object;
             double width;
+            uint32_t face;  // the face of the line's segment up to it
+            bool on_edge = true;
         };
         struct Run {  // a chain: its plane, whether it closes, its points
             uint64_t plane;
             bool loop;
             uint32_t first, count;  // its points in `points`
         };
+        // Points across face b.face between a and b (a line's segment there), where it is longer on
+        // the image than kLongCrossingPx: evenly on the image, each with its width from the tone
+        // and h's gradient there. Each names the face's first edge.
+        const auto inside_face = [&](const ChainPoint& a, const ChainPoint& b, uint64_t plane,
+                                     std::vector<ChainPoint>& r_points) {
+            // None where the line has faded out at both ends (its width follows the tone and the
+            // spacing, which change evenly along it).
+            if (a.width < kMinWeight * width && b.width < kMinWeight * width) return;
+            const glm::dvec4 clip_a = projection.clip(a.p_object), clip_b = projection.clip(b.p_object);
+            const double length_px = glm::distance(projection.pixel_from_clip(clip_a), projection.pixel_from_clip(clip_b));
+            if (!(length_px > kLongCrossingPx)) return;
+            const int n = int(std::min(std::ceil(length_px / kPointSpacingPx), double(kMaxPointsAcrossFace)));
+            const uint32_t face = b.face;
+            const ToneCurve* curve = curve_of(face);
+            const glm::uvec3 t = mesh.triangles[face];
+            const glm::dvec3 p0(mesh.positions[t.x]), u1 = glm::dvec3(mesh.positions[t.y]) - p0,
+                u2 = glm::dvec3(mesh.positions[t.z]) - p0;
+            const glm::dvec3 unit_n = glm::normalize(glm::cross(u1, u2));
+            const double g11 = glm::dot(u1, u1), g12 = glm::dot(u1, u2), g22 = glm::dot(u2, u2);
+            const double gram = g11 * g22 - g12 * g12;
+            if (curve == nullptr || !(gram > 0.0)) return;
+            const double dh1 = family.h[t.y] - family.h[t.x], dh2 = family.h[t.z] - family.h[t.x];
+            const glm::dvec3 h_along = ((g22 * dh1 - g12 * dh2) * u1 + (g11 * dh2 - g12 * dh1) * u2) / gram;
+            for (int i = 1; i < n; ++i) {
+                // Evenly on the image: the point of the segment at share s of its image.
+                const double s = double(i) / n;
+                const double along = s * clip_a.w / (s * clip_a.w + (1.0 - s) * clip_b.w);
+                const glm::dvec3 p = a.p_object + along * (b.p_object - a.p_object);
+                const glm::dvec3 d = p - p0;
+                const double b1 = (g22 * glm::dot(d, u1) - g12 * glm::dot(d, u2)) / gram;
+                const double b2 = (g11 * glm::dot(d, u2) - g12 * glm::dot(d, u1)) / gram;
+                const glm::dvec3 normal = (1.0 - b1 - b2) * normals[t.x] + b1 * normals[t.y] + b2 * normals[t.z];
+                const double tone = family_tone(tone_at(p, normal, *curve), f, options_);
+                const double gradient = gradient_at(h_along, projection.clip(p), unit_n);
+                r_points.push_back({face_edges_[face].x, p,
+                                    width * line_weight(level_of(plane), tone, family.step0, gradient, width), face,
+                                    false});
+            }
+        };
+
         std::vector<Run> chains;
         std::vector<ChainPoint> points, chain;
         std::vector<OcclusionQuery> queries;
@@ -362,7 +445,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             // width of its two faces).
             chain.clear();
             const auto point_of = [&](uint32_t l, int side) {
-                return ChainPoint{lines[l].sides[side], lines[l].points[side], lines[l].width[side]};
+                return ChainPoint{lines[l].sides[side], lines[l].points[side], lines[l].width[side], lines[l].face, true};
             };
             if (!loop) chain.push_back(point_of(order.front().first, 1 - order.front().second));
             for (size_t k = 0; k < order.size(); ++k) {
@@ -375,8 +458,17 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                 if (next < order.size() || !loop) chain.push_back(p);
             }
 
-            chains.push_back({lines[start].plane, loop, uint32_t(points.size()), uint32_t(chain.size())});
-            points.insert(points.end(), chain.begin(), chain.end());
+            // The segments across faces that are long on the image get points inside them too.
+            // Segment k runs from chain[k] to the next point, across that point's face (the
+            // first point of an open chain lies on the first line's far side: its own face is
+            // the second point's).
+            const uint64_t plane = lines[start].plane;
+            const size_t before = points.size();
+            for (size_t k = 0; k < chain.size(); ++k) {
+                points.push_back(chain[k]);
+                if (loop || k + 1 < chain.size()) inside_face(chain[k], chain[(k + 1) % chain.size()], plane, points);
+            }
+            chains.push_back({plane, loop, uint32_t(before), uint32_t(points.size() - before)});
         }
 
         // Which points are drawn: in the image, faded in, off the strokes' ink, not hidden (one
@@ -393,7 +485,10 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                 ++stats_.inked;
                 continue;
             }
-            queries.push_back({.p_object = cp.p_object, .edge = cp.edge});
+            // A point inside a face: that face alone never hides it.
+            queries.push_back({.p_object = cp.p_object,
+                               .edge = cp.edge,
+                               .own_faces = cp.on_edge ? std::span<const uint32_t>() : std::span<const uint32_t>(&cp.face, 1)});
             queried.push_back(i);
         }
         std::vector<uint8_t> occluded(queries.size(), 0);
@@ -434,6 +529,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                         hatch.points_px.push_back(px[at[k]]);
                         hatch.points_world.emplace_back(world_from_object * glm::dvec4(cp.p_object, 1.0));
                         hatch.edges.push_back(cp.edge);
+                        hatch.faces.push_back(cp.face);
                         hatch.width_px.push_back(cp.width);
                     }
                     hatch.outline = {ribbon(hatch.points_px, hatch.width_px)};

@@ -41,9 +41,12 @@ struct Hatch {
     // the surface in every frame.
     uint64_t plane = 0;
     uint32_t level = 0;                    // the level that plane belongs to (0: the coarsest)
-    std::vector<glm::dvec2> points_px;     // where the line crosses mesh edges, px
+    // Where the line crosses mesh edges, and between them where it crosses a face that is long
+    // on the image (every few px), px.
+    std::vector<glm::dvec2> points_px;
     std::vector<glm::dvec3> points_world;
-    std::vector<uint32_t> edges;           // the mesh edge of each point
+    std::vector<uint32_t> edges;           // the mesh edge of each point; inside a face, the face's first edge
+    std::vector<uint32_t> faces;           // the face of the line up to each point (inside a face: that face)
     std::vector<double> width_px;          // its width at each point (faded in: less than line_width_px)
     std::vector<Ring> outline;             // the ink: one ring, filled (nonzero), ends cut square
     uint16_t ink = 0;                      // index in FrameTone::inks

@@ -390,7 +390,8 @@ def _tone_from_json(t: dict) -> Tone:
     hatches = [{"family": int(h["family"]), "plane": int(h["plane"]), "level": int(h["level"]),
                 "points": np.asarray(h["points"], np.float64).reshape(-1, 2),
                 "world": np.asarray(h["world"], np.float64).reshape(-1, 3),
-                "edges": np.asarray(h["edges"], np.uint32), "width": np.asarray(h["width"], np.float64),
+                "edges": np.asarray(h["edges"], np.uint32), "faces": np.asarray(h["faces"], np.uint32),
+                "width": np.asarray(h["width"], np.float64),
                 "ink": int(h.get("ink", 0))}
                for h in t.get("hatches", [])]
     return Tone(mode=str(t["mode"]), points=column("point", np.float64, 2), world=column("world", np.float64, 3),

@@ -247,6 +247,7 @@ py::object tone_of(const Frame& frame) {
         hatch["points"] = rows_of(h.points_px);
         hatch["world"] = rows_of(h.points_world);
         hatch["edges"] = array_of(h.edges);
+        hatch["faces"] = array_of(h.faces);
         hatch["width"] = array_of(h.width_px);
         hatch["ink"] = h.ink;
         hatches.append(hatch);

@@ -103,6 +103,7 @@ def test_hatches_are_the_jsons_and_read_back():
         k = len(h["points"])
         assert k >= 2 and h["points"].shape == (k, 2) and h["world"].shape == (k, 3)
         assert h["edges"].dtype == np.uint32 and h["edges"].shape == (k,) and h["width"].shape == (k,)
+        assert h["faces"].dtype == np.uint32 and h["faces"].shape == (k,) and np.all(h["faces"] < len(faces))
         assert np.all(h["width"] <= 0.8 + 1e-12)
     assert set(tone.stats) == {"faces", "segments", "points", "occluded", "inked"}
 
@@ -114,6 +115,7 @@ def test_hatches_are_the_jsons_and_read_back():
         assert (a["family"], a["plane"], a["level"]) == (b["family"], b["plane"], b["level"])
         np.testing.assert_array_equal(a["world"], b["world"])
         np.testing.assert_array_equal(a["edges"], b["edges"])
+        np.testing.assert_array_equal(a["faces"], b["faces"])
         np.testing.assert_array_equal(a["points"], json_round(b["points"], 1e4))
 
     svg = frame.to_svg()
