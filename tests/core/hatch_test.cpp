@@ -106,14 +106,19 @@ double off_face(const core::Mesh& mesh, uint32_t face, const glm::dvec3& p) {
     return std::max({std::abs(glm::dot(d, n)), -b1, -b2, b1 + b2 - 1.0, 0.0});
 }
 
+// Hatching in screen space at 30 and -60 degrees: off the sampling grid's diagonals, where
+// straight, evenly spaced lines alias with ring_coverage's 8 x 8 samples of a pixel (-6% at 0 or
+// 45 degrees, within 0.1% at 17 and 30).
+void hatch_on_screen(core::Scene& r_scene) {
+    r_scene.tone.space = core::HatchSpace::kScreen;
+    r_scene.tone.angle_deg = 30.0;
+    r_scene.tone.cross_angle_deg = -60.0;
+}
+
 void expect_coverage_follows_tone(core::ToneMode mode, double max, core::HatchSpace space = core::HatchSpace::kObject) {
     const core::Mesh mesh = test::uv_sphere(160, 80, 1.0);
     core::Scene scene = sphere_scene(mesh, mode, max);
-    scene.tone.space = space;
-    // Off the sampling grid's diagonals: straight lines at 0 or 45 degrees, evenly spaced, alias
-    // with the 8 x 8 samples of a pixel (-6% there, within 0.1% at 17 and 30 degrees).
-    scene.tone.angle_deg = 30.0;
-    scene.tone.cross_angle_deg = -60.0;
+    if (space == core::HatchSpace::kScreen) hatch_on_screen(scene);
     const std::vector<core::FrameResult> frames = run_frames(scene, mesh);
     const core::FrameResult& r = frames.front();
     ASSERT_FALSE(r.tone.hatches.empty());
@@ -147,14 +152,12 @@ TEST(Hatch, ScreenSpaceCoverageFollowsTheToneOnALitSphere) {
 // In screen space each hatch is a straight line on the image at its family's angle, wherever
 // the surface under it turns: every point of a hatch, projected from its world point, lies on
 // one line across the family's normal, the lines in order of their plane numbers; and the
-// points still lie on the surface's edges.
+// points lie on the surface: on their faces, and on the edges they cross.
 TEST(Hatch, ScreenSpaceLinesAreStraightOnThePageAtTheirAngles) {
     const core::Mesh mesh = test::torus(1.0, 0.35, 96, 48);
     core::Scene scene = sphere_scene(mesh, core::ToneMode::kCrosshatch, 0.6);
     scene.camera.pose.eye = {0.0, 2.0, 3.5};
-    scene.tone.space = core::HatchSpace::kScreen;
-    scene.tone.angle_deg = 30.0;
-    scene.tone.cross_angle_deg = -60.0;
+    hatch_on_screen(scene);
     const std::vector<core::FrameResult> frames = run_frames(scene, mesh);
     const core::FrameResult& r = frames.front();
     ASSERT_FALSE(r.tone.hatches.empty());
