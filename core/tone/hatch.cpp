@@ -102,6 +102,32 @@ struct FaceLine {
     double width[2] = {0.0, 0.0};  // its width there, px, by this face's gradient
 };
 
+// A face as it is now, with h's gradient along it: h lies on the rest shape (or, in screen space,
+// on the image), so the face may have turned, stretched or bent since.
+struct FaceFrame {
+    glm::dvec3 p0{0.0}, u1{0.0}, u2{0.0};  // a corner and the two sides from it
+    double g11 = 0.0, g12 = 0.0, g22 = 0.0, gram = 0.0;  // the sides' Gram matrix and its determinant
+    glm::dvec3 unit_n{0.0};
+    glm::dvec3 h_along{0.0};  // h's gradient in the face's plane, object space
+
+    FaceFrame(const Mesh& mesh, const glm::uvec3& t, std::span<const float> h)
+        : p0(mesh.positions[t.x]), u1(glm::dvec3(mesh.positions[t.y]) - p0), u2(glm::dvec3(mesh.positions[t.z]) - p0) {
+        g11 = glm::dot(u1, u1), g12 = glm::dot(u1, u2), g22 = glm::dot(u2, u2);
+        gram = g11 * g22 - g12 * g12;
+        if (!valid()) return;
+        unit_n = glm::normalize(glm::cross(u1, u2));
+        const double dh1 = double(h[t.y]) - double(h[t.x]), dh2 = double(h[t.z]) - double(h[t.x]);
+        h_along = ((g22 * dh1 - g12 * dh2) * u1 + (g11 * dh2 - g12 * dh1) * u2) / gram;
+    }
+    bool valid() const { return gram > 0.0; }
+    // The barycentric coordinates of corners 1 and 2 at a point of the face's plane.
+    glm::dvec2 barycentric(const glm::dvec3& p) const {
+        const glm::dvec3 d = p - p0;
+        const double d1 = glm::dot(d, u1), d2 = glm::dot(d, u2);
+        return glm::dvec2(g22 * d1 - g12 * d2, g11 * d2 - g12 * d1) / gram;
+    }
+};
+
 }  // namespace
 
 std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
@@ -246,15 +272,8 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
 
             const glm::dvec2 a = q[1] - q[0], b = q[2] - q[0];
             if (std::abs(a.x * b.y - a.y * b.x) < 1e-12) return;  // edge-on
-            const glm::dvec3 u1 = p[1] - p[0], u2 = p[2] - p[0];
-            const glm::dvec3 unit_n = glm::normalize(glm::cross(u1, u2));
-            // h's gradient along the face as it is now (h lies on the rest shape: the face may
-            // have turned, stretched or bent since).
-            const double g11 = glm::dot(u1, u1), g12 = glm::dot(u1, u2), g22 = glm::dot(u2, u2);
-            const double gram = g11 * g22 - g12 * g12;
-            if (!(gram > 0.0)) return;
-            const double dh1 = h[1] - h[0], dh2 = h[2] - h[0];
-            const glm::dvec3 h_along = ((g22 * dh1 - g12 * dh2) * u1 + (g11 * dh2 - g12 * dh1) * u2) / gram;
+            const FaceFrame frame(mesh, t, family.h);
+            if (!frame.valid()) return;
 
             // The finest level any point of the face asks for: at its darkest corner, where h's
             // gradient on the image is least (the lines of level 0 lie step0 / |g| px apart).
@@ -262,7 +281,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             for (int c = 0; c < 3; ++c) {
                 const double intensity = vertex_intensity[t[c]];
                 const double tone = curve == scene_curve ? vertex_tone[t[c]] : std::isnan(intensity) ? 0.0 : tone_of(intensity, curve);
-                const double gradient = gradient_at(h_along, vertex_clip[t[c]], unit_n);
+                const double gradient = gradient_at(frame.h_along, vertex_clip[t[c]], frame.unit_n);
                 finest = std::max(finest, finest_level(family_tone(tone, f, options_), family.step0, gradient, width));
             }
             if (finest < 0) return;
@@ -303,7 +322,8 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                     line.points[found] = e0 + along * (e1 - e0);
                     const glm::dvec3 normal = normals[ends.x] + along * (normals[ends.y] - normals[ends.x]);
                     const double tone = family_tone(tone_at(line.points[found], normal, curve), f, options_);
-                    const double gradient = gradient_at(h_along, projection.clip(line.points[found]), unit_n);
+                    const double gradient =
+                        gradient_at(frame.h_along, projection.clip(line.points[found]), frame.unit_n);
                     line.width[found] = width * line_weight(level_of(plane), tone, family.step0, gradient, width);
                     ++found;
                 }
@@ -372,31 +392,25 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             // spacing, which change evenly along it).
             if (a.width < kMinWeight * width && b.width < kMinWeight * width) return;
             const glm::dvec4 clip_a = projection.clip(a.p_object), clip_b = projection.clip(b.p_object);
-            const double length_px = glm::distance(projection.pixel_from_clip(clip_a), projection.pixel_from_clip(clip_b));
+            const double length_px =
+                glm::distance(projection.pixel_from_clip(clip_a), projection.pixel_from_clip(clip_b));
             if (!(length_px > kLongCrossingPx)) return;
             const int n = int(std::min(std::ceil(length_px / kPointSpacingPx), double(kMaxPointsAcrossFace)));
             const uint32_t face = b.face;
             const ToneCurve* curve = curve_of(face);
             const glm::uvec3 t = mesh.triangles[face];
-            const glm::dvec3 p0(mesh.positions[t.x]), u1 = glm::dvec3(mesh.positions[t.y]) - p0,
-                u2 = glm::dvec3(mesh.positions[t.z]) - p0;
-            const glm::dvec3 unit_n = glm::normalize(glm::cross(u1, u2));
-            const double g11 = glm::dot(u1, u1), g12 = glm::dot(u1, u2), g22 = glm::dot(u2, u2);
-            const double gram = g11 * g22 - g12 * g12;
-            if (curve == nullptr || !(gram > 0.0)) return;
-            const double dh1 = family.h[t.y] - family.h[t.x], dh2 = family.h[t.z] - family.h[t.x];
-            const glm::dvec3 h_along = ((g22 * dh1 - g12 * dh2) * u1 + (g11 * dh2 - g12 * dh1) * u2) / gram;
+            const FaceFrame frame(mesh, t, family.h);
+            if (curve == nullptr || !frame.valid()) return;
             for (int i = 1; i < n; ++i) {
                 // Evenly on the image: the point of the segment at share s of its image.
                 const double s = double(i) / n;
                 const double along = s * clip_a.w / (s * clip_a.w + (1.0 - s) * clip_b.w);
                 const glm::dvec3 p = a.p_object + along * (b.p_object - a.p_object);
-                const glm::dvec3 d = p - p0;
-                const double b1 = (g22 * glm::dot(d, u1) - g12 * glm::dot(d, u2)) / gram;
-                const double b2 = (g11 * glm::dot(d, u2) - g12 * glm::dot(d, u1)) / gram;
-                const glm::dvec3 normal = (1.0 - b1 - b2) * normals[t.x] + b1 * normals[t.y] + b2 * normals[t.z];
+                const glm::dvec2 b12 = frame.barycentric(p);
+                const glm::dvec3 normal =
+                    (1.0 - b12.x - b12.y) * normals[t.x] + b12.x * normals[t.y] + b12.y * normals[t.z];
                 const double tone = family_tone(tone_at(p, normal, *curve), f, options_);
-                const double gradient = gradient_at(h_along, projection.clip(p), unit_n);
+                const double gradient = gradient_at(frame.h_along, projection.clip(p), frame.unit_n);
                 r_points.push_back({face_edges_[face].x, p,
                                     width * line_weight(level_of(plane), tone, family.step0, gradient, width), face,
                                     false});
@@ -445,7 +459,8 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             // width of its two faces).
             chain.clear();
             const auto point_of = [&](uint32_t l, int side) {
-                return ChainPoint{lines[l].sides[side], lines[l].points[side], lines[l].width[side], lines[l].face, true};
+                const FaceLine& line = lines[l];
+                return ChainPoint{line.sides[side], line.points[side], line.width[side], line.face, true};
             };
             if (!loop) chain.push_back(point_of(order.front().first, 1 - order.front().second));
             for (size_t k = 0; k < order.size(); ++k) {
@@ -486,9 +501,8 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                 continue;
             }
             // A point inside a face: that face alone never hides it.
-            queries.push_back({.p_object = cp.p_object,
-                               .edge = cp.edge,
-                               .own_faces = cp.on_edge ? std::span<const uint32_t>() : std::span<const uint32_t>(&cp.face, 1)});
+            const std::span<const uint32_t> own = cp.on_edge ? std::span<const uint32_t>() : std::span(&cp.face, 1);
+            queries.push_back({.p_object = cp.p_object, .edge = cp.edge, .own_faces = own});
             queried.push_back(i);
         }
         std::vector<uint8_t> occluded(queries.size(), 0);
