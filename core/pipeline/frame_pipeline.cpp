@@ -317,7 +317,7 @@ FrameResult FramePipeline::run(int frame) {
                                     std::make_move_iterator(hatches.end()));
             out.tone.hatch_stats += hatcher->stats();
         }
-        ink_tone_marks(out.tone, table);
+        ink_tone_marks(out.tone);
         tone_ms = step("tone");
     }
     if (ahead_after_tone_) find_lines_ahead(frame + 1);
@@ -414,7 +414,7 @@ void FramePipeline::plan_tone_passes(size_t faces) {
 }
 
 // Each mark's ink: its object's.
-void FramePipeline::ink_tone_marks(FrameTone& r_tone, const EdgeTable& table) const {
+void FramePipeline::ink_tone_marks(FrameTone& r_tone) const {
     r_tone.inks = tone_inks_;
     if (tone_inks_.size() < 2) return;
     const std::span<const uint32_t> face_objects = meshes_.face_objects();
@@ -423,7 +423,7 @@ void FramePipeline::ink_tone_marks(FrameTone& r_tone, const EdgeTable& table) co
     };
     for (Dot& dot : r_tone.dots) dot.ink = ink_of_face(dot.face);
     for (Hatch& hatch : r_tone.hatches) {
-        if (!hatch.edges.empty()) hatch.ink = ink_of_face(table.faces_of(hatch.edges.front()).front());
+        if (!hatch.faces.empty()) hatch.ink = ink_of_face(hatch.faces.front());
     }
 }
 

@@ -156,7 +156,7 @@ class FramePipeline {
     std::vector<ToneInk> tone_inks_;
     std::vector<uint16_t> ink_of_object_;
     void plan_tone_passes(size_t faces);
-    void ink_tone_marks(FrameTone& r_tone, const EdgeTable& table) const;
+    void ink_tone_marks(FrameTone& r_tone) const;
     // Per object: the kinds of line it draws (object_line_kinds); empty without objects.
     std::vector<std::array<bool, kLineKindCount>> object_kinds_;
     bool trace_intersections_ = false;

@@ -732,20 +732,6 @@ ObjectTone object_tone(const Scene& scene, std::optional<std::string_view> objec
     return t;
 }
 
-bool object_draws_tone(const Scene& scene, const std::string& object_name) {
-    return object_tone(scene, object_name).shaded;
-}
-
-ToneMode object_tone_mode(const Scene& scene, const std::string& object_name) {
-    return object_tone(scene, object_name).mode;
-}
-
-std::optional<ToneCurve> object_tone_curve(const Scene& scene, const std::string& object_name) {
-    const ObjectTone t = object_tone(scene, object_name);
-    if (!t.shaded) return std::nullopt;
-    return t.curve;
-}
-
 Scene parse_scene(std::string_view json_text, const std::filesystem::path& scene_file, int max_image_side) {
     const std::string name = scene_file.string();
     json root;

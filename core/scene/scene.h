@@ -116,16 +116,6 @@ struct ObjectTone {
 };
 ObjectTone object_tone(const Scene& scene, std::optional<std::string_view> object_name);
 
-// Whether an object is shaded by the scene's tone: not a holdout, and no matching rule says
-// "tone": false (the last matching rule that says either way decides).
-bool object_draws_tone(const Scene& scene, const std::string& object_name);
-// The marks an object is shaded with: the scene's tone.mode, or the last matching rule's "tone"
-// "mode"; kNone where the scene has no tone (an object's mode does not turn it on) or
-// object_draws_tone says it is not shaded.
-ToneMode object_tone_mode(const Scene& scene, const std::string& object_name);
-// The tone curve an object is shaded with: the scene's, with the keys of every matching rule's
-// "tone" block applied in order; none where object_draws_tone says it is not shaded.
-std::optional<ToneCurve> object_tone_curve(const Scene& scene, const std::string& object_name);
 
 // Reads and validates a scene file; relative paths resolve against its folder.
 // Throws InputError naming the file and key.

@@ -108,7 +108,8 @@ struct FaceFrame {
     glm::dvec3 p0{0.0}, u1{0.0}, u2{0.0};  // a corner and the two sides from it
     double g11 = 0.0, g12 = 0.0, g22 = 0.0, gram = 0.0;  // the sides' Gram matrix and its determinant
     glm::dvec3 unit_n{0.0};
-    glm::dvec3 h_along{0.0};  // h's gradient in the face's plane, object space
+    glm::dvec3 t1{0.0}, t2{0.0};  // an orthonormal basis of the face's plane
+    glm::dvec2 h_in_plane{0.0};   // h's gradient along the face, in that basis
 
     FaceFrame(const Mesh& mesh, const glm::uvec3& t, std::span<const float> h)
         : p0(mesh.positions[t.x]), u1(glm::dvec3(mesh.positions[t.y]) - p0), u2(glm::dvec3(mesh.positions[t.z]) - p0) {
@@ -117,7 +118,11 @@ struct FaceFrame {
         if (!valid()) return;
         unit_n = glm::normalize(glm::cross(u1, u2));
         const double dh1 = double(h[t.y]) - double(h[t.x]), dh2 = double(h[t.z]) - double(h[t.x]);
-        h_along = ((g22 * dh1 - g12 * dh2) * u1 + (g11 * dh2 - g12 * dh1) * u2) / gram;
+        const glm::dvec3 h_along = ((g22 * dh1 - g12 * dh2) * u1 + (g11 * dh2 - g12 * dh1) * u2) / gram;
+        t1 = glm::normalize(std::abs(unit_n.x) < 0.9 ? glm::cross(unit_n, glm::dvec3(1.0, 0.0, 0.0))
+                                                     : glm::cross(unit_n, glm::dvec3(0.0, 1.0, 0.0)));
+        t2 = glm::cross(unit_n, t1);
+        h_in_plane = {glm::dot(h_along, t1), glm::dot(h_along, t2)};
     }
     bool valid() const { return gram > 0.0; }
     // The barycentric coordinates of corners 1 and 2 at a point of the face's plane.
@@ -211,25 +216,23 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
         }
     });
 
-    // h's gradient on the image (h per px) at a point of a face (clip: its clip coordinates; n:
-    // the face's unit normal; along: h's gradient along the face, object space): carried through
-    // the pixel Jacobian there, so that under perspective the lines' spacing is known point by
-    // point. 1 in screen space, where h is the image position.
+    // h's gradient on the image (h per px) at a point of a face (clip: its clip coordinates):
+    // h's gradient along the face carried through the pixel Jacobian there, so that under
+    // perspective the lines' spacing is known point by point. 1 in screen space, where h is the
+    // image position.
     const glm::dmat4& m = projection.clip_from_object();
     const glm::dvec3 mx(m[0][0], m[1][0], m[2][0]), my(m[0][1], m[1][1], m[2][1]), mw(m[0][3], m[1][3], m[2][3]);
     const double half_w = 0.5 * image.width, half_h = 0.5 * image.height;
-    const auto gradient_at = [&](const glm::dvec3& along, const glm::dvec4& clip, const glm::dvec3& n) {
+    const auto gradient_at = [&](const FaceFrame& frame, const glm::dvec4& clip) {
         if (options_.space == HatchSpace::kScreen) return 1.0;
         const glm::dvec3 jx = (mx - clip.x / clip.w * mw) * (half_w / clip.w);
         const glm::dvec3 jy = (my - clip.y / clip.w * mw) * (half_h / clip.w);
-        // An orthonormal basis of the face's plane, and the pixel Jacobian and h's gradient in it.
-        const glm::dvec3 t1 = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1.0, 0.0, 0.0))
-                                                                  : glm::cross(n, glm::dvec3(0.0, 1.0, 0.0)));
-        const glm::dvec3 t2 = glm::cross(n, t1);
-        const double a = glm::dot(jx, t1), b = glm::dot(jx, t2), c = glm::dot(jy, t1), e = glm::dot(jy, t2);
+        // The pixel Jacobian in the face's plane.
+        const double a = glm::dot(jx, frame.t1), b = glm::dot(jx, frame.t2);
+        const double c = glm::dot(jy, frame.t1), e = glm::dot(jy, frame.t2);
         const double det = a * e - b * c;
         if (!(std::abs(det) > 0.0)) return 0.0;
-        const double q1 = glm::dot(along, t1), q2 = glm::dot(along, t2);
+        const double q1 = frame.h_in_plane.x, q2 = frame.h_in_plane.y;
         return glm::length(glm::dvec2(q1 * e - q2 * c, a * q2 - b * q1)) / std::abs(det);
     };
 
@@ -281,7 +284,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             for (int c = 0; c < 3; ++c) {
                 const double intensity = vertex_intensity[t[c]];
                 const double tone = curve == scene_curve ? vertex_tone[t[c]] : std::isnan(intensity) ? 0.0 : tone_of(intensity, curve);
-                const double gradient = gradient_at(frame.h_along, vertex_clip[t[c]], frame.unit_n);
+                const double gradient = gradient_at(frame, vertex_clip[t[c]]);
                 finest = std::max(finest, finest_level(family_tone(tone, f, options_), family.step0, gradient, width));
             }
             if (finest < 0) return;
@@ -322,8 +325,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                     line.points[found] = e0 + along * (e1 - e0);
                     const glm::dvec3 normal = normals[ends.x] + along * (normals[ends.y] - normals[ends.x]);
                     const double tone = family_tone(tone_at(line.points[found], normal, curve), f, options_);
-                    const double gradient =
-                        gradient_at(frame.h_along, projection.clip(line.points[found]), frame.unit_n);
+                    const double gradient = gradient_at(frame, projection.clip(line.points[found]));
                     line.width[found] = width * line_weight(level_of(plane), tone, family.step0, gradient, width);
                     ++found;
                 }
@@ -410,7 +412,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                 const glm::dvec3 normal =
                     (1.0 - b12.x - b12.y) * normals[t.x] + b12.x * normals[t.y] + b12.y * normals[t.z];
                 const double tone = family_tone(tone_at(p, normal, *curve), f, options_);
-                const double gradient = gradient_at(frame.h_along, projection.clip(p), frame.unit_n);
+                const double gradient = gradient_at(frame, projection.clip(p));
                 r_points.push_back({face_edges_[face].x, p,
                                     width * line_weight(level_of(plane), tone, family.step0, gradient, width), face,
                                     false});

@@ -397,11 +397,11 @@ TEST(Scene, ObjectsCanBeLeftUnshaded) {
             "objects": {"Ground": {"tone": false}, "Wall*": {"lines": false}, "Tree.*": {"tone": false},
                         "Tree.1": {"tone": true}}})",
         "scene.json");
-    EXPECT_FALSE(core::object_draws_tone(s, "Ground"));
-    EXPECT_FALSE(core::object_draws_tone(s, "Wall.north")) << "a holdout is never shaded";
-    EXPECT_FALSE(core::object_draws_tone(s, "Tree.2"));
-    EXPECT_TRUE(core::object_draws_tone(s, "Tree.1")) << "an exact name overrides a glob";
-    EXPECT_TRUE(core::object_draws_tone(s, "Ball"));
+    EXPECT_FALSE(core::object_tone(s, "Ground").shaded);
+    EXPECT_FALSE(core::object_tone(s, "Wall.north").shaded) << "a holdout is never shaded";
+    EXPECT_FALSE(core::object_tone(s, "Tree.2").shaded);
+    EXPECT_TRUE(core::object_tone(s, "Tree.1").shaded) << "an exact name overrides a glob";
+    EXPECT_TRUE(core::object_tone(s, "Ball").shaded);
 }
 
 TEST(Scene, AnObjectsToneBlockSetsItsOwnCurveKeyByKey) {
@@ -411,19 +411,21 @@ TEST(Scene, AnObjectsToneBlockSetsItsOwnCurveKeyByKey) {
             "objects": {"Ground*": {"tone": {"max": 0.1, "min": 0.05}}, "Ground.2": {"tone": {"gamma": 2}},
                         "Wall": {"lines": false, "tone": {"max": 0.2}}}})",
         "scene.json");
-    const std::optional<core::ToneCurve> ball = core::object_tone_curve(s, "Ball");
-    ASSERT_TRUE(ball);
+    const core::ObjectTone ball_tone = core::object_tone(s, "Ball");
+    ASSERT_TRUE(ball_tone.shaded);
+    const core::ToneCurve* ball = &ball_tone.curve;
     EXPECT_EQ(ball->max, 0.5);
     EXPECT_EQ(ball->gamma, 1.5);
     EXPECT_EQ(ball->levels, 4);
-    const std::optional<core::ToneCurve> ground = core::object_tone_curve(s, "Ground.2");
-    ASSERT_TRUE(ground);
+    const core::ObjectTone ground_tone = core::object_tone(s, "Ground.2");
+    ASSERT_TRUE(ground_tone.shaded);
+    const core::ToneCurve* ground = &ground_tone.curve;
     EXPECT_EQ(ground->max, 0.1) << "the glob's";
     EXPECT_EQ(ground->min, 0.05);
     EXPECT_EQ(ground->gamma, 2.0) << "the exact name's, after the glob";
     EXPECT_EQ(ground->levels, 4) << "the scene's";
-    EXPECT_EQ(core::object_tone_curve(s, "Ground.1")->gamma, 1.5);
-    EXPECT_FALSE(core::object_tone_curve(s, "Wall")) << "a holdout is never shaded";
+    EXPECT_EQ(core::object_tone(s, "Ground.1").curve.gamma, 1.5);
+    EXPECT_FALSE(core::object_tone(s, "Wall").shaded) << "a holdout is never shaded";
     const std::string camera = R"("camera": {"eye": [0,0,4], "target": [0,0,0]})";
     for (const auto& [objects, expected] : std::vector<std::pair<std::string, std::string>>{
              {R"({"A": {"tone": {"max": 2}}})", "key 'objects.A.tone.max': must be between 0 and 0.9"},
@@ -444,16 +446,16 @@ TEST(Scene, AnObjectsToneModeOverridesTheScenesOnlyWhereTheSceneHasTone) {
     const core::Scene s = core::parse_scene(
         R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, "tone": {"mode": "stipple"}, )" + objects + "}",
         "scene.json");
-    EXPECT_EQ(core::object_tone_mode(s, "Ball"), core::ToneMode::kStipple) << "the scene's";
-    EXPECT_EQ(core::object_tone_mode(s, "Vase.1"), core::ToneMode::kHatch) << "the glob's";
-    EXPECT_EQ(core::object_tone_mode(s, "Vase.2"), core::ToneMode::kCrosshatch) << "the exact name's, after the glob";
-    EXPECT_EQ(core::object_tone_mode(s, "Cup"), core::ToneMode::kNone);
-    EXPECT_EQ(core::object_tone_mode(s, "Wall"), core::ToneMode::kNone) << "a holdout is never shaded";
-    EXPECT_EQ(core::object_tone_mode(s, "Plate"), core::ToneMode::kNone);
-    EXPECT_TRUE(core::object_tone_curve(s, "Cup")) << "mode none leaves the curve as it is";
+    EXPECT_EQ(core::object_tone(s, "Ball").mode, core::ToneMode::kStipple) << "the scene's";
+    EXPECT_EQ(core::object_tone(s, "Vase.1").mode, core::ToneMode::kHatch) << "the glob's";
+    EXPECT_EQ(core::object_tone(s, "Vase.2").mode, core::ToneMode::kCrosshatch) << "the exact name's, after the glob";
+    EXPECT_EQ(core::object_tone(s, "Cup").mode, core::ToneMode::kNone);
+    EXPECT_EQ(core::object_tone(s, "Wall").mode, core::ToneMode::kNone) << "a holdout is never shaded";
+    EXPECT_EQ(core::object_tone(s, "Plate").mode, core::ToneMode::kNone);
+    EXPECT_TRUE(core::object_tone(s, "Cup").shaded) << "mode none leaves the object shaded, on its curve";
     const core::Scene off = core::parse_scene(
         R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, )" + objects + "}", "scene.json");
-    EXPECT_EQ(core::object_tone_mode(off, "Vase.1"), core::ToneMode::kNone) << "an object's mode does not turn tone on";
+    EXPECT_EQ(core::object_tone(off, "Vase.1").mode, core::ToneMode::kNone) << "an object's mode does not turn tone on";
 }
 
 TEST(Scene, StylesShadeTheObjectsTheySelectOverTheObjectsRules) {
@@ -492,7 +494,7 @@ TEST(Scene, StylesShadeTheObjectsTheySelectOverTheObjectsRules) {
     EXPECT_EQ(whole.mode, core::ToneMode::kStipple);
     EXPECT_EQ(whole.ink.opacity, 0.5);
     EXPECT_EQ(whole.ink.style, "paper");
-    EXPECT_EQ(core::object_tone_mode(s, "Tree.2"), core::ToneMode::kHatch) << "object_tone_mode reads the styles too";
+    EXPECT_EQ(core::object_tone(s, "Tree.2").mode, core::ToneMode::kHatch) << "the styles' mode";
     // Without the scene's tone, a style's mode turns nothing on.
     const core::Scene off = core::parse_scene(
         R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]},
