@@ -182,8 +182,27 @@ ToneLayer tone_layer(const core::FrameTone& tone, const core::ToneOptions& optio
     for (const core::Hatch& hatch : tone.hatches) {
         layer.hatches.push_back({hatch.family, hatch.plane, hatch.outline, hatch.ink});
     }
+    if (!layer.inks.empty()) {
+        const auto by_ink = [](const auto& a, const auto& b) { return a.ink < b.ink; };
+        std::stable_sort(layer.dots.begin(), layer.dots.end(), by_ink);
+        std::stable_sort(layer.hatches.begin(), layer.hatches.end(), by_ink);
+    }
     return layer;
 }
+
+namespace {
+// The run of marks of one ink in marks sorted by ink; all of them without inks.
+template <typename Mark>
+std::span<const Mark> marks_of(const std::vector<Mark>& marks, bool inks, size_t ink) {
+    if (!inks) return marks;
+    const auto begin = std::partition_point(marks.begin(), marks.end(), [&](const Mark& m) { return m.ink < ink; });
+    const auto end = std::partition_point(begin, marks.end(), [&](const Mark& m) { return m.ink <= ink; });
+    return {begin, end};
+}
+}  // namespace
+
+std::span<const ToneDot> ToneLayer::dots_of(size_t ink) const { return marks_of(dots, !inks.empty(), ink); }
+std::span<const ToneHatch> ToneLayer::hatches_of(size_t ink) const { return marks_of(hatches, !inks.empty(), ink); }
 
 DrawStyle brush_draw_style(const core::BrushStyle& brush) {
     DrawStyle style;

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -134,8 +135,12 @@ struct ToneLayer {
     double opacity = 1.0;
     std::string style;
     std::vector<ToneLayerInk> inks;  // two or more, or empty: every mark in `color`
-    std::vector<ToneDot> dots;
-    std::vector<ToneHatch> hatches;
+    std::vector<ToneDot> dots;       // with inks, by ink (in their order within one)
+    std::vector<ToneHatch> hatches;  // the same
+
+    // The marks of one ink: all of them where the layer has no inks.
+    std::span<const ToneDot> dots_of(size_t ink) const;
+    std::span<const ToneHatch> hatches_of(size_t ink) const;
 };
 
 // The tone layer of a frame's tone, in its inks, else in `options`' colour and opacity.

@@ -412,16 +412,13 @@ void ink_attributes(Writer& w, const std::string& color, double opacity, const s
 // The marks of one ink (all of them when the layer has one): a circle per dot and a filled path
 // per hatch.
 void tone_marks(Writer& w, const ToneLayer& tone, size_t ink, const char* indent) {
-    const bool all = tone.inks.empty();
-    for (const ToneDot& dot : tone.dots) {
-        if (!all && dot.ink != ink) continue;
+    for (const ToneDot& dot : tone.dots_of(ink)) {
         w << indent << "<circle data-sample=\"" << long(dot.sample) << "\" cx=\"";
         w.number(dot.center_px.x) << "\" cy=\"";
         w.number(dot.center_px.y) << "\" r=\"";
         w.number(dot.radius_px) << "\"/>\n";
     }
-    for (const ToneHatch& hatch : tone.hatches) {
-        if (!all && hatch.ink != ink) continue;
+    for (const ToneHatch& hatch : tone.hatches_of(ink)) {
         w << indent << "<path data-family=\"" << long(hatch.family) << "\" data-plane=\"" << std::to_string(hatch.plane)
           << "\" d=\"";
         bool first = true;

@@ -16,7 +16,6 @@
 #include <cmath>
 #include <cstddef>
 #include <new>
-#include <optional>
 #include <string>
 
 namespace inkline::gl {
@@ -64,13 +63,16 @@ void main() {
 // Sides of the polygon a dot is drawn as.
 constexpr int kDotSides = 16;
 
-// The triangles of a frame's tone in one ink (every ink when `ink` is empty): each dot a polygon
-// round its centre, each hatch a quad per segment, its corners offset across the line by half its
-// width at each end.
-std::vector<glm::vec2> tone_triangles(const core::FrameTone& tone, std::optional<uint16_t> ink) {
-    std::vector<glm::vec2> out;
+// The triangles of a frame's tone, one list per ink (one list with fewer than two inks): each dot
+// a polygon round its centre, each hatch a quad per segment, its corners offset across the line
+// by half its width at each end.
+std::vector<std::vector<glm::vec2>> tone_triangles(const core::FrameTone& tone) {
+    std::vector<std::vector<glm::vec2>> by_ink(std::max<size_t>(1, tone.inks.size()));
+    const auto list = [&](uint16_t ink) -> std::vector<glm::vec2>& {
+        return by_ink[std::min<size_t>(ink, by_ink.size() - 1)];
+    };
     for (const core::Dot& dot : tone.dots) {
-        if (ink && dot.ink != *ink) continue;
+        std::vector<glm::vec2>& out = list(dot.ink);
         const glm::dvec2 c = dot.point_px;
         for (int k = 0; k < kDotSides; ++k) {
             const double a0 = 2.0 * glm::pi<double>() * k / kDotSides;
@@ -81,7 +83,7 @@ std::vector<glm::vec2> tone_triangles(const core::FrameTone& tone, std::optional
         }
     }
     for (const core::Hatch& hatch : tone.hatches) {
-        if (ink && hatch.ink != *ink) continue;
+        std::vector<glm::vec2>& out = list(hatch.ink);
         const std::vector<glm::dvec2>& p = hatch.points_px;
         for (size_t i = 0; i + 1 < p.size(); ++i) {
             const glm::dvec2 d = p[i + 1] - p[i];
@@ -94,7 +96,7 @@ std::vector<glm::vec2> tone_triangles(const core::FrameTone& tone, std::optional
             for (const glm::dvec2& v : {a0, a1, b0, b0, a1, b1}) out.emplace_back(v);
         }
     }
-    return out;
+    return by_ink;
 }
 
 // The tip image as alpha. Along the stroke: its head over the first head_px and its tail over
@@ -528,14 +530,13 @@ struct PreviewRenderer::Impl {
     void draw_tone(const PreviewTone& tone, core::ImageSize image) {
         const std::vector<core::ToneInk>& inks = tone.tone->inks;
         stats.tone_triangles = 0;
-        if (inks.size() < 2) {
-            const glm::dvec3 color = inks.empty() ? tone.color : inks.front().color;
-            const double opacity = inks.empty() ? tone.opacity : inks.front().opacity;
-            draw_tone_ink(tone_triangles(*tone.tone, std::nullopt), color, opacity, image);
+        const std::vector<std::vector<glm::vec2>> triangles = tone_triangles(*tone.tone);
+        if (inks.empty()) {
+            draw_tone_ink(triangles.front(), tone.color, tone.opacity, image);
             return;
         }
         for (size_t ink = 0; ink < inks.size(); ++ink) {
-            draw_tone_ink(tone_triangles(*tone.tone, uint16_t(ink)), inks[ink].color, inks[ink].opacity, image);
+            draw_tone_ink(triangles[ink], inks[ink].color, inks[ink].opacity, image);
         }
     }
 

@@ -36,16 +36,15 @@ void paint_tone_ink(cairo_t* cr, const ToneLayer& tone, size_t ink) {
     cairo_set_source_rgb(cr, rgb.r, rgb.g, rgb.b);
     cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
     cairo_new_path(cr);
-    for (const ToneDot& dot : tone.dots) {
-        if (!(dot.radius_px > 0.0) || (!all && dot.ink != ink)) continue;
+    for (const ToneDot& dot : tone.dots_of(ink)) {
+        if (!(dot.radius_px > 0.0)) continue;
         cairo_new_sub_path(cr);
         cairo_arc(cr, dot.center_px.x, dot.center_px.y, dot.radius_px, 0.0, 2.0 * std::numbers::pi);
     }
     cairo_fill(cr);
     // Each hatch on its own, so that a hatch whose ring turns the other way round than its
     // neighbour's does not cancel it where they overlap.
-    for (const ToneHatch& hatch : tone.hatches) {
-        if (!all && hatch.ink != ink) continue;
+    for (const ToneHatch& hatch : tone.hatches_of(ink)) {
         for (const std::vector<glm::dvec2>& ring : hatch.rings) {
             for (size_t i = 0; i < ring.size(); ++i) (i == 0 ? cairo_move_to : cairo_line_to)(cr, ring[i].x, ring[i].y);
             cairo_close_path(cr);
