@@ -154,63 +154,24 @@ SmoothContourTracer::SmoothContourTracer(SmoothContourTracer&&) noexcept = defau
 SmoothContourTracer& SmoothContourTracer::operator=(SmoothContourTracer&&) noexcept = default;
 
 void SmoothContourTracer::smooth_pieces(const Mesh& mesh, const EdgeTable& table) {
-    const size_t n_faces = mesh.triangles.size();
-    const double cos_crease = std::cos(glm::radians(options_.crease_angle_deg));
-    // Corner 3f + c joins the corners of the same vertex in each face across a smooth edge.
-    internal::UnionFind<uint32_t> corners(3 * n_faces);
-    joined_.assign(n_faces, 0);
+    core::smooth_pieces(mesh, table, face_edges_, options_.crease_angle_deg, pieces_);
+    // The crease edges between two faces: the sides of two faces that are not joined.
     creases_.clear();
-    for (uint32_t f = 0; f < n_faces; ++f) {
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
         if (!table.face_valid[f]) continue;
-        const glm::uvec3 t = mesh.triangles[f];
-        for (uint32_t k = 0; k < 3; ++k) {
-            const std::span<const uint32_t> faces = table.faces_of(face_edges_[f][k]);
+        for (uint8_t k = 0; k < 3; ++k) {
+            if (pieces_.joined[f] & (1u << k)) continue;
+            const uint32_t e = face_edges_[f][k];
+            const std::span<const uint32_t> faces = table.faces_of(e);
             if (faces.size() != 2) continue;
             const uint32_t other = faces[0] == f ? faces[1] : faces[0];
-            if (is_crease(mesh, f, other, cos_crease)) {
-                if (other > f) {
-                    const uint32_t e = face_edges_[f][k];
-                    uint8_t j = 0;
-                    while (face_edges_[other][j] != e) ++j;
-                    creases_.push_back({e, {f, other}, {uint8_t(k), j}});
-                }
-                continue;
-            }
-            joined_[f] |= uint8_t(1u << k);
-            if (other < f) continue;  // joined from the lower face
-            const glm::uvec3 o = mesh.triangles[other];
-            for (const uint32_t c : {k, (k + 1) % 3}) {
-                for (uint32_t d = 0; d < 3; ++d) {
-                    if (o[d] == t[c]) corners.unite(3 * f + c, 3 * other + d);
-                }
-            }
+            if (other < f) continue;
+            uint8_t j = 0;
+            while (face_edges_[other][j] != e) ++j;
+            creases_.push_back({e, {f, other}, {k, j}});
         }
     }
     std::sort(creases_.begin(), creases_.end(), [](const CreaseEdge& a, const CreaseEdge& b) { return a.edge < b.edge; });
-    // Groups numbered in order of their first corner; each group's normal sums its faces' normals
-    // (area weighted) in face order.
-    face_groups_.resize(n_faces);
-    group_vertex_.clear();
-    std::vector<uint32_t> group_of_root(3 * n_faces, kNoIndex);
-    normals_.clear();
-    for (uint32_t f = 0; f < n_faces; ++f) {
-        const glm::uvec3 t = mesh.triangles[f];
-        const glm::dvec3 n = table.face_valid[f] ? face_normal(mesh.positions, t) : glm::dvec3(0.0);
-        for (uint32_t c = 0; c < 3; ++c) {
-            uint32_t& group = group_of_root[corners.find(3 * f + c)];
-            if (group == kNoIndex) {
-                group = uint32_t(group_vertex_.size());
-                group_vertex_.push_back(t[c]);
-                normals_.emplace_back(0.0);
-            }
-            face_groups_[f][c] = group;
-            normals_[group] += n;
-        }
-    }
-    for (glm::dvec3& n : normals_) {
-        const double len = glm::length(n);
-        n = len > 0.0 ? n / len : glm::dvec3(0.0);
-    }
 }
 
 const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const EdgeTable& table,
@@ -225,12 +186,12 @@ const std::vector<Chain>& SmoothContourTracer::trace(const Mesh& mesh, const Edg
         if (!tree_) {
             smooth_pieces(mesh, table);
             tree_ = std::make_unique<internal::ConeTree>(mesh, table, std::max<uint32_t>(1, options_.leaf_faces),
-                                                         normals_, face_groups_);
-            values_.assign(normals_.size(), {});
+                                                         pieces_.normals, pieces_.face_groups);
+            values_.assign(pieces_.normals.size(), {});
         } else if (options_.deforming) {
             smooth_pieces(mesh, table);
-            tree_->refit(mesh, normals_, face_groups_);
-            values_.resize(normals_.size());
+            tree_->refit(mesh, pieces_.normals, pieces_.face_groups);
+            values_.resize(pieces_.normals.size());
         }
         if (frame_ == 0xffffffffu) {  // stamps would wrap: forget them all
             for (VertexValue& value : values_) value.stamp = 0;
@@ -264,7 +225,7 @@ void SmoothContourTracer::trace_crease_outline(const Mesh& mesh, const EdgeTable
         double g0[2], g1[2];
         for (int s = 0; s < 2; ++s) {
             const uint32_t f = crease.face[s], k = crease.side[s];
-            const glm::uvec3 groups = face_groups_[f];
+            const glm::uvec3 groups = pieces_.face_groups[f];
             const bool forward = mesh.triangles[f][k] == ends.x;
             g0[s] = value(groups[forward ? k : (k + 1) % 3]);
             g1[s] = value(groups[forward ? (k + 1) % 3 : k]);
@@ -359,20 +320,22 @@ void SmoothContourTracer::trace_crease_outline(const Mesh& mesh, const EdgeTable
 void SmoothContourTracer::test_every_face(const Mesh& mesh, const EdgeTable& table, const Viewpoint& eye_object) {
     eye_ = eye_object;
     smooth_pieces(mesh, table);
-    values_.resize(normals_.size());
-    for (size_t group = 0; group < normals_.size(); ++group) values_[group].g = corner_value(mesh, uint32_t(group));
+    values_.resize(pieces_.normals.size());
+    for (size_t group = 0; group < pieces_.normals.size(); ++group) {
+        values_[group].g = corner_value(mesh, uint32_t(group));
+    }
     for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
         if (!table.face_valid[f]) continue;
         ++stats_.faces_tested;
-        const glm::uvec3 t = face_groups_[f];
+        const glm::uvec3 t = pieces_.face_groups[f];
         const bool b = values_[t.x].back();
         if (values_[t.y].back() != b || values_[t.z].back() != b) contour_faces_.push_back(f);
     }
 }
 
 double SmoothContourTracer::facing(const Mesh& mesh, uint32_t face, const glm::dvec3& p) const {
-    if (face >= face_groups_.size() || !closed_[face]) return NAN;  // before a trace, or not closed
-    const glm::uvec3 t = mesh.triangles[face], groups = face_groups_[face];
+    if (face >= pieces_.face_groups.size() || !closed_[face]) return NAN;  // before a trace, or not closed
+    const glm::uvec3 t = mesh.triangles[face], groups = pieces_.face_groups[face];
     // Barycentric coordinates of p (on the face's plane) from the normal equations.
     const glm::dvec3 a(mesh.positions[t.x]), v0 = glm::dvec3(mesh.positions[t.y]) - a,
         v1 = glm::dvec3(mesh.positions[t.z]) - a, v2 = p - a;
@@ -396,7 +359,7 @@ void SmoothContourTracer::set_facing(const Mesh& mesh, Chain& r_chain) const {
 }
 
 double SmoothContourTracer::corner_value(const Mesh& mesh, uint32_t group) const {
-    return -glm::dot(normals_[group], eye_.toward(glm::dvec3(mesh.positions[group_vertex_[group]])));
+    return -glm::dot(pieces_.normals[group], eye_.toward(glm::dvec3(mesh.positions[pieces_.group_vertex[group]])));
 }
 
 bool SmoothContourTracer::back(uint32_t group) {
@@ -420,7 +383,7 @@ void SmoothContourTracer::search(uint32_t index) {
     for (uint32_t k = node.face_begin; k < node.face_end; ++k) {
         const uint32_t f = tree_->faces[k];
         ++stats_.faces_tested;
-        const glm::uvec3 t = face_groups_[f];
+        const glm::uvec3 t = pieces_.face_groups[f];
         // All three evaluated: chain() reads the values of every corner of a contour face.
         const bool x = back(t.x), y = back(t.y), z = back(t.z);
         if (x != y || y != z) contour_faces_.push_back(f);
@@ -430,7 +393,7 @@ void SmoothContourTracer::search(uint32_t index) {
 void SmoothContourTracer::chain(const Mesh& mesh, const EdgeTable& table) {
     // Where the contour crosses the faces' edges: between corners of different signs.
     auto crossed = [&](uint32_t f, uint32_t k) {
-        const glm::uvec3 t = face_groups_[f];
+        const glm::uvec3 t = pieces_.face_groups[f];
         return values_[t[k]].back() != values_[t[(k + 1) % 3]].back();
     };
     crossings_.clear();
@@ -447,7 +410,7 @@ void SmoothContourTracer::chain(const Mesh& mesh, const EdgeTable& table) {
     // that two faces of the same groups agree bit for bit.
     auto point_on = [&](uint32_t f, uint32_t k) {
         uint32_t a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
-        uint32_t ga = face_groups_[f][k], gb = face_groups_[f][(k + 1) % 3];
+        uint32_t ga = pieces_.face_groups[f][k], gb = pieces_.face_groups[f][(k + 1) % 3];
         if (a > b) std::swap(a, b), std::swap(ga, gb);
         return contour_point_on_edge(glm::dvec3(mesh.positions[a]), glm::dvec3(mesh.positions[b]), values_[ga].g,
                                      values_[gb].g);
@@ -478,7 +441,7 @@ void SmoothContourTracer::chain(const Mesh& mesh, const EdgeTable& table) {
                 chain.closed = true;
                 break;
             }
-            if (!(joined_[f] >> k & 1u)) break;
+            if (!(pieces_.joined[f] >> k & 1u)) break;
             const std::span<const uint32_t> faces = table.faces_of(e);
             const uint32_t next = faces[0] == f ? faces[1] : faces[0];
             if (face_used_[next]) break;
@@ -490,7 +453,7 @@ void SmoothContourTracer::chain(const Mesh& mesh, const EdgeTable& table) {
     };
     // Open chains from their ends first, then the loops that are left.
     for (const Crossing& c : crossings_) {
-        if (!(joined_[c.face] >> c.side & 1u) && !face_used_[c.face]) walk(c.face, c.side);
+        if (!(pieces_.joined[c.face] >> c.side & 1u) && !face_used_[c.face]) walk(c.face, c.side);
     }
     for (const Crossing& c : crossings_) {
         if (!face_used_[c.face]) walk(c.face, c.side);

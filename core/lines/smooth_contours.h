@@ -29,6 +29,7 @@
 
 #include "core/lines/chaining.h"
 #include "core/lines/silhouette_tracker.h"
+#include "core/lines/smooth_pieces.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/topology.h"
 
@@ -114,11 +115,8 @@ class SmoothContourTracer {
 
     SmoothContourOptions options_;
     std::vector<glm::uvec3> face_edges_;
-    // A vertex's corners whose faces join across edges of two faces that are no crease form a
-    // group, which has one normal. Per face, the group of each corner; per group, its vertex.
-    std::vector<glm::uvec3> face_groups_;
-    std::vector<uint32_t> group_vertex_;
-    std::vector<uint8_t> joined_;       // per face: bit k when edge k leads to a face of its groups
+    // The corner groups, their normals (incremental: of the last trace) and which sides join.
+    SmoothPieces pieces_;
     std::vector<uint8_t> closed_;       // per face: its connected part of the mesh is closed
     // The crease edges between two faces (not joined), each with the side it is of each face.
     struct CreaseEdge {
@@ -128,7 +126,6 @@ class SmoothContourTracer {
     };
     std::vector<CreaseEdge> creases_;   // by edge
     std::vector<CreaseOutline> crease_outline_;
-    std::vector<glm::dvec3> normals_;   // per group (incremental: of the last trace)
     std::unique_ptr<internal::ConeTree> tree_;  // incremental, from the first trace on
     // Per group: g, read once per trace where it is tested (incremental: valid where stamp holds
     // this trace's frame_). One record, so that a group costs one cache line.

@@ -287,9 +287,14 @@ FrameResult FramePipeline::run(int frame) {
     // Tone: dots on the visible surface, none under the strokes' ink.
     double tone_ms = 0.0;
     if (scene_.tone.mode != ToneMode::kNone) {
-        if (change != MeshChange::kNone || tone_normals_.size() != mesh.positions.size()) {
-            tone_normals_ = vertex_normals(mesh);
+        if (change == MeshChange::kTopology || tone_face_edges_.size() != mesh.triangles.size()) {
+            tone_face_edges_ = face_edges(mesh, table);
         }
+        if (change != MeshChange::kNone || tone_pieces_.face_groups.size() != mesh.triangles.size()) {
+            smooth_pieces(mesh, table, tone_face_edges_,
+                          scene_.tone.crease_angle_deg.value_or(scene_.lines.crease_angle_deg), tone_pieces_);
+        }
+        const ToneNormals tone_normals(tone_pieces_.normals, tone_pieces_.face_groups, tone_pieces_.group_vertex);
         out.tone.mode = scene_.tone.mode;
         if (tone_passes_.empty()) plan_tone_passes(mesh.triangles.size());
         const bool new_topology = change == MeshChange::kTopology;
@@ -304,14 +309,14 @@ FrameResult FramePipeline::run(int frame) {
             };
             if (pass.mode == ToneMode::kStipple) {
                 if (!stippler_) stippler_.emplace(options());
-                out.tone.dots = stippler_->stipple(mesh, table, tone_normals_, projection, scene_.light, occlusion,
+                out.tone.dots = stippler_->stipple(mesh, table, tone_normals, projection, scene_.light, occlusion,
                                                    out.strokes.strokes, new_topology, face_tones);
                 out.tone.stipple_stats = stippler_->stats();
                 continue;
             }
             std::optional<Hatcher>& hatcher = pass.mode == ToneMode::kHatch ? hatcher_ : crosshatcher_;
             if (!hatcher) hatcher.emplace(options());
-            std::vector<Hatch> hatches = hatcher->hatch(mesh, table, tone_normals_, projection, scene_.light, occlusion,
+            std::vector<Hatch> hatches = hatcher->hatch(mesh, table, tone_normals, projection, scene_.light, occlusion,
                                                         out.strokes.strokes, new_topology, face_tones);
             out.tone.hatches.insert(out.tone.hatches.end(), std::make_move_iterator(hatches.begin()),
                                     std::make_move_iterator(hatches.end()));

@@ -16,6 +16,7 @@
 #include "core/lines/intersections.h"
 #include "core/lines/silhouette_tracker.h"
 #include "core/lines/smooth_contours.h"
+#include "core/lines/smooth_pieces.h"
 #include "core/mesh/mesh.h"
 #include "core/mesh/mesh_frames.h"
 #include "core/pipeline/frame_lines.h"
@@ -140,7 +141,11 @@ class FramePipeline {
     // The tone's marks of each mode, with the state each keeps from frame to frame.
     std::optional<Stippler> stippler_;
     std::optional<Hatcher> hatcher_, crosshatcher_;
-    std::vector<glm::dvec3> tone_normals_;  // the mesh's vertex normals, for the tone
+    // The normals the tone reads its light from: those of the mesh's smooth pieces, split at
+    // creases (tone.crease_angle_deg, else lines.crease_angle_deg), with each face's edges that
+    // finding them needs.
+    SmoothPieces tone_pieces_;
+    std::vector<glm::uvec3> tone_face_edges_;
     // One mode's marks on the faces shaded with it (scene "objects" may give an object a mode
     // of its own).
     struct TonePass {

@@ -336,7 +336,7 @@ ToneMode read_tone_mode(const Reader& r) {
 ToneOptions read_tone(const Reader& r) {
     r.allow_only({"mode", "gamma", "levels", "min", "max", "dot_radius_px", "fade", "line_width_px", "direction",
                   "cross_direction", "cross_from", "space", "angle_deg", "cross_angle_deg", "color", "opacity",
-                  "seed"});
+                  "seed", "crease_angle_deg"});
     ToneOptions t;
     t.mode = ToneMode::kStipple;
     if (r.has("mode")) t.mode = read_tone_mode(r);
@@ -380,6 +380,12 @@ ToneOptions read_tone(const Reader& r) {
         const int seed = r.integer("seed");
         if (seed < 0) r.fail("seed", "must be 0 or more");
         t.seed = uint64_t(seed);
+    }
+    if (r.has("crease_angle_deg")) {
+        t.crease_angle_deg = r.number_or("crease_angle_deg", 0.0);
+        if (!(*t.crease_angle_deg >= 0.0 && *t.crease_angle_deg <= 180.0)) {
+            r.fail("crease_angle_deg", "must be between 0 and 180");
+        }
     }
     return t;
 }

@@ -135,7 +135,7 @@ struct FaceFrame {
 
 }  // namespace
 
-std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
+std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, const ToneNormals& normals,
                                   const Projection& projection, const Light& light, const Occlusion& occlusion,
                                   std::span<const Stroke> strokes, bool topology_changed,
                                   FaceTones face_tones) {
@@ -199,21 +199,25 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
         return glm::dot(normal, normal) == 0.0 ? 0.0 : tone_of(lit.intensity(p, normal), curve);
     };
 
-    // Per vertex, once a frame: the tone on the options' curve (0 without a normal), the light's
-    // intensity for faces on other curves (NaN without a normal) and the clip coordinates.
-    std::vector<double>& vertex_tone = vertex_tone_;
-    std::vector<double>& vertex_intensity = vertex_intensity_;
+    // Once a frame, per normal: the tone on the options' curve (0 without a normal) and the
+    // light's intensity for faces on other curves (NaN without a normal); per vertex: the clip
+    // coordinates.
+    std::vector<double>& normal_tone = normal_tone_;
+    std::vector<double>& normal_intensity = normal_intensity_;
     std::vector<glm::dvec4>& vertex_clip = vertex_clip_;
-    vertex_tone.resize(mesh.positions.size());
-    vertex_intensity.resize(mesh.positions.size());
+    normal_tone.resize(normals.size());
+    normal_intensity.resize(normals.size());
     vertex_clip.resize(mesh.positions.size());
-    internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
-        for (size_t v = begin; v < end; ++v) {
-            const glm::dvec3 p(mesh.positions[v]);
-            vertex_intensity[v] = glm::dot(normals[v], normals[v]) == 0.0 ? NAN : lit.intensity(p, normals[v]);
-            vertex_tone[v] = std::isnan(vertex_intensity[v]) ? 0.0 : tone_of(vertex_intensity[v], scene_curve);
-            vertex_clip[v] = projection.clip(p);
+    internal::parallel_for(normals.size(), 8192, [&](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) {
+            const glm::dvec3& normal = normals.normals[k];
+            const glm::dvec3 p(mesh.positions[normals.vertex(k)]);
+            normal_intensity[k] = glm::dot(normal, normal) == 0.0 ? NAN : lit.intensity(p, normal);
+            normal_tone[k] = std::isnan(normal_intensity[k]) ? 0.0 : tone_of(normal_intensity[k], scene_curve);
         }
+    });
+    internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
+        for (size_t v = begin; v < end; ++v) vertex_clip[v] = projection.clip(glm::dvec3(mesh.positions[v]));
     });
 
     // h's gradient on the image (h per px) at a point of a face (clip: its clip coordinates):
@@ -257,7 +261,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
         // The lines across one face, appended to r_lines in plane order.
         const auto trace_face = [&](uint32_t face, std::vector<FaceLine>& r_lines) {
             const ToneCurve& curve = *curve_of(face);
-            const glm::uvec3 t = mesh.triangles[face];
+            const glm::uvec3 t = mesh.triangles[face], corners = normals.corners(face, t);
             const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]),
                                      glm::dvec3(mesh.positions[t.z])};
             if (glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), eye.toward(p[0])) <= 0.0) return;  // back-facing
@@ -282,8 +286,10 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             // gradient on the image is least (the lines of level 0 lie step0 / |g| px apart).
             int finest = -1;
             for (int c = 0; c < 3; ++c) {
-                const double intensity = vertex_intensity[t[c]];
-                const double tone = curve == scene_curve ? vertex_tone[t[c]] : std::isnan(intensity) ? 0.0 : tone_of(intensity, curve);
+                const double intensity = normal_intensity[corners[c]];
+                const double tone = curve == scene_curve   ? normal_tone[corners[c]]
+                                    : std::isnan(intensity) ? 0.0
+                                                            : tone_of(intensity, curve);
                 const double gradient = gradient_at(frame, vertex_clip[t[c]]);
                 finest = std::max(finest, finest_level(family_tone(tone, f, options_), family.step0, gradient, width));
             }
@@ -323,7 +329,9 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                     const glm::dvec3 e0(mesh.positions[ends.x]), e1(mesh.positions[ends.y]);
                     line.sides[found] = edge;
                     line.points[found] = e0 + along * (e1 - e0);
-                    const glm::dvec3 normal = normals[ends.x] + along * (normals[ends.y] - normals[ends.x]);
+                    const glm::dvec3& n0 = normals.normals[normals.at_vertex(face, t, ends.x)];
+                    const glm::dvec3& n1 = normals.normals[normals.at_vertex(face, t, ends.y)];
+                    const glm::dvec3 normal = n0 + along * (n1 - n0);
                     const double tone = family_tone(tone_at(line.points[found], normal, curve), f, options_);
                     const double gradient = gradient_at(frame, projection.clip(line.points[found]));
                     line.width[found] = width * line_weight(level_of(plane), tone, family.step0, gradient, width);
@@ -400,7 +408,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
             const int n = int(std::min(std::ceil(length_px / kPointSpacingPx), double(kMaxPointsAcrossFace)));
             const uint32_t face = b.face;
             const ToneCurve* curve = curve_of(face);
-            const glm::uvec3 t = mesh.triangles[face];
+            const glm::uvec3 t = mesh.triangles[face], g = normals.corners(face, t);
             const FaceFrame frame(mesh, t, family.h);
             if (curve == nullptr || !frame.valid()) return;
             for (int i = 1; i < n; ++i) {
@@ -409,8 +417,8 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, std:
                 const double along = s * clip_a.w / (s * clip_a.w + (1.0 - s) * clip_b.w);
                 const glm::dvec3 p = a.p_object + along * (b.p_object - a.p_object);
                 const glm::dvec2 b12 = frame.barycentric(p);
-                const glm::dvec3 normal =
-                    (1.0 - b12.x - b12.y) * normals[t.x] + b12.x * normals[t.y] + b12.y * normals[t.z];
+                const std::span<const glm::dvec3> at = normals.normals;
+                const glm::dvec3 normal = (1.0 - b12.x - b12.y) * at[g.x] + b12.x * at[g.y] + b12.y * at[g.z];
                 const double tone = family_tone(tone_at(p, normal, *curve), f, options_);
                 const double gradient = gradient_at(frame, projection.clip(p));
                 r_points.push_back({face_edges_[face].x, p,

@@ -18,6 +18,7 @@
 #include "core/scene/camera.h"
 #include "core/strokes/brush_style.h"
 #include "core/strokes/outline.h"
+#include "core/tone/tone_normals.h"
 #include "core/tone/tone_options.h"
 #include "core/visibility/visibility.h"
 
@@ -72,7 +73,7 @@ class Hatcher {
     explicit Hatcher(ToneOptions options) : options_(options) {}
 
     // The hatches of one frame, as Stippler::stipple takes its arguments (face_tones too).
-    std::vector<Hatch> hatch(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
+    std::vector<Hatch> hatch(const Mesh& mesh, const EdgeTable& table, const ToneNormals& normals,
                              const Projection& projection, const Light& light, const Occlusion& occlusion,
                              std::span<const Stroke> strokes, bool topology_changed, FaceTones face_tones = {});
 
@@ -93,9 +94,9 @@ class Hatcher {
     std::vector<glm::uvec3> face_edges_;  // per face, the edge of each side (face_edges), with families_
     size_t faces_ = 0;
     HatchStats stats_;
-    // A frame's scratch, kept for the next: per vertex its tone, its light's intensity and its
-    // clip coordinates.
-    std::vector<double> vertex_tone_, vertex_intensity_;
+    // A frame's scratch, kept for the next: per normal its tone and its light's intensity, per
+    // vertex its clip coordinates.
+    std::vector<double> normal_tone_, normal_intensity_;
     std::vector<glm::dvec4> vertex_clip_;
 };
 

@@ -269,7 +269,7 @@ void SurfaceSamples::add_level() {
     for (uint32_t i = 0; i < samples_.size(); ++i) face_samples_[fill[samples_[i].face]++] = i;
 }
 
-std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
+std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, const ToneNormals& normals,
                                    const Projection& projection, const Light& light, const Occlusion& occlusion,
                                    std::span<const Stroke> strokes, bool topology_changed,
                                    FaceTones face_tones) {
@@ -321,9 +321,9 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         return tone_of(lit.intensity(p, glm::dot(normal, normal) == 0.0 ? face_n : normal), curve);
     };
 
-    // Per vertex, once each: its tone on the options' curve (the darkest without a normal), the
-    // light's intensity for faces on other curves, and what its faces' limits below read of it,
-    // as area_scale and foreshortening would compute them at the vertex.
+    // Per vertex, once each: what its faces' limits below read of it, as area_scale and
+    // foreshortening would compute them at the vertex. Per normal: its tone on the options' curve
+    // (the darkest without a normal) and the light's intensity for faces on other curves.
     const double darkest = std::max(scene_curve.min, scene_curve.max);
     // (Kept from frame to frame: a new buffer's pages cost more than filling it.)
     std::vector<VertexView>& vertex_view = vertex_view_;
@@ -333,14 +333,22 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             const glm::dvec3 p(mesh.positions[v]);
             VertexView& view = vertex_view[v];
             const glm::dvec4 clip = m * glm::dvec4(p, 1.0);
-            const glm::dvec3& normal = normals[v];
-            view.intensity = glm::dot(normal, normal) == 0.0 ? NAN : lit.intensity(p, normal);
-            view.tone = std::isnan(view.intensity) ? darkest : tone_of(view.intensity, scene_curve);
             view.in_front = projection.in_front(clip);
             if (!view.in_front) continue;
             view.px = projection.pixel_from_clip(clip);
             view.jacobian = jacobian(clip);
             view.to_eye = glm::normalize(eye.toward(p));
+        }
+    });
+    std::vector<NormalTone>& normal_tone = normal_tone_;
+    normal_tone.resize(normals.size());
+    internal::parallel_for(normals.size(), 8192, [&](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) {
+            const glm::dvec3& normal = normals.normals[k];
+            NormalTone& lit_tone = normal_tone[k];
+            const glm::dvec3 p(mesh.positions[normals.vertex(k)]);
+            lit_tone.intensity = glm::dot(normal, normal) == 0.0 ? NAN : lit.intensity(p, normal);
+            lit_tone.tone = std::isnan(lit_tone.intensity) ? darkest : tone_of(lit_tone.intensity, scene_curve);
         }
     });
     // Per face, the most samples any point of it can ask for: the darkest tone of its corners
@@ -355,7 +363,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
         for (size_t f = begin; f < end; ++f) {
             const ToneCurve* curve = curve_of(f);
             if (!table.face_valid[f] || curve == nullptr) continue;
-            const glm::uvec3 t = mesh.triangles[f];
+            const glm::uvec3 t = mesh.triangles[f], corners = normals.corners(uint32_t(f), t);
             const glm::dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
             const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
             const double n_len = glm::length(n);
@@ -366,14 +374,15 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             bool in_front = true;
             for (int c = 0; c < 3 && in_front; ++c) {
                 const VertexView& view = vertex_view[t[c]];
+                const NormalTone& lit_tone = normal_tone[corners[c]];
                 in_front = view.in_front;
                 if (!in_front) break;
                 lo = glm::min(lo, view.px);
                 hi = glm::max(hi, view.px);
                 scale = std::max(scale, std::abs(glm::dot(view.jacobian, unit_n)) / shrink(std::abs(glm::dot(unit_n, view.to_eye))));
-                tone = std::max(tone, *curve == scene_curve          ? view.tone
-                                      : std::isnan(view.intensity) ? std::max(curve->min, curve->max)
-                                                                   : tone_of(view.intensity, *curve));
+                tone = std::max(tone, *curve == scene_curve              ? lit_tone.tone
+                                      : std::isnan(lit_tone.intensity) ? std::max(curve->min, curve->max)
+                                                                       : tone_of(lit_tone.intensity, *curve));
             }
             if (!in_front || hi.x < 0.0 || hi.y < 0.0 || lo.x > image.width || lo.y > image.height) continue;
             face_limit[f] = dot_density(tone, radius) * kScaleMargin * scale * area / kappa;
@@ -396,7 +405,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
             const double limit = face_limit[f];
             if (limit <= 0.0) continue;  // also where the face is left unshaded
             const ToneCurve& curve = *curve_of(f);
-            const glm::uvec3 t = mesh.triangles[f];
+            const glm::uvec3 t = mesh.triangles[f], g = normals.corners(uint32_t(f), t);
             const glm::dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
             const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
             const glm::dvec3 unit_n = glm::normalize(n);
@@ -412,7 +421,8 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, std
                 if (!projection.inside_image(px)) continue;
                 const double shrunk = foreshortening(p, unit_n);
                 const double scale = area_scale(clip, unit_n) / shrunk;
-                const double tone = tone_at(p, b0 * normals[t.x] + b1 * normals[t.y] + b2 * normals[t.z], n, curve);
+                const std::span<const glm::dvec3> at = normals.normals;
+                const double tone = tone_at(p, b0 * at[g.x] + b1 * at[g.y] + b2 * at[g.z], n, curve);
                 const double threshold = dot_density(tone, radius) * scale * area / kappa;
                 const double rank = double(i);
                 double weight = 0.0;

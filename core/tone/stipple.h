@@ -14,6 +14,7 @@
 #include "core/mesh/topology.h"
 #include "core/scene/camera.h"
 #include "core/strokes/brush_style.h"
+#include "core/tone/tone_normals.h"
 #include "core/tone/tone_options.h"
 #include "core/visibility/visibility.h"
 
@@ -104,11 +105,11 @@ class Stippler {
 
     // The dots of one frame: mesh (object space) seen through `projection`, lit by `light`,
     // hidden as `occlusion` says (prepared for this mesh and projection); the ink of `strokes`
-    // (visible, drawn) covers dots under it. `normals` are the mesh's vertex normals
-    // (vertex_normals). A new topology (topology_changed) rebuilds the samples. With face_tones,
-    // each face is shaded on its own curve, and faces left unshaded get no dots (they still hide
+    // (visible, drawn) covers dots under it. `normals` are those the light is read from: the
+    // mesh's vertex normals (vertex_normals), or its smooth pieces' (tone_normals.h). A new
+    // topology (topology_changed) rebuilds the samples. With face_tones, each face is shaded on its own curve, and faces left unshaded get no dots (they still hide
     // them); empty: every face on the options' curve.
-    std::vector<Dot> stipple(const Mesh& mesh, const EdgeTable& table, std::span<const glm::dvec3> normals,
+    std::vector<Dot> stipple(const Mesh& mesh, const EdgeTable& table, const ToneNormals& normals,
                              const Projection& projection, const Light& light, const Occlusion& occlusion,
                              std::span<const Stroke> strokes, bool topology_changed, FaceTones face_tones = {});
 
@@ -126,11 +127,15 @@ class Stippler {
         glm::dvec2 px{0.0};
         glm::dvec3 jacobian{0.0};  // the pixel Jacobian's rows, crossed: square pixels per unit area along a normal
         glm::dvec3 to_eye{0.0};    // unit
-        double tone = 0.0;       // on the options' curve (the darkest without a normal)
-        double intensity = NAN;  // of the light, for other curves; NaN without a normal
         bool in_front = false;
     };
     std::vector<VertexView> vertex_view_;
+    // Per normal: its light and tone.
+    struct NormalTone {
+        double tone = 0.0;       // on the options' curve (the darkest without a normal)
+        double intensity = NAN;  // of the light, for other curves; NaN without a normal
+    };
+    std::vector<NormalTone> normal_tone_;
     std::vector<double> face_limit_;
     // Per face, the edge its dots' occlusion queries seed their search at, once asked for
     // (kNoIndex before); kept while the topology holds.

@@ -71,6 +71,9 @@ struct ToneOptions {
     // The most surface samples kept: bounds memory when a camera comes very close (then the
     // density there stops growing).
     size_t max_samples = 8'000'000;
+    // The light is read from normals split at edges whose faces meet at more than this
+    // (degrees, 0..180; core/lines/smooth_pieces.h); unset: the lines' crease_angle_deg.
+    std::optional<double> crease_angle_deg{};
 };
 
 // The keys of a tone that a rule sets: an object's ("objects": {"NAME": {"tone": {...}}}) or a

@@ -324,6 +324,11 @@ TEST(Scene, ToneBlockSetsTheTone) {
     EXPECT_EQ(h.tone.direction, glm::dvec3(0.0, 0.0, 1.0)) << "directions are normalised";
     EXPECT_EQ(h.tone.cross_direction, glm::dvec3(0.0, 1.0, 0.0));
     EXPECT_EQ(h.tone.cross_from, 0.3);
+    EXPECT_FALSE(h.tone.crease_angle_deg.has_value()) << "unset: the lines' angle";
+    const core::Scene c = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, "tone": {"crease_angle_deg": 35}})",
+        "scene.json");
+    EXPECT_EQ(c.tone.crease_angle_deg, 35.0);
 }
 
 TEST(Scene, ToneCurveFollowsTheLight) {
@@ -374,6 +379,8 @@ TEST(Scene, ToneErrorsNameTheKey) {
         {R"("tone": {"color": "grey"})", "key 'tone.color'"},
         {R"("tone": {"opacity": 2})", "key 'tone.opacity'"},
         {R"("tone": {"seed": -3})", "key 'tone.seed'"},
+        {R"("tone": {"crease_angle_deg": 181})", "key 'tone.crease_angle_deg': must be between 0 and 180"},
+        {R"("tone": {"crease_angle_deg": "sharp"})", "key 'tone.crease_angle_deg'"},
         {R"("tone": "stipple")", "key 'tone': expected an object"},
         {R"("tone": {"space": "page"})", "key 'tone.space': expected \"object\" or \"screen\""},
         {R"("tone": {"space": "screen", "direction": [1, 0, 0]})",
