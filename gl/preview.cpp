@@ -123,7 +123,9 @@ uniform float dash[32];       // the style's dash pattern along u, px: on, off, 
 uniform int dash_count;       // 0: solid
 uniform float dash_period;    // the pattern's length, px
 uniform int cap;              // the dashes' ends: 0 round, 1 butt, 2 square
+uniform vec2 u_range;         // where the line begins and ends along u: its ends end a dash too
 uniform float widen;          // strip half-widths per brush half-width
+uniform int plain;            // 1: a plain line in the ink (hidden lines), no tip texture
 layout(location = 0) out vec4 colour;
 
 // Along-coordinates of the middle (by u) and of the head and tail (by s, clamped to their zones),
@@ -159,19 +161,22 @@ Along along() {
 
 // Whether a sample at u, `side` brush half-widths off the centerline, is in a dash with its caps
 // (docs/styles.md): round caps reach half a width past a dash's ends as a disc does, square caps
-// as a square does, butt caps not at all; a dash of length 0 is a dot.
+// as a square does, butt caps not at all; a dash of length 0 is a dot. A dash the line's end
+// cuts ends there, with its cap, as SVG's dashes do.
 bool in_dash(float side) {
     float m = mod(u, dash_period);
+    float base = u - m;  // where the pattern's repeat holding u begins
     float half_width = max(0.5 * width, 1e-6);
     for (int shift = -1; shift <= 1; ++shift) {
         float at = float(shift) * dash_period;
         for (int i = 0; i < dash_count; i += 2) {
-            float a = at, b = at + dash[i];
+            float a = max(at, u_range.x - base), b = min(at + dash[i], u_range.y - base);
+            at += dash[i] + dash[i + 1];
+            if (a > b) continue;
             float past = max(max(a - m, m - b), 0.0) / half_width;
             if (cap == 0 && past * past + side * side <= 1.0) return true;
             if (cap == 1 && past == 0.0 && b > a) return true;
             if (cap == 2 && past <= 1.0) return true;
-            at = b + dash[i + 1];
         }
     }
     return false;
@@ -179,6 +184,10 @@ bool in_dash(float side) {
 
 void main() {
     if (dash_count > 0 && !in_dash(across.x * widen)) discard;
+    if (plain != 0) {
+        colour = vec4(ink * opacity, opacity);  // premultiplied
+        return;
+    }
     float r = length(across);
     float v = 0.5 + 0.5 * (across.x < 0.0 ? -r : r);
     // Mip level from the continuous coordinates: the middle's wrap-around would otherwise pick
@@ -256,6 +265,10 @@ void check_gl(const internal::Functions& fn, const char* step) {
 // One stroke's range in the frame's index buffer and what its shader needs.
 struct StrokeDraw {
     const core::BrushStyle* brush = nullptr;  // its style's: ink, pressure and dashes
+    // A hidden line: a plain dashed line of this width at half the ink's opacity, dashed from
+    // u = dash_offset, as the vector outputs stroke it; 0: a brush stroke.
+    float hidden_width_px = 0.0f;
+    float dash_offset_px = 0.0f;
     size_t first_index = 0;
     GLsizei index_count = 0;
     float length_px = 0.0f;
@@ -298,7 +311,7 @@ struct PreviewRenderer::Impl {
 
     struct StrokeUniforms {
         GLint image_size, tip, tip_length, zones, stroke_length, period, free_ends, ink, opacity, pressure, dash,
-            dash_count, dash_period, cap, widen;
+            dash_count, dash_period, cap, u_range, widen, plain;
     } su{};
     struct ToneUniforms {
         GLint image_size, ink, opacity;
@@ -335,7 +348,8 @@ struct PreviewRenderer::Impl {
               stroke_uniform("zones"),      stroke_uniform("stroke_length"), stroke_uniform("period"),
               stroke_uniform("free_ends"),  stroke_uniform("ink"),           stroke_uniform("opacity"),
               stroke_uniform("pressure"),   stroke_uniform("dash"),          stroke_uniform("dash_count"),
-              stroke_uniform("dash_period"), stroke_uniform("cap"),          stroke_uniform("widen")};
+              stroke_uniform("dash_period"), stroke_uniform("cap"),          stroke_uniform("u_range"),
+              stroke_uniform("widen"),      stroke_uniform("plain")};
         auto surface_uniform = [&](const char* name) { return fn.GetUniformLocation(surface_program, name); };
         fu = {surface_uniform("clip_from_object"),
               surface_uniform("world_from_object"),
@@ -449,7 +463,8 @@ struct PreviewRenderer::Impl {
         fb_height = height;
     }
 
-    // Every drawn visible stroke's strip in one vertex and one index buffer.
+    // Every drawn visible stroke's strip, then every hidden line's, in one vertex and one index
+    // buffer.
     std::vector<StrokeDraw> upload_strokes(const core::FrameStrokes& strokes) {
         const internal::QuadStripOptions strip_options{.widen = 1.0 / (1.0 - 2.0 * tip_layout.edge_margin)};
         const double middle_px = (1.0 - tip_layout.head_fraction - tip_layout.tail_fraction) * tip_length_px;
@@ -474,6 +489,32 @@ struct PreviewRenderer::Impl {
             const double period = std::max(middle_px, 1e-3);
             draw.period_px =
                 float(strip.closed ? strip.length_px / std::max(1.0, std::round(strip.length_px / period)) : period);
+            const auto base = uint32_t(vertices.size());
+            for (const uint32_t i : strip.indices) indices.push_back(base + i);
+            vertices.insert(vertices.end(), strip.vertices.begin(), strip.vertices.end());
+            draws.push_back(draw);
+        }
+        // Hidden lines above them, as the vector outputs layer them: along the drawn centerline
+        // where there is one.
+        for (const core::Stroke& stroke : strokes.strokes) {
+            const core::StrokeGeometry& g = stroke.geometry;
+            if (g.visible) continue;
+            const bool styled = stroke.style != 0 && stroke.style < strokes.styles.size();
+            const core::BrushStyle& brush = styled ? strokes.styles[stroke.style].brush : style;
+            const bool on_centerline = stroke.centerline_px.size() >= 2;
+            const std::vector<double>& u = on_centerline ? stroke.centerline_u : stroke.u;
+            StrokeDraw draw;
+            draw.brush = &brush;
+            draw.hidden_width_px = float(brush.line_width_px.value_or(options.centerline_width_px));
+            draw.dash_offset_px = brush.dash_px.empty() || u.empty() ? 0.0f : float(u.front());
+            const internal::QuadStrip strip =
+                internal::centerline_strip(on_centerline ? stroke.centerline_px : g.points_px, g.closed,
+                                           draw.hidden_width_px, draw.dash_offset_px, brush.cap, {});
+            if (strip.indices.empty()) continue;
+            draw.first_index = indices.size();
+            draw.index_count = GLsizei(strip.indices.size());
+            draw.length_px = float(strip.length_px);
+            draw.closed = strip.closed;
             const auto base = uint32_t(vertices.size());
             for (const uint32_t i : strip.indices) indices.push_back(base + i);
             vertices.insert(vertices.end(), strip.vertices.begin(), strip.vertices.end());
@@ -576,7 +617,7 @@ struct PreviewRenderer::Impl {
         fn.Uniform1f(su.tip_length, float(tip_length_px));
         const double middle = 1.0 - tip_layout.head_fraction - tip_layout.tail_fraction;
         fn.Uniform3f(su.zones, float(tip_layout.head_fraction), float(middle), float(tip_layout.tail_fraction));
-        fn.Uniform1f(su.widen, float(1.0 / (1.0 - 2.0 * tip_layout.edge_margin)));
+        const float widen = float(1.0 / (1.0 - 2.0 * tip_layout.edge_margin));
         // Premultiplied "over": strokes layer like ink.
         fn.Enable(GL_BLEND);
         fn.BlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -587,10 +628,22 @@ struct PreviewRenderer::Impl {
         fn.StencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
         int value = 0;
         const core::BrushStyle* brush = nullptr;
+        bool hidden = false;
         for (const StrokeDraw& d : draws) {
-            if (d.brush != brush) {
+            if (d.brush != brush || (d.hidden_width_px > 0.0f) != hidden) {
                 brush = d.brush;
-                set_brush(*brush);
+                hidden = d.hidden_width_px > 0.0f;
+                fn.Uniform1i(su.plain, hidden ? 1 : 0);
+                fn.Uniform1f(su.widen, hidden ? 1.0f : widen);
+                set_brush(*brush, hidden ? d.hidden_width_px : 0.0f);
+            }
+            // Where a hidden line begins and ends along u; a brush stroke's dashes run on past its
+            // ends into its caps.
+            constexpr float kNoEnd = 1e30f;
+            if (hidden && !d.closed) {
+                fn.Uniform2f(su.u_range, d.dash_offset_px, d.dash_offset_px + d.length_px);
+            } else {
+                fn.Uniform2f(su.u_range, -kNoEnd, kNoEnd);
             }
             if (++value > kStencilValues) {
                 fn.ClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
@@ -607,15 +660,19 @@ struct PreviewRenderer::Impl {
         fn.Disable(GL_BLEND);
     }
 
-    // The uniforms of a stroke's brush: ink, opacity, pressure and dashes.
-    void set_brush(const core::BrushStyle& brush) {
+    // The uniforms of a stroke's brush: ink, opacity, pressure and dashes. For a hidden line
+    // (hidden_width_px > 0): half the opacity, no pressure, and without dashes of the style's own
+    // the hidden lines' (3 and 2 widths), as export/drawing.h's dashes_of gives them.
+    void set_brush(const core::BrushStyle& brush, float hidden_width_px) {
+        const bool hidden = hidden_width_px > 0.0f;
         fn.Uniform3f(su.ink, float(brush.color.r), float(brush.color.g), float(brush.color.b));
-        fn.Uniform1f(su.opacity, float(brush.opacity));
+        fn.Uniform1f(su.opacity, float(brush.opacity * (hidden ? 0.5 : 1.0)));
         const double range = brush.width_max_px - brush.width_min_px;
         fn.Uniform3f(su.pressure, float(brush.width_min_px), range > 0.0 ? float(1.0 / range) : 0.0f,
-                     float(options.pressure_darkening));
+                     hidden ? 0.0f : float(options.pressure_darkening));
         // An odd pattern repeats once more, as SVG's stroke-dasharray does: on and off swap.
         std::vector<float> dash(brush.dash_px.begin(), brush.dash_px.end());
+        if (hidden && dash.empty()) dash = {3.0f * hidden_width_px, 2.0f * hidden_width_px};
         if (dash.size() % 2 == 1) dash.insert(dash.end(), brush.dash_px.begin(), brush.dash_px.end());
         double period = 0.0;
         for (const float d : dash) period += d;

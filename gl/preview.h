@@ -44,6 +44,9 @@ struct PreviewOptions {
     // Length along the stroke of the whole tip image, px; 0: the image's aspect ratio times the
     // style's width_max_px, so the image keeps its proportions on the widest strokes.
     double tip_length_px = 0.0;
+    // Hidden lines (`lines.hidden`) are plain dashed lines this wide where their style sets no
+    // line_width_px, as the vector outputs' centerlines (export/drawing.h).
+    double centerline_width_px = 1.5;
 };
 
 // The mesh drawn under the strokes with PreviewOptions::underlay: the frame's mesh (not owned;
@@ -97,8 +100,9 @@ class PreviewRenderer {
     // limit, ContextError when the framebuffers cannot be made. render() does the same.
     void prepare(core::ImageSize image);
 
-    // Draws the visible, drawn strokes of one frame (hidden lines are left out) at frame.image,
-    // over the underlay when the options ask for one (then `surface.mesh` is required).
+    // Draws the visible, drawn strokes of one frame at frame.image, over the underlay when the
+    // options ask for one (then `surface.mesh` is required), and the hidden lines above them as
+    // the vector outputs draw them: dashed, at half the ink's opacity, in their style's colour.
     // Strokes overlap like layers of ink; a stroke never darkens itself where it folds over.
     // Throws InputError when the image exceeds GL's framebuffer size limit.
     PreviewImage render(const core::FrameLines& frame, const core::FrameStrokes& strokes,

@@ -47,22 +47,26 @@ void add_cap(QuadStrip& r_strip, const glm::dvec2& centre, const glm::dvec2& tan
     }
 }
 
-}  // namespace
-
-QuadStrip quad_strip(const core::Stroke& stroke, const QuadStripOptions& options) {
-    INKLINE_CHECK_EQ(stroke.centerline_u.size(), stroke.centerline_px.size());
-    INKLINE_CHECK_EQ(stroke.centerline_width.size(), stroke.centerline_px.size());
-    INKLINE_CHECK(options.widen > 0.0 && options.cap_segments >= 2);
-    QuadStrip strip;
-    strip.closed = stroke.geometry.closed;
-
-    // Distinct samples; a loop that repeats its first point last drops the repeat.
-    std::vector<Sample> c;
-    for (size_t i = 0; i < stroke.centerline_px.size(); ++i) {
-        const Sample s{stroke.centerline_px[i], stroke.centerline_u[i], stroke.centerline_width[i]};
-        if (c.empty() || glm::length(s.p - c.back().p) > kSamePointPx) c.push_back(s);
+// A square of half-width `half` past an end, along `out`: room for a square cap.
+void add_square_cap(QuadStrip& r_strip, const glm::dvec2& centre, const glm::dvec2& tangent, const glm::dvec2& out,
+                    double half, double s_end, double u_end, double width) {
+    const glm::dvec2 normal = perp(tangent);
+    const double along = glm::dot(out, tangent);  // -1 before the start, 1 past the end
+    const auto first = uint32_t(r_strip.vertices.size());
+    for (const double b : {0.0, along}) {
+        for (const double a : {-1.0, 1.0}) {
+            r_strip.vertices.push_back({glm::vec2(centre + (a * normal + b * tangent) * half), glm::vec2(float(a), float(b)),
+                                        float(s_end + b * half), float(u_end + b * half), float(width)});
+        }
     }
-    if (strip.closed && c.size() > 2 && glm::length(c.front().p - c.back().p) <= kSamePointPx) c.pop_back();
+    r_strip.indices.insert(r_strip.indices.end(), {first, first + 1, first + 2, first + 1, first + 3, first + 2});
+}
+
+// The strip of centerline samples (distinct, a loop's first not repeated last), with caps of
+// shape `cap` (none for butt) on each open end whose width exceeds kCapMinWidthPx.
+QuadStrip strip_of(const std::vector<Sample>& c, bool closed, core::LineCap cap, const QuadStripOptions& options) {
+    QuadStrip strip;
+    strip.closed = closed;
     if (c.size() < 2) return strip;
     std::vector<glm::dvec2> points(c.size());
     std::transform(c.begin(), c.end(), points.begin(), [](const Sample& sample) { return sample.p; });
@@ -90,20 +94,55 @@ QuadStrip quad_strip(const core::Stroke& stroke, const QuadStripOptions& options
     }
     strip.length_px = s;
 
-    // Round caps where an open stroke's end keeps its width.
-    if (!strip.closed) {
-        const Sample& head = c.front();
-        const Sample& tail = c.back();
-        if (head.width > kCapMinWidthPx) {
-            add_cap(strip, head.p, t.front(), -t.front(), 0.5 * head.width * options.widen, 0.0, head.u, head.width,
-                    options.cap_segments);
-        }
-        if (tail.width > kCapMinWidthPx) {
-            add_cap(strip, tail.p, t.back(), t.back(), 0.5 * tail.width * options.widen, s, tail.u, tail.width,
-                    options.cap_segments);
-        }
+    // Caps where an open stroke's end keeps its width.
+    if (!strip.closed && cap != core::LineCap::kButt) {
+        const auto end_cap = [&](const Sample& end, const glm::dvec2& tangent, const glm::dvec2& out, double s_end) {
+            if (!(end.width > kCapMinWidthPx)) return;
+            const double half = 0.5 * end.width * options.widen;
+            if (cap == core::LineCap::kSquare) {
+                add_square_cap(strip, end.p, tangent, out, half, s_end, end.u, end.width);
+            } else {
+                add_cap(strip, end.p, tangent, out, half, s_end, end.u, end.width, options.cap_segments);
+            }
+        };
+        end_cap(c.front(), t.front(), -t.front(), 0.0);
+        end_cap(c.back(), t.back(), t.back(), s);
     }
     return strip;
+}
+
+}  // namespace
+
+QuadStrip quad_strip(const core::Stroke& stroke, const QuadStripOptions& options) {
+    INKLINE_CHECK_EQ(stroke.centerline_u.size(), stroke.centerline_px.size());
+    INKLINE_CHECK_EQ(stroke.centerline_width.size(), stroke.centerline_px.size());
+    INKLINE_CHECK(options.widen > 0.0 && options.cap_segments >= 2);
+    const bool closed = stroke.geometry.closed;
+    // Distinct samples; a loop that repeats its first point last drops the repeat.
+    std::vector<Sample> c;
+    for (size_t i = 0; i < stroke.centerline_px.size(); ++i) {
+        const Sample s{stroke.centerline_px[i], stroke.centerline_u[i], stroke.centerline_width[i]};
+        if (c.empty() || glm::length(s.p - c.back().p) > kSamePointPx) c.push_back(s);
+    }
+    if (closed && c.size() > 2 && glm::length(c.front().p - c.back().p) <= kSamePointPx) c.pop_back();
+    return strip_of(c, closed, core::LineCap::kRound, options);
+}
+
+QuadStrip centerline_strip(std::span<const glm::dvec2> points, bool closed, double width_px, double u_start,
+                           core::LineCap cap, const QuadStripOptions& options) {
+    INKLINE_CHECK(options.widen > 0.0 && options.cap_segments >= 2 && width_px > 0.0);
+    std::vector<Sample> c;
+    double u = u_start;
+    for (const glm::dvec2& p : points) {
+        if (!c.empty()) {
+            const double step = glm::length(p - c.back().p);
+            if (!(step > kSamePointPx)) continue;
+            u += step;
+        }
+        c.push_back({p, u, width_px});
+    }
+    if (closed && c.size() > 2 && glm::length(c.front().p - c.back().p) <= kSamePointPx) c.pop_back();
+    return strip_of(c, closed, cap, options);
 }
 
 }  // namespace inkline::gl::internal

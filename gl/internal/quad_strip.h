@@ -11,6 +11,7 @@
 #include <glm/vec2.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace inkline::gl::internal {
@@ -45,5 +46,12 @@ struct QuadStripOptions {
 // C ends; free S ends taper to a point and get none); a loop closes on itself. Empty when the
 // centerline has fewer than two distinct points.
 QuadStrip quad_strip(const core::Stroke& stroke, const QuadStripOptions& options);
+
+// Triangles of a constant-width line along `points` (px), as the vector outputs stroke a
+// centerline (hidden lines): u runs from u_start by arc length, and each open end gets room for
+// its cap (a half-disc for round, a square for square, none for butt), which the preview's
+// dashes trim. Empty when the points have fewer than two distinct ones.
+QuadStrip centerline_strip(std::span<const glm::dvec2> points, bool closed, double width_px, double u_start,
+                           core::LineCap cap, const QuadStripOptions& options);
 
 }  // namespace inkline::gl::internal

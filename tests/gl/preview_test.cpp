@@ -181,6 +181,60 @@ TEST(Preview, StylesColourAndDashTheirStrokes) {
     EXPECT_GE(test::iou(coverage(dots), coverage(dots_png)), kMinCoverageIou);
 }
 
+// Hidden lines in the preview as the vector outputs draw them: plain dashed lines at half the
+// ink's opacity, the default dashes (3 and 2 line widths) and a style's dots with round caps.
+TEST(Preview, HiddenLinesAreDashedAsCairoDrawsThem) {
+    core::Mesh mesh = test::cube(0.8);
+    core::Scene scene = test::scene_for({.eye = {2.2, 1.7, 3.0}, .fov_y_deg = 40.0, .size = 384}, mesh);
+    scene.lines.hidden = true;
+    // Alpha above a fifth: the hidden lines' half opacity counts.
+    const auto faint = [](const gl::PreviewImage& image) {
+        std::vector<uint8_t> ink(size_t(image.width) * size_t(image.height));
+        for (size_t i = 0; i < ink.size(); ++i) ink[i] = image.rgba[4 * i + 3] > 51;
+        return ink;
+    };
+    const auto render = [&](bool hidden) {
+        scene.lines.hidden = hidden;
+        test::Drawn drawn = test::draw(mesh, scene);
+        const auto context = context_or_skip(gl::Backend::kAuto);
+        gl::PreviewRenderer renderer(*context, scene.brush, solid_tip());
+        const gl::PreviewImage image = renderer.render(drawn.lines, drawn.strokes);
+        const std::string png = output::png_image(output::brush_drawing(drawn.lines, drawn.strokes, {}, false));
+        return std::pair{image, png};
+    };
+    const auto [plain, plain_png] = render(false);
+    const auto [dashed, dashed_png] = render(true);
+    // Pixels inked only with the hidden lines, and of those the ones at half opacity (inside a
+    // dash, off its antialiased edge).
+    size_t hidden_px = 0, half_px = 0;
+    for (size_t i = 3; i < dashed.rgba.size(); i += 4) {
+        if (plain.rgba[i] != 0 || dashed.rgba[i] <= 51) continue;
+        ++hidden_px;
+        half_px += std::abs(int(dashed.rgba[i]) - 128) <= 2;
+    }
+    const double overlap = test::iou(faint(dashed), test::png_coverage(dashed_png, test::Ink::kFaint));
+    std::printf("[ preview ] hidden lines: %zu px, %zu at half opacity, IoU with Cairo %.4f\n", hidden_px, half_px,
+                overlap);
+    EXPECT_GT(hidden_px, 200u) << "the cube's three hidden edges, dashed";
+    EXPECT_GT(half_px, hidden_px / 3) << "at half the ink's opacity";
+    EXPECT_GE(overlap, kMinCoverageIou);
+
+    // The technical look's rule: dots 5 px apart, 2.4 px wide, round caps, in a colour of its own.
+    scene.styles.assign(1, {});
+    scene.styles[0].name = "hidden";
+    scene.styles[0].select.kinds = core::kSelectHidden;
+    scene.styles[0].set.dash_px = std::vector<double>{0.0, 5.0};
+    scene.styles[0].set.line_width_px = 2.4;
+    scene.styles[0].set.color = glm::dvec3(0.8, 0.05, 0.05);
+    const auto [dots, dots_png] = render(true);
+    size_t red = 0;
+    for (size_t i = 0; i < dots.rgba.size(); i += 4) red += dots.rgba[i + 3] > 51 && dots.rgba[i] > 2 * dots.rgba[i + 2];
+    const double dots_overlap = test::iou(faint(dots), test::png_coverage(dots_png, test::Ink::kFaint));
+    std::printf("[ preview ] hidden dots: %zu red px, IoU with Cairo %.4f\n", red, dots_overlap);
+    EXPECT_GT(red, 100u);
+    EXPECT_GE(dots_overlap, kMinCoverageIou);
+}
+
 TEST(Preview, EglAndOsmesaGiveTheSameImage) {
     const Frame frame = torus_frame();
     const gl::BrushTip tip = gl::default_brush_tip();
