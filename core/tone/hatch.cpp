@@ -39,6 +39,13 @@ constexpr double kLongCrossingPx = 24.0;
 constexpr double kPointSpacingPx = 4.0;
 // The most points added across one face by one line.
 constexpr int kMaxPointsAcrossFace = 4096;
+// Where a drawn run of a line meets a point that is not drawn, the line runs on towards it to
+// where it stops being drawable (fades out, meets a stroke's ink or the image's edge, goes
+// behind something), found by halving the segment until it is shorter than kEndPrecisionPx on
+// the image, at most kEndSteps times (0.4 px on the longest segments, kLongCrossingPx). Without
+// it a line would stop at its last drawable point, short of a stroke by up to a whole segment.
+constexpr double kEndPrecisionPx = 0.4;
+constexpr int kEndSteps = 6;
 
 uint32_t level_of(uint64_t plane) {
     if (plane == 0) return 0;
@@ -499,7 +506,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
         // Which points are drawn: in the image, faded in, off the strokes' ink, not hidden (one
         // batch of occlusion queries for the whole family).
         std::vector<glm::dvec2> px(points.size());
-        std::vector<uint8_t> drawn(points.size(), 0);
+        std::vector<uint8_t> drawn(points.size(), 0), hidden(points.size(), 0);
         queries.clear();
         std::vector<uint32_t> queried;
         for (uint32_t i = 0; i < points.size(); ++i) {
@@ -521,6 +528,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
         for (size_t k = 0; k < queried.size(); ++k) {
             if (occluded[k]) {
                 ++stats_.occluded;
+                hidden[queried[k]] = 1;
             } else {
                 drawn[queried[k]] = 1;
             }
@@ -528,13 +536,33 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
 
         // Each chain's drawn runs. A loop drawn all round is closed where it began; else it
         // starts at a point not drawn, so that its drawn runs are whole.
-        for (const Run& c : chains) {
-            std::vector<uint32_t> at(c.count);
+        struct DrawnRun {
+            uint32_t chain;
+            uint32_t begin, count;            // its points (indices in `points`) in run_points
+            int32_t before = -1, after = -1;  // its ends' extensions in `ends`, -1: none
+        };
+        // A run's end runs on from its last drawn point `from` towards the next point `to`
+        // (not drawn) across `face`, as far as t = lo of the way (hi: the least t known not to
+        // be drawable). `behind`: `to` is hidden, so the way there asks the occlusion test.
+        struct RunEnd {
+            uint32_t from, to, face;
+            bool behind = false;
+            int steps = 0;  // halvings to go
+            double lo = 0.0, hi = 1.0;
+        };
+        std::vector<DrawnRun> runs;
+        std::vector<uint32_t> run_points, at;
+        std::vector<RunEnd> ends;
+        for (uint32_t r = 0; r < chains.size(); ++r) {
+            const Run& c = chains[r];
+            at.resize(c.count);
             std::iota(at.begin(), at.end(), c.first);
+            bool closed = false;
             if (c.loop) {
                 const auto gap = std::find_if(at.begin(), at.end(), [&](uint32_t i) { return !drawn[i]; });
                 if (gap == at.end()) {
                     at.push_back(c.first);
+                    closed = true;
                 } else {
                     std::rotate(at.begin(), gap, at.end());
                 }
@@ -543,24 +571,110 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                 while (i < at.size() && !drawn[at[i]]) ++i;
                 size_t j = i;
                 while (j < at.size() && drawn[at[j]]) ++j;
-                if (j - i >= 2) {
-                    Hatch hatch;
-                    hatch.family = f;
-                    hatch.plane = c.plane;
-                    hatch.level = level_of(hatch.plane);
-                    for (size_t k = i; k < j; ++k) {
-                        const ChainPoint& cp = points[at[k]];
-                        hatch.points_px.push_back(px[at[k]]);
-                        hatch.points_world.emplace_back(world_from_object * glm::dvec4(cp.p_object, 1.0));
-                        hatch.edges.push_back(cp.edge);
-                        hatch.faces.push_back(cp.face);
-                        hatch.width_px.push_back(cp.width);
+                if (j > i) {
+                    DrawnRun run{r, uint32_t(run_points.size()), uint32_t(j - i)};
+                    run_points.insert(run_points.end(), at.begin() + i, at.begin() + j);
+                    // The segment between two points lies on the face of the later one's (in
+                    // chain order). A loop's last point is followed by its first (not drawn).
+                    if (i > 0) {
+                        run.before = int32_t(ends.size());
+                        ends.push_back({at[i], at[i - 1], points[at[i]].face, hidden[at[i - 1]] != 0});
                     }
-                    hatch.outline = {ribbon(hatch.points_px, hatch.width_px)};
-                    out.push_back(std::move(hatch));
+                    const bool wraps = c.loop && !closed && j == at.size();
+                    if (j < at.size() || wraps) {
+                        const uint32_t next = j < at.size() ? at[j] : at[0];
+                        run.after = int32_t(ends.size());
+                        ends.push_back({at[j - 1], next, points[next].face, hidden[next] != 0});
+                    }
+                    runs.push_back(std::move(run));
                 }
                 i = j;
             }
+        }
+        for (RunEnd& e : ends) {
+            const double length_px = glm::distance(px[e.from], px[e.to]);
+            e.steps = length_px > kEndPrecisionPx
+                          ? std::min(kEndSteps, int(std::ceil(std::log2(length_px / kEndPrecisionPx))))
+                          : 0;
+        }
+        // The point t of the way from a run end's drawn point to the next, inside its face.
+        const auto end_point = [&](const RunEnd& e, double t) {
+            const ChainPoint& a = points[e.from];
+            const ChainPoint& b = points[e.to];
+            return ChainPoint{face_edges_[e.face].x, a.p_object + t * (b.p_object - a.p_object),
+                              a.width + t * (b.width - a.width), e.face, false};
+        };
+        // Halving: towards a point that fades, leaves the image or meets the ink, by those
+        // tests alone; towards a hidden one, with the occlusion test too (a batch a step).
+        const auto occlusion_query = [&](const RunEnd& e, const ChainPoint& cp) {
+            return OcclusionQuery{.p_object = cp.p_object, .edge = cp.edge, .own_faces = std::span(&e.face, 1)};
+        };
+        for (int step = 0; step < kEndSteps && !ends.empty(); ++step) {
+            queries.clear();
+            queried.clear();
+            for (uint32_t k = 0; k < ends.size(); ++k) {
+                RunEnd& e = ends[k];
+                if (step >= e.steps) continue;
+                const double t = 0.5 * (e.lo + e.hi);
+                const ChainPoint cp = end_point(e, t);
+                const glm::dvec2 at_px = projection.pixel(cp.p_object);
+                if (cp.width < kMinWeight * width || !projection.inside_image(at_px) ||
+                    ink.touches(at_px, 0.5 * cp.width)) {
+                    e.hi = t;
+                } else if (!e.behind) {
+                    e.lo = t;
+                } else {
+                    queries.push_back(occlusion_query(e, cp));
+                    queried.push_back(k);
+                }
+            }
+            occluded.assign(queries.size(), 0);
+            if (!queries.empty()) occlusion.occluded(eye, queries, occluded);
+            for (size_t q = 0; q < queried.size(); ++q) {
+                RunEnd& e = ends[queried[q]];
+                (occluded[q] ? e.hi : e.lo) = 0.5 * (e.lo + e.hi);
+            }
+        }
+        // The ends found without the occlusion test are tested once: one that something hides
+        // (it stood in front of the way to a point left out for the ink) is not run on.
+        queries.clear();
+        queried.clear();
+        for (uint32_t k = 0; k < ends.size(); ++k) {
+            if (ends[k].behind || !(ends[k].lo > 0.0)) continue;
+            queries.push_back(occlusion_query(ends[k], end_point(ends[k], ends[k].lo)));
+            queried.push_back(k);
+        }
+        occluded.assign(queries.size(), 0);
+        if (!queries.empty()) occlusion.occluded(eye, queries, occluded);
+        for (size_t q = 0; q < queried.size(); ++q) {
+            if (occluded[q]) ends[queried[q]].lo = 0.0;
+        }
+
+        // The runs of two points and more, their ends run on.
+        for (const DrawnRun& run : runs) {
+            const bool before = run.before >= 0 && ends[size_t(run.before)].lo > 0.0;
+            const bool after = run.after >= 0 && ends[size_t(run.after)].lo > 0.0;
+            if (run.count + (before ? 1 : 0) + (after ? 1 : 0) < 2) continue;
+            Hatch hatch;
+            hatch.family = f;
+            hatch.plane = chains[run.chain].plane;
+            hatch.level = level_of(hatch.plane);
+            const auto add = [&](const ChainPoint& cp, const glm::dvec2& at_px) {
+                hatch.points_px.push_back(at_px);
+                hatch.points_world.emplace_back(world_from_object * glm::dvec4(cp.p_object, 1.0));
+                hatch.edges.push_back(cp.edge);
+                hatch.faces.push_back(cp.face);
+                hatch.width_px.push_back(cp.width);
+            };
+            const auto add_end = [&](int32_t end) {
+                const ChainPoint cp = end_point(ends[size_t(end)], ends[size_t(end)].lo);
+                add(cp, projection.pixel(cp.p_object));
+            };
+            if (before) add_end(run.before);
+            for (uint32_t k = run.begin; k < run.begin + run.count; ++k) add(points[run_points[k]], px[run_points[k]]);
+            if (after) add_end(run.after);
+            hatch.outline = {ribbon(hatch.points_px, hatch.width_px)};
+            out.push_back(std::move(hatch));
         }
     }
     return out;

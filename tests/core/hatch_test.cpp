@@ -282,6 +282,79 @@ TEST(Hatch, ALargeFaceIsHatchedPointByPointUnderPerspective) {
     EXPECT_LE(double(hidden), 0.005 * double(points));
 }
 
+// Lines run up to the strokes: a box's sides, each of one tone and two triangles, drawn with
+// their outline and creases, are hatched as evenly next to the strokes as in their middles. A
+// line that crosses a triangle in one short segment (where the diagonal meets an edge) ends
+// where it meets the stroke's ink, not at its last point before it: before, those corners of
+// each side were left blank.
+TEST(Hatch, LinesRunUpToTheStrokesInk) {
+    const core::Mesh cube = test::cube(0.8);
+    core::Scene scene = test::scene_for({.eye = {2.2, 1.7, 3.0}, .fov_y_deg = 40.0, .size = 512}, cube);
+    scene.light = {.direction = glm::normalize(glm::dvec3(-0.3, -1.0, -0.55))};
+    scene.tone = {.mode = core::ToneMode::kHatch, .curve = {.min = 0.3, .max = 0.3}, .line_width_px = 0.8,
+                  .direction = glm::normalize(glm::dvec3(0.2, 1.0, 0.1))};
+    const core::FrameResult r = run_frames(scene, cube).front();
+    ASSERT_FALSE(r.tone.hatches.empty());
+    const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
+    double half_ink = 0.0;
+    for (const core::Stroke& stroke : r.strokes.strokes) {
+        for (const double w : stroke.centerline_width) half_ink = std::max(half_ink, 0.5 * w);
+    }
+    const std::vector<double> coverage = ring_coverage(r.tone.hatches, scene.image);
+    // Each visible side: its corners on the image, and the mean ink of its pixels between
+    // `near` and `far` px inside its edges.
+    size_t sides = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        glm::dvec3 n(0.0);
+        n[axis] = 1.0;  // the sides facing +x, +y, +z face the eye
+        glm::dvec2 corner[4];
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        const double s[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+        for (int k = 0; k < 4; ++k) {
+            glm::dvec3 p = 0.8 * n;
+            p[u] = 0.8 * s[k][0];
+            p[v] = 0.8 * s[k][1];
+            corner[k] = projection.pixel(p);
+        }
+        const auto inside_by = [&](const glm::dvec2& p) {  // least distance inside the quad's edges
+            double least = 1e300;
+            const double orientation =
+                (corner[1].x - corner[0].x) * (corner[2].y - corner[0].y) - (corner[1].y - corner[0].y) * (corner[2].x - corner[0].x);
+            for (int k = 0; k < 4; ++k) {
+                const glm::dvec2 a = corner[k], b = corner[(k + 1) % 4];
+                const double cross = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+                least = std::min(least, (orientation > 0.0 ? cross : -cross) / glm::length(b - a));
+            }
+            return least;
+        };
+        const auto mean_ink = [&](double near, double far) {
+            double sum = 0.0;
+            size_t count = 0;
+            for (int y = 0; y < scene.image.height; ++y) {
+                for (int x = 0; x < scene.image.width; ++x) {
+                    const double d = inside_by({x + 0.5, y + 0.5});
+                    if (d < near || d >= far) continue;
+                    sum += coverage[size_t(y) * size_t(scene.image.width) + size_t(x)];
+                    ++count;
+                }
+            }
+            return std::pair{count > 0 ? sum / double(count) : 0.0, count};
+        };
+        const double edge_band = half_ink + 1.0;
+        const auto [near_ink, near_px] = mean_ink(edge_band, edge_band + 6.0);
+        const auto [middle_ink, middle_px] = mean_ink(edge_band + 6.0, 1e300);
+        std::printf("side +%c: ink %.4f within 6 px of the strokes' ink (%zu px), %.4f inside (%zu px)\n", "xyz"[axis],
+                    near_ink, near_px, middle_ink, middle_px);
+        if (near_px < 500 || middle_px < 500) continue;
+        ++sides;
+        EXPECT_NEAR(near_ink, 0.3, 0.03) << "side +" << "xyz"[axis];
+        EXPECT_NEAR(middle_ink, 0.3, 0.03) << "side +" << "xyz"[axis];
+        // (Lines that stopped at their last point before the ink left 0.035 less next to it.)
+        EXPECT_NEAR(near_ink, middle_ink, 0.005) << "side +" << "xyz"[axis];
+    }
+    EXPECT_EQ(sides, 3u);
+}
+
 // Each hatch lies on one plane across its family's direction: the world points (the object does
 // not move) all at the same height along it.
 TEST(Hatch, LinesLieOnTheirPlanes) {
