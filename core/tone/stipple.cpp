@@ -12,6 +12,7 @@
 #include <glm/mat3x3.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -351,10 +352,57 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
             lit_tone.tone = std::isnan(lit_tone.intensity) ? darkest : tone_of(lit_tone.intensity, scene_curve);
         }
     });
+    // The largest area scale over foreshortening at the vertices of the part of a face a dot can
+    // be drawn on, as the faces' limits below take it at their corners: the face clipped in clip
+    // space to the near plane and the image's sides, each vertex's object-space point carried
+    // along; 0 where nothing is left.
+    struct ClipVertex {
+        glm::dvec4 clip;
+        glm::dvec3 p;
+    };
+    const auto visible_part_scale = [&](const glm::uvec3& t, const glm::dvec3& unit_n) {
+        std::array<ClipVertex, 8> polygon, clipped;  // 3 corners, at most one more per plane
+        size_t count = 3;
+        for (int c = 0; c < 3; ++c) {
+            const glm::dvec3 p(mesh.positions[t[c]]);
+            polygon[size_t(c)] = {m * glm::dvec4(p, 1.0), p};
+        }
+        const auto inside_by = [&](int plane, const glm::dvec4& c) {
+            switch (plane) {
+                case 0: return projection.depth(c) - projection.near();
+                case 1: return c.w + c.x;
+                case 2: return c.w - c.x;
+                case 3: return c.w + c.y;
+                default: return c.w - c.y;
+            }
+        };
+        for (int plane = 0; plane < 5 && count > 0; ++plane) {
+            size_t out = 0;
+            for (size_t i = 0; i < count; ++i) {
+                const ClipVertex& a = polygon[i];
+                const ClipVertex& b = polygon[(i + 1) % count];
+                const double da = inside_by(plane, a.clip), db = inside_by(plane, b.clip);
+                if (da >= 0.0) clipped[out++] = a;
+                if ((da >= 0.0) != (db >= 0.0)) {
+                    const double s = da / (da - db);
+                    clipped[out++] = {a.clip + s * (b.clip - a.clip), a.p + s * (b.p - a.p)};
+                }
+            }
+            polygon = clipped;
+            count = out;
+        }
+        double most = 0.0;
+        for (size_t i = 0; i < count; ++i) {
+            const double cos_theta = std::abs(glm::dot(unit_n, glm::normalize(eye.toward(polygon[i].p))));
+            most = std::max(most, std::abs(glm::dot(jacobian(polygon[i].clip), unit_n)) / shrink(cos_theta));
+        }
+        return most;
+    };
     // Per face, the most samples any point of it can ask for: the darkest tone of its corners
     // (the interpolated normal's light is never below its corners' least) at the largest area
-    // scale of its corners (with a margin for the variation across a face under perspective).
-    // Zero for faces turned away, behind the camera or outside the image.
+    // scale of its corners (with a margin for the variation across a face under perspective), or
+    // where a corner is behind the camera or outside the image, of its part inside them. Zero
+    // for faces turned away and faces of which nothing is in view.
     constexpr double kScaleMargin = 1.1;
     std::vector<double>& face_limit = face_limit_;
     face_limit.assign(mesh.triangles.size(), 0.0);
@@ -369,22 +417,22 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
             const double n_len = glm::length(n);
             if (!(n_len > 0.0) || glm::dot(n, eye.toward(p0)) <= 0.0) continue;
             const glm::dvec3 unit_n = n / n_len;
-            glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
             double scale = 0.0, tone = 0.0;
-            bool in_front = true;
-            for (int c = 0; c < 3 && in_front; ++c) {
+            bool in_view = true;  // every corner in front of the camera and inside the image
+            for (int c = 0; c < 3; ++c) {
                 const VertexView& view = vertex_view[t[c]];
                 const NormalTone& lit_tone = normal_tone[corners[c]];
-                in_front = view.in_front;
-                if (!in_front) break;
-                lo = glm::min(lo, view.px);
-                hi = glm::max(hi, view.px);
-                scale = std::max(scale, std::abs(glm::dot(view.jacobian, unit_n)) / shrink(std::abs(glm::dot(unit_n, view.to_eye))));
+                in_view = in_view && view.in_front && projection.inside_image(view.px);
+                if (in_view) {
+                    scale = std::max(scale, std::abs(glm::dot(view.jacobian, unit_n)) /
+                                                shrink(std::abs(glm::dot(unit_n, view.to_eye))));
+                }
                 tone = std::max(tone, *curve == scene_curve              ? lit_tone.tone
                                       : std::isnan(lit_tone.intensity) ? std::max(curve->min, curve->max)
                                                                        : tone_of(lit_tone.intensity, *curve));
             }
-            if (!in_front || hi.x < 0.0 || hi.y < 0.0 || lo.x > image.width || lo.y > image.height) continue;
+            if (!in_view) scale = visible_part_scale(t, unit_n);
+            if (!(scale > 0.0)) continue;
             face_limit[f] = dot_density(tone, radius) * kScaleMargin * scale * area / kappa;
         }
     });
