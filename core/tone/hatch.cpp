@@ -5,6 +5,7 @@
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
 #include "core/tone/internal/tone_light.h"
+#include "core/tone/internal/view_clip.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -275,30 +276,46 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
             const double h[3] = {family.h[t.x], family.h[t.y], family.h[t.z]};
             const double h_lo = std::min({h[0], h[1], h[2]}), h_hi = std::max({h[0], h[1], h[2]});
             if (!(h_hi > h_lo)) return;
-            glm::dvec2 q[3];
-            for (int c = 0; c < 3; ++c) {
-                if (!projection.in_front(vertex_clip[t[c]])) return;
-                q[c] = projection.pixel_from_clip(vertex_clip[t[c]]);
+            const bool in_front = projection.in_front(vertex_clip[t.x]) && projection.in_front(vertex_clip[t.y]) &&
+                                  projection.in_front(vertex_clip[t.z]);
+            // A face reaching behind the camera is hatched on its part in view (object space: in
+            // screen space h is the image position, which a point behind the camera has not).
+            if (!in_front && screen) return;
+            internal::ViewPolygon part;
+            if (in_front) {
+                glm::dvec2 q[3];
+                for (int c = 0; c < 3; ++c) q[c] = projection.pixel_from_clip(vertex_clip[t[c]]);
+                const glm::dvec2 box_lo = glm::min(q[0], glm::min(q[1], q[2]));
+                const glm::dvec2 box_hi = glm::max(q[0], glm::max(q[1], q[2]));
+                if (box_hi.x < 0.0 || box_hi.y < 0.0 || box_lo.x > image.width || box_lo.y > image.height) return;
+                const glm::dvec2 a = q[1] - q[0], b = q[2] - q[0];
+                if (std::abs(a.x * b.y - a.y * b.x) < 1e-12) return;  // edge-on
+            } else {
+                part = internal::part_in_view(projection, p[0], p[1], p[2]);
+                if (part.count < 3) return;
             }
-            const glm::dvec2 box_lo = glm::min(q[0], glm::min(q[1], q[2]));
-            const glm::dvec2 box_hi = glm::max(q[0], glm::max(q[1], q[2]));
-            if (box_hi.x < 0.0 || box_hi.y < 0.0 || box_lo.x > image.width || box_lo.y > image.height) return;
-
-            const glm::dvec2 a = q[1] - q[0], b = q[2] - q[0];
-            if (std::abs(a.x * b.y - a.y * b.x) < 1e-12) return;  // edge-on
             const FaceFrame frame(mesh, t, family.h);
             if (!frame.valid()) return;
 
             // The finest level any point of the face asks for: at its darkest corner, where h's
-            // gradient on the image is least (the lines of level 0 lie step0 / |g| px apart).
+            // gradient on the image is least (the lines of level 0 lie step0 / |g| px apart); for
+            // a face reaching behind the camera, its darkest corner's tone with the least gradient
+            // of its part in view.
             int finest = -1;
+            double darkest = 0.0;
             for (int c = 0; c < 3; ++c) {
                 const double intensity = normal_intensity[corners[c]];
                 const double tone = curve == scene_curve   ? normal_tone[corners[c]]
                                     : std::isnan(intensity) ? 0.0
                                                             : tone_of(intensity, curve);
+                darkest = std::max(darkest, tone);
+                if (!in_front) continue;
                 const double gradient = gradient_at(frame, vertex_clip[t[c]]);
                 finest = std::max(finest, finest_level(family_tone(tone, f, options_), family.step0, gradient, width));
+            }
+            for (size_t k = 0; k < part.count; ++k) {
+                const double gradient = gradient_at(frame, part.vertices[k].clip);
+                finest = std::max(finest, finest_level(family_tone(darkest, f, options_), family.step0, gradient, width));
             }
             if (finest < 0) return;
             // Planes of levels up to `finest` with h_lo < c <= h_hi (a corner on a plane counts
@@ -340,8 +357,12 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                     const glm::dvec3& n1 = normals.normals[normals.at_vertex(face, t, ends.y)];
                     const glm::dvec3 normal = n0 + along * (n1 - n0);
                     const double tone = family_tone(tone_at(line.points[found], normal, curve), f, options_);
-                    const double gradient = gradient_at(frame, projection.clip(line.points[found]));
-                    line.width[found] = width * line_weight(level_of(plane), tone, family.step0, gradient, width);
+                    const glm::dvec4 point_clip = projection.clip(line.points[found]);
+                    // (A point behind the camera has no width: it is never drawn.)
+                    line.width[found] =
+                        projection.in_front(point_clip)
+                            ? width * line_weight(level_of(plane), tone, family.step0, gradient_at(frame, point_clip), width)
+                            : NAN;
                     ++found;
                 }
                 if (found == 2) r_lines.push_back(line);
@@ -408,7 +429,17 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
             // None where the line has faded out at both ends (its width follows the tone and the
             // spacing, which change evenly along it).
             if (a.width < kMinWeight * width && b.width < kMinWeight * width) return;
-            const glm::dvec4 clip_a = projection.clip(a.p_object), clip_b = projection.clip(b.p_object);
+            glm::dvec3 from = a.p_object, to = b.p_object;
+            glm::dvec4 clip_a = projection.clip(from), clip_b = projection.clip(to);
+            if (!projection.in_front(clip_a) || !projection.in_front(clip_b)) {
+                // A segment reaching behind the camera: its points go on its stretch in view.
+                double s0 = 0.0, s1 = 1.0;
+                if (!internal::segment_in_view(projection, a.p_object, b.p_object, s0, s1)) return;
+                from = a.p_object + s0 * (b.p_object - a.p_object);
+                to = a.p_object + s1 * (b.p_object - a.p_object);
+                clip_a = projection.clip(from);
+                clip_b = projection.clip(to);
+            }
             const double length_px =
                 glm::distance(projection.pixel_from_clip(clip_a), projection.pixel_from_clip(clip_b));
             if (!(length_px > kLongCrossingPx)) return;
@@ -422,7 +453,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                 // Evenly on the image: the point of the segment at share s of its image.
                 const double s = double(i) / n;
                 const double along = s * clip_a.w / (s * clip_a.w + (1.0 - s) * clip_b.w);
-                const glm::dvec3 p = a.p_object + along * (b.p_object - a.p_object);
+                const glm::dvec3 p = from + along * (to - from);
                 const glm::dvec2 b12 = frame.barycentric(p);
                 const std::span<const glm::dvec3> at = normals.normals;
                 const glm::dvec3 normal = (1.0 - b12.x - b12.y) * at[g.x] + b12.x * at[g.y] + b12.y * at[g.z];
@@ -511,7 +542,12 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
         std::vector<uint32_t> queried;
         for (uint32_t i = 0; i < points.size(); ++i) {
             const ChainPoint& cp = points[i];
-            px[i] = projection.pixel(cp.p_object);
+            const glm::dvec4 clip = projection.clip(cp.p_object);
+            if (!projection.in_front(clip)) {
+                px[i] = glm::dvec2(NAN);
+                continue;
+            }
+            px[i] = projection.pixel_from_clip(clip);
             if (cp.width < kMinWeight * width || !projection.inside_image(px[i])) continue;
             if (ink.touches(px[i], 0.5 * cp.width)) {
                 ++stats_.inked;
@@ -592,8 +628,9 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
             }
         }
         for (RunEnd& e : ends) {
-            const double length_px = glm::distance(px[e.from], px[e.to]);
-            e.steps = length_px > kEndPrecisionPx
+            const double length_px = glm::distance(px[e.from], px[e.to]);  // NaN towards a point behind the camera
+            e.steps = !std::isfinite(length_px) ? kEndSteps
+                      : length_px > kEndPrecisionPx
                           ? std::min(kEndSteps, int(std::ceil(std::log2(length_px / kEndPrecisionPx))))
                           : 0;
         }
@@ -601,8 +638,9 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
         const auto end_point = [&](const RunEnd& e, double t) {
             const ChainPoint& a = points[e.from];
             const ChainPoint& b = points[e.to];
+            const double b_width = std::isfinite(b.width) ? b.width : a.width;  // (behind the camera: none)
             return ChainPoint{face_edges_[e.face].x, a.p_object + t * (b.p_object - a.p_object),
-                              a.width + t * (b.width - a.width), e.face, false};
+                              a.width + t * (b_width - a.width), e.face, false};
         };
         // Halving: towards a point that fades, leaves the image or meets the ink, by those
         // tests alone; towards a hidden one, with the occlusion test too (a batch a step).
@@ -617,8 +655,9 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                 if (step >= e.steps) continue;
                 const double t = 0.5 * (e.lo + e.hi);
                 const ChainPoint cp = end_point(e, t);
-                const glm::dvec2 at_px = projection.pixel(cp.p_object);
-                if (cp.width < kMinWeight * width || !projection.inside_image(at_px) ||
+                const glm::dvec4 at_clip = projection.clip(cp.p_object);
+                const glm::dvec2 at_px = projection.pixel_from_clip(at_clip);
+                if (!projection.in_front(at_clip) || cp.width < kMinWeight * width || !projection.inside_image(at_px) ||
                     ink.touches(at_px, 0.5 * cp.width)) {
                     e.hi = t;
                 } else if (!e.behind) {

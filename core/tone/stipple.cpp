@@ -6,13 +6,13 @@
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
 #include "core/tone/internal/tone_light.h"
+#include "core/tone/internal/view_clip.h"
 #include "core/internal/key_table.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -353,48 +353,16 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
         }
     });
     // The largest area scale over foreshortening at the vertices of the part of a face a dot can
-    // be drawn on, as the faces' limits below take it at their corners: the face clipped in clip
-    // space to the near plane and the image's sides, each vertex's object-space point carried
-    // along; 0 where nothing is left.
-    struct ClipVertex {
-        glm::dvec4 clip;
-        glm::dvec3 p;
-    };
+    // be drawn on (internal::part_in_view), as the faces' limits below take it at their corners;
+    // 0 where nothing of it is in view.
     const auto visible_part_scale = [&](const glm::uvec3& t, const glm::dvec3& unit_n) {
-        std::array<ClipVertex, 8> polygon, clipped;  // 3 corners, at most one more per plane
-        size_t count = 3;
-        for (int c = 0; c < 3; ++c) {
-            const glm::dvec3 p(mesh.positions[t[c]]);
-            polygon[size_t(c)] = {m * glm::dvec4(p, 1.0), p};
-        }
-        const auto inside_by = [&](int plane, const glm::dvec4& c) {
-            switch (plane) {
-                case 0: return projection.depth(c) - projection.near();
-                case 1: return c.w + c.x;
-                case 2: return c.w - c.x;
-                case 3: return c.w + c.y;
-                default: return c.w - c.y;
-            }
-        };
-        for (int plane = 0; plane < 5 && count > 0; ++plane) {
-            size_t out = 0;
-            for (size_t i = 0; i < count; ++i) {
-                const ClipVertex& a = polygon[i];
-                const ClipVertex& b = polygon[(i + 1) % count];
-                const double da = inside_by(plane, a.clip), db = inside_by(plane, b.clip);
-                if (da >= 0.0) clipped[out++] = a;
-                if ((da >= 0.0) != (db >= 0.0)) {
-                    const double s = da / (da - db);
-                    clipped[out++] = {a.clip + s * (b.clip - a.clip), a.p + s * (b.p - a.p)};
-                }
-            }
-            polygon = clipped;
-            count = out;
-        }
+        const internal::ViewPolygon part = internal::part_in_view(
+            projection, glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]), glm::dvec3(mesh.positions[t.z]));
         double most = 0.0;
-        for (size_t i = 0; i < count; ++i) {
-            const double cos_theta = std::abs(glm::dot(unit_n, glm::normalize(eye.toward(polygon[i].p))));
-            most = std::max(most, std::abs(glm::dot(jacobian(polygon[i].clip), unit_n)) / shrink(cos_theta));
+        for (size_t i = 0; i < part.count; ++i) {
+            const internal::ViewVertex& v = part.vertices[i];
+            const double cos_theta = std::abs(glm::dot(unit_n, glm::normalize(eye.toward(v.p))));
+            most = std::max(most, std::abs(glm::dot(jacobian(v.clip), unit_n)) / shrink(cos_theta));
         }
         return most;
     };

@@ -282,6 +282,53 @@ TEST(Hatch, ALargeFaceIsHatchedPointByPointUnderPerspective) {
     EXPECT_LE(double(hidden), 0.005 * double(points));
 }
 
+// A ground plane of two triangles running from far ahead to behind the camera, as a shot's
+// ground does: hatched where it is seen, evenly in perspective (each face was left unshaded while
+// a corner of it lay behind the camera).
+TEST(Hatch, AGroundPlaneRunningBehindTheCameraIsHatchedWhereItIsSeen) {
+    core::Mesh plane;
+    plane.positions = {{-6.0f, 0.0f, -14.0f}, {6.0f, 0.0f, -14.0f}, {6.0f, 0.0f, 8.0f}, {-6.0f, 0.0f, 8.0f}};
+    plane.triangles = {{0, 2, 1}, {0, 3, 2}};
+    core::Scene scene = test::scene_for({.eye = {0.0, 1.2, 3.0}, .fov_y_deg = 50.0, .size = 480}, plane);
+    scene.camera.pose.target = {0.0, 0.0, -3.0};
+    scene.image = {480, 320};
+    scene.camera.near = 0.1;
+    scene.camera.far = 100.0;
+    scene.lines.silhouette = scene.lines.boundary = scene.lines.crease = scene.lines.intersection = false;
+    scene.tone = {.mode = core::ToneMode::kHatch, .curve = {.min = 0.3, .max = 0.3}, .line_width_px = 1.0,
+                  .direction = {0.0, 0.0, 1.0}};
+    const core::FrameResult r = run_frames(scene, plane).front();
+    ASSERT_FALSE(r.tone.hatches.empty()) << "the ground runs behind the camera: it was left unshaded";
+    const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
+    double side_row = 0.0;
+    for (double z = -14.0; z <= 2.9; z += 0.01) {
+        for (const double x : {-6.0, 6.0}) {
+            const glm::dvec2 px = projection.pixel({x, 0.0, z});
+            if (px.x >= 0.0 && px.x <= scene.image.width) side_row = std::max(side_row, px.y);
+        }
+    }
+    const int first = int(std::ceil(side_row)) + 2, last = scene.image.height;
+    ASSERT_LT(first, last - 40);
+    const std::vector<double> coverage = ring_coverage(r.tone.hatches, scene.image);
+    for (int band = 0; band < 4; ++band) {
+        const int r0 = first + (last - first) * band / 4, r1 = first + (last - first) * (band + 1) / 4;
+        double sum = 0.0;
+        for (int row = r0; row < r1; ++row) {
+            for (int col = 0; col < scene.image.width; ++col) sum += coverage[size_t(row) * size_t(scene.image.width) + size_t(col)];
+        }
+        const double mean = sum / double((r1 - r0) * scene.image.width);
+        std::printf("rows %d-%d: ink %.4f against the tone 0.3\n", r0, r1, mean);
+        EXPECT_NEAR(mean, 0.3, 0.03) << "rows " << r0 << "-" << r1;
+    }
+    // Every drawn point is in front of the camera and on the image.
+    for (const core::Hatch& hatch : r.tone.hatches) {
+        for (const glm::dvec2& p : hatch.points_px) ASSERT_TRUE(projection.inside_image(p)) << p.x << ", " << p.y;
+        for (const glm::dvec3& p : hatch.points_world) {
+            ASSERT_TRUE(projection.in_front(projection.clip(glm::dvec3(glm::inverse(r.world_from_object) * glm::dvec4(p, 1.0)))));
+        }
+    }
+}
+
 // Lines run up to the strokes: a box's sides, each of one tone and two triangles, drawn with
 // their outline and creases, are hatched as evenly next to the strokes as in their middles. A
 // line that crosses a triangle in one short segment (where the diagonal meets an edge) ends
