@@ -9,6 +9,7 @@
 #include "core/tone/tone.h"
 #include "core/visibility/occlusion_source.h"
 #include "core/visibility/raycast_visibility.h"
+#include "tests/support/ground_plane.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/segment_occlusion.h"
 #include "tests/support/shapes.h"
@@ -223,48 +224,31 @@ TEST(Hatch, ScreenSpaceLinesStayOnThePage) {
     }
 }
 
+// The ground hatched at a constant tone of 0.3 (lines across z), its ink within 10% of the tone in
+// four bands of rows from far to near; the scene it was drawn with.
+core::Scene ground_hatched_evenly(const core::Mesh& plane) {
+    core::Scene scene = test::ground_scene(plane, {480, 320});
+    scene.tone = {.mode = core::ToneMode::kHatch, .curve = {.min = 0.3, .max = 0.3}, .line_width_px = 1.0,
+                  .direction = {0.0, 0.0, 1.0}};
+    const core::FrameResult r = run_frames(scene, plane).front();
+    EXPECT_FALSE(r.tone.hatches.empty());
+    const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
+    const std::vector<double> bands = test::ground_band_ink(plane, projection, ring_coverage(r.tone.hatches, scene.image), 4);
+    EXPECT_EQ(bands.size(), 4u);
+    for (size_t band = 0; band < bands.size(); ++band) {
+        std::printf("band %zu of rows from far to near: ink %.4f against the tone 0.3\n", band, bands[band]);
+        EXPECT_NEAR(bands[band], 0.3, 0.03) << "band " << band;
+    }
+    return scene;
+}
+
 // A ground plane of two triangles seen in strong perspective, as real shots have them: hatched
 // across the whole image at the spacing its constant tone asks for, near and far (the lines'
 // spacing followed point by point, not per face), and with a box standing on it, no hatch point
 // on the plane behind the box.
 TEST(Hatch, ALargeFaceIsHatchedPointByPointUnderPerspective) {
-    core::Mesh plane;
-    plane.positions = {{-4.0f, 0.0f, -12.0f}, {4.0f, 0.0f, -12.0f}, {4.0f, 0.0f, 2.0f}, {-4.0f, 0.0f, 2.0f}};
-    plane.triangles = {{0, 2, 1}, {0, 3, 2}};
-    core::Scene scene = test::scene_for({.eye = {0.0, 1.2, 3.0}, .fov_y_deg = 50.0, .size = 480}, plane);
-    scene.camera.pose.target = {0.0, 0.0, -3.0};
-    scene.image = {480, 320};
-    scene.camera.near = 0.1;
-    scene.camera.far = 100.0;
-    scene.lines.silhouette = scene.lines.boundary = scene.lines.crease = scene.lines.intersection = false;
-    scene.tone = {.mode = core::ToneMode::kHatch, .curve = {.min = 0.3, .max = 0.3}, .line_width_px = 1.0,
-                  .direction = {0.0, 0.0, 1.0}};
-    const core::FrameResult r = run_frames(scene, plane).front();
-    ASSERT_FALSE(r.tone.hatches.empty());
-    // Rows the plane covers from edge to edge, in four bands from far to near.
-    const std::vector<double> coverage = ring_coverage(r.tone.hatches, scene.image);
-    const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
-    // (Below where the plane's sides leave the image.)
-    double side_row = 0.0;
-    for (double z = -12.0; z <= 2.0; z += 0.01) {
-        for (const double x : {-4.0, 4.0}) {
-            const glm::dvec2 px = projection.pixel({x, 0.0, z});
-            if (px.x >= 0.0 && px.x <= scene.image.width) side_row = std::max(side_row, px.y);
-        }
-    }
-    const int first = int(std::ceil(side_row)) + 2, last = scene.image.height;
-    ASSERT_LT(first, last - 40);
-    for (int band = 0; band < 4; ++band) {
-        const int r0 = first + (last - first) * band / 4, r1 = first + (last - first) * (band + 1) / 4;
-        double sum = 0.0;
-        for (int row = r0; row < r1; ++row) {
-            for (int col = 0; col < scene.image.width; ++col) sum += coverage[size_t(row) * size_t(scene.image.width) + size_t(col)];
-        }
-        const double mean = sum / double((r1 - r0) * scene.image.width);
-        std::printf("rows %d-%d: ink %.4f against the tone 0.3\n", r0, r1, mean);
-        EXPECT_NEAR(mean, 0.3, 0.03) << "rows " << r0 << "-" << r1;
-    }
-
+    const core::Mesh plane = test::ground_plane(4.0f, -12.0f, 2.0f);
+    core::Scene scene = ground_hatched_evenly(plane);
     // A box on the plane, in front of its middle: nothing of the plane behind it is hatched.
     const core::Mesh with_box = test::combine(plane, test::cube(0.6), {0.0f, 0.6f, -2.0f});
     scene.tone.curve = {.min = 0.3, .max = 0.3};
@@ -286,40 +270,10 @@ TEST(Hatch, ALargeFaceIsHatchedPointByPointUnderPerspective) {
 // ground does: hatched where it is seen, evenly in perspective (each face was left unshaded while
 // a corner of it lay behind the camera).
 TEST(Hatch, AGroundPlaneRunningBehindTheCameraIsHatchedWhereItIsSeen) {
-    core::Mesh plane;
-    plane.positions = {{-6.0f, 0.0f, -14.0f}, {6.0f, 0.0f, -14.0f}, {6.0f, 0.0f, 8.0f}, {-6.0f, 0.0f, 8.0f}};
-    plane.triangles = {{0, 2, 1}, {0, 3, 2}};
-    core::Scene scene = test::scene_for({.eye = {0.0, 1.2, 3.0}, .fov_y_deg = 50.0, .size = 480}, plane);
-    scene.camera.pose.target = {0.0, 0.0, -3.0};
-    scene.image = {480, 320};
-    scene.camera.near = 0.1;
-    scene.camera.far = 100.0;
-    scene.lines.silhouette = scene.lines.boundary = scene.lines.crease = scene.lines.intersection = false;
-    scene.tone = {.mode = core::ToneMode::kHatch, .curve = {.min = 0.3, .max = 0.3}, .line_width_px = 1.0,
-                  .direction = {0.0, 0.0, 1.0}};
+    const core::Mesh plane = test::ground_plane(6.0f, -14.0f, 8.0f);
+    const core::Scene scene = ground_hatched_evenly(plane);
     const core::FrameResult r = run_frames(scene, plane).front();
-    ASSERT_FALSE(r.tone.hatches.empty()) << "the ground runs behind the camera: it was left unshaded";
     const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
-    double side_row = 0.0;
-    for (double z = -14.0; z <= 2.9; z += 0.01) {
-        for (const double x : {-6.0, 6.0}) {
-            const glm::dvec2 px = projection.pixel({x, 0.0, z});
-            if (px.x >= 0.0 && px.x <= scene.image.width) side_row = std::max(side_row, px.y);
-        }
-    }
-    const int first = int(std::ceil(side_row)) + 2, last = scene.image.height;
-    ASSERT_LT(first, last - 40);
-    const std::vector<double> coverage = ring_coverage(r.tone.hatches, scene.image);
-    for (int band = 0; band < 4; ++band) {
-        const int r0 = first + (last - first) * band / 4, r1 = first + (last - first) * (band + 1) / 4;
-        double sum = 0.0;
-        for (int row = r0; row < r1; ++row) {
-            for (int col = 0; col < scene.image.width; ++col) sum += coverage[size_t(row) * size_t(scene.image.width) + size_t(col)];
-        }
-        const double mean = sum / double((r1 - r0) * scene.image.width);
-        std::printf("rows %d-%d: ink %.4f against the tone 0.3\n", r0, r1, mean);
-        EXPECT_NEAR(mean, 0.3, 0.03) << "rows " << r0 << "-" << r1;
-    }
     // Every drawn point is in front of the camera and on the image.
     for (const core::Hatch& hatch : r.tone.hatches) {
         for (const glm::dvec2& p : hatch.points_px) ASSERT_TRUE(projection.inside_image(p)) << p.x << ", " << p.y;

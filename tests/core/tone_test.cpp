@@ -12,6 +12,7 @@
 #include "core/tone/tone_options.h"
 #include "core/visibility/occlusion_source.h"
 #include "core/visibility/raycast_visibility.h"
+#include "tests/support/ground_plane.h"
 #include "tests/support/pipeline.h"
 #include "tests/support/segment_occlusion.h"
 #include "tests/support/shapes.h"
@@ -165,40 +166,20 @@ TEST(Tone, CoverageFollowsTheToneOnALitSphere) {
 // ground does: stippled where it is seen, evenly in perspective, and its samples built for the
 // part in view (the corner under the camera would ask for far more).
 TEST(Tone, AGroundPlaneRunningBehindTheCameraIsStippledWhereItIsSeen) {
-    core::Mesh plane;
-    plane.positions = {{-6.0f, 0.0f, -14.0f}, {6.0f, 0.0f, -14.0f}, {6.0f, 0.0f, 8.0f}, {-6.0f, 0.0f, 8.0f}};
-    plane.triangles = {{0, 2, 1}, {0, 3, 2}};
-    core::Scene scene = test::scene_for({.eye = {0.0, 1.2, 3.0}, .fov_y_deg = 50.0, .size = 400}, plane);
-    scene.camera.pose.target = {0.0, 0.0, -3.0};
-    scene.image = {400, 300};
-    scene.camera.near = 0.1;
-    scene.camera.far = 100.0;
-    lines_off(scene);
+    const core::Mesh plane = test::ground_plane(6.0f, -14.0f, 8.0f);
+    core::Scene scene = test::ground_scene(plane, {400, 300});
     scene.tone = {.mode = core::ToneMode::kStipple, .curve = {.min = 0.3, .max = 0.3}, .dot_radius_px = 2.0};
     const core::FrameResult r = run_frames(scene, plane, raycast_or_exact()).front();
     std::printf("ground: %zu dots from %zu samples\n", r.tone.dots.size(), r.tone.stipple_stats.samples);
     ASSERT_GT(r.tone.dots.size(), 2000u) << "the ground runs behind the camera: it was left unshaded";
     // Rows where the plane fills the image from side to side, in four bands from far to near.
     const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
-    double side_row = 0.0;
-    for (double z = -14.0; z <= 2.9; z += 0.01) {
-        for (const double x : {-6.0, 6.0}) {
-            const glm::dvec2 px = projection.pixel({x, 0.0, z});
-            if (px.x >= 0.0 && px.x <= scene.image.width) side_row = std::max(side_row, px.y);
-        }
-    }
-    const int first = int(std::ceil(side_row)) + 2, last = scene.image.height;
-    ASSERT_LT(first, last - 40);
-    const std::vector<double> coverage = test::dot_coverage(r.tone.dots, scene.image);
-    for (int band = 0; band < 4; ++band) {
-        const int r0 = first + (last - first) * band / 4, r1 = first + (last - first) * (band + 1) / 4;
-        double sum = 0.0;
-        for (int row = r0; row < r1; ++row) {
-            for (int col = 0; col < scene.image.width; ++col) sum += coverage[size_t(row) * size_t(scene.image.width) + size_t(col)];
-        }
-        const double mean = sum / double((r1 - r0) * scene.image.width);
-        std::printf("rows %d-%d: ink %.4f against the tone 0.3\n", r0, r1, mean);
-        EXPECT_NEAR(mean, 0.3, kCoverageTolerance * 0.3) << "rows " << r0 << "-" << r1;
+    const std::vector<double> bands =
+        test::ground_band_ink(plane, projection, test::dot_coverage(r.tone.dots, scene.image), 4);
+    ASSERT_EQ(bands.size(), 4u);
+    for (size_t band = 0; band < bands.size(); ++band) {
+        std::printf("band %zu of rows from far to near: ink %.4f against the tone 0.3\n", band, bands[band]);
+        EXPECT_NEAR(bands[band], 0.3, kCoverageTolerance * 0.3) << "band " << band;
     }
     // The samples follow the part in view: the nearest ground in the image is about 2.6 units
     // away, the corner under the camera 1.2.

@@ -106,6 +106,16 @@ gl::BrushTip solid_tip() {
     return tip;
 }
 
+// Frame 1 of `scene` with `mesh` in the preview (the scene's brush, a solid tip) and as Cairo's
+// PNG of the same strokes.
+std::pair<gl::PreviewImage, std::string> preview_and_cairo(const core::Mesh& mesh, const core::Scene& scene) {
+    test::Drawn drawn = test::draw(mesh, scene);
+    const auto context = context_or_skip(gl::Backend::kAuto);
+    gl::PreviewRenderer renderer(*context, scene.brush, solid_tip());
+    const gl::PreviewImage image = renderer.render(drawn.lines, drawn.strokes);
+    return {image, output::png_image(output::brush_drawing(drawn.lines, drawn.strokes, {}, false))};
+}
+
 TEST(Preview, InkCoverageMatchesCairoOutlines) {
     for (const auto& [name, frame] : {std::pair{"torus", torus_frame()}, std::pair{"cube", cube_frame()}}) {
         const gl::PreviewImage image = preview(gl::Backend::kAuto, frame, gl::default_brush_tip());
@@ -138,12 +148,7 @@ TEST(Preview, StylesColourAndDashTheirStrokes) {
         scene.styles[1].set.color = blue;
         scene.styles[1].set.dash_px = dash;
         scene.styles[1].set.cap = cap;
-        test::Drawn drawn = test::draw(mesh, scene);
-        const auto context = context_or_skip(gl::Backend::kAuto);
-        gl::PreviewRenderer renderer(*context, scene.brush, solid_tip());
-        const gl::PreviewImage image = renderer.render(drawn.lines, drawn.strokes);
-        const std::string png = output::png_image(output::brush_drawing(drawn.lines, drawn.strokes, {}, false));
-        return std::pair{image, png};
+        return preview_and_cairo(mesh, scene);
     };
     // Pixels inked mostly red, mostly blue.
     const auto hues = [](const gl::PreviewImage& image) {
@@ -195,12 +200,7 @@ TEST(Preview, HiddenLinesAreDashedAsCairoDrawsThem) {
     };
     const auto render = [&](bool hidden) {
         scene.lines.hidden = hidden;
-        test::Drawn drawn = test::draw(mesh, scene);
-        const auto context = context_or_skip(gl::Backend::kAuto);
-        gl::PreviewRenderer renderer(*context, scene.brush, solid_tip());
-        const gl::PreviewImage image = renderer.render(drawn.lines, drawn.strokes);
-        const std::string png = output::png_image(output::brush_drawing(drawn.lines, drawn.strokes, {}, false));
-        return std::pair{image, png};
+        return preview_and_cairo(mesh, scene);
     };
     const auto [plain, plain_png] = render(false);
     const auto [dashed, dashed_png] = render(true);
