@@ -536,23 +536,29 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
 
         // Which points are drawn: in the image, faded in, off the strokes' ink, not hidden (one
         // batch of occlusion queries for the whole family).
+        // What a point's own tests say, before the occlusion test: left out behind the camera,
+        // faded below a tenth of the width or outside the image (kOff), or on a stroke's ink
+        // (kInked); r_px: where it lies on the image (NaN behind the camera).
+        enum class Tested : uint8_t { kOff, kInked, kMaybe };
+        const auto test_point = [&](const ChainPoint& cp, glm::dvec2& r_px) {
+            const glm::dvec4 clip = projection.clip(cp.p_object);
+            if (!projection.in_front(clip)) {
+                r_px = glm::dvec2(NAN);
+                return Tested::kOff;
+            }
+            r_px = projection.pixel_from_clip(clip);
+            if (cp.width < kMinWeight * width || !projection.inside_image(r_px)) return Tested::kOff;
+            return ink.touches(r_px, 0.5 * cp.width) ? Tested::kInked : Tested::kMaybe;
+        };
         std::vector<glm::dvec2> px(points.size());
         std::vector<uint8_t> drawn(points.size(), 0), hidden(points.size(), 0);
         queries.clear();
         std::vector<uint32_t> queried;
         for (uint32_t i = 0; i < points.size(); ++i) {
             const ChainPoint& cp = points[i];
-            const glm::dvec4 clip = projection.clip(cp.p_object);
-            if (!projection.in_front(clip)) {
-                px[i] = glm::dvec2(NAN);
-                continue;
-            }
-            px[i] = projection.pixel_from_clip(clip);
-            if (cp.width < kMinWeight * width || !projection.inside_image(px[i])) continue;
-            if (ink.touches(px[i], 0.5 * cp.width)) {
-                ++stats_.inked;
-                continue;
-            }
+            const Tested tested = test_point(cp, px[i]);
+            if (tested == Tested::kInked) ++stats_.inked;
+            if (tested != Tested::kMaybe) continue;
             // A point inside a face: that face alone never hides it.
             const std::span<const uint32_t> own = cp.on_edge ? std::span<const uint32_t>() : std::span(&cp.face, 1);
             queries.push_back({.p_object = cp.p_object, .edge = cp.edge, .own_faces = own});
@@ -655,10 +661,8 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                 if (step >= e.steps) continue;
                 const double t = 0.5 * (e.lo + e.hi);
                 const ChainPoint cp = end_point(e, t);
-                const glm::dvec4 at_clip = projection.clip(cp.p_object);
-                const glm::dvec2 at_px = projection.pixel_from_clip(at_clip);
-                if (!projection.in_front(at_clip) || cp.width < kMinWeight * width || !projection.inside_image(at_px) ||
-                    ink.touches(at_px, 0.5 * cp.width)) {
+                glm::dvec2 at_px;
+                if (test_point(cp, at_px) != Tested::kMaybe) {
                     e.hi = t;
                 } else if (!e.behind) {
                     e.lo = t;
