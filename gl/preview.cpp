@@ -471,27 +471,34 @@ struct PreviewRenderer::Impl {
         std::vector<internal::StripVertex> vertices;
         std::vector<uint32_t> indices;
         std::vector<StrokeDraw> draws;
+        // A styled stroke in its style's brush; the others in the renderer's.
+        const auto brush_of = [&](const core::Stroke& stroke) -> const core::BrushStyle& {
+            const bool styled = stroke.style != 0 && stroke.style < strokes.styles.size();
+            return styled ? strokes.styles[stroke.style].brush : style;
+        };
+        // The strip's triangles into the buffers, as `r_draw`'s range.
+        const auto append = [&](const internal::QuadStrip& strip, StrokeDraw& r_draw) {
+            r_draw.first_index = indices.size();
+            r_draw.index_count = GLsizei(strip.indices.size());
+            r_draw.length_px = float(strip.length_px);
+            r_draw.closed = strip.closed;
+            const auto base = uint32_t(vertices.size());
+            for (const uint32_t i : strip.indices) indices.push_back(base + i);
+            vertices.insert(vertices.end(), strip.vertices.begin(), strip.vertices.end());
+        };
         for (const core::Stroke& stroke : strokes.strokes) {
             if (!stroke.geometry.visible || !stroke.drawn) continue;
             internal::QuadStrip strip = internal::quad_strip(stroke, strip_options);
             if (strip.indices.empty()) continue;
             StrokeDraw draw;
-            // A styled stroke in its style's brush; the others in the renderer's.
-            const bool styled = stroke.style != 0 && stroke.style < strokes.styles.size();
-            draw.brush = styled ? &strokes.styles[stroke.style].brush : &style;
-            draw.first_index = indices.size();
-            draw.index_count = GLsizei(strip.indices.size());
-            draw.length_px = float(strip.length_px);
-            draw.closed = strip.closed;
+            draw.brush = &brush_of(stroke);
+            append(strip, draw);
             draw.free_start = !strip.closed && stroke.geometry.ends[0] == core::StrokeEnd::kFree;
             draw.free_end = !strip.closed && stroke.geometry.ends[1] == core::StrokeEnd::kFree;
             // A loop repeats the middle a whole number of times, so it has no seam.
             const double period = std::max(middle_px, 1e-3);
             draw.period_px =
                 float(strip.closed ? strip.length_px / std::max(1.0, std::round(strip.length_px / period)) : period);
-            const auto base = uint32_t(vertices.size());
-            for (const uint32_t i : strip.indices) indices.push_back(base + i);
-            vertices.insert(vertices.end(), strip.vertices.begin(), strip.vertices.end());
             draws.push_back(draw);
         }
         // Hidden lines above them, as the vector outputs layer them: along the drawn centerline
@@ -499,8 +506,7 @@ struct PreviewRenderer::Impl {
         for (const core::Stroke& stroke : strokes.strokes) {
             const core::StrokeGeometry& g = stroke.geometry;
             if (g.visible) continue;
-            const bool styled = stroke.style != 0 && stroke.style < strokes.styles.size();
-            const core::BrushStyle& brush = styled ? strokes.styles[stroke.style].brush : style;
+            const core::BrushStyle& brush = brush_of(stroke);
             const bool on_centerline = stroke.centerline_px.size() >= 2;
             const std::vector<double>& u = on_centerline ? stroke.centerline_u : stroke.u;
             StrokeDraw draw;
@@ -511,13 +517,7 @@ struct PreviewRenderer::Impl {
                 internal::centerline_strip(on_centerline ? stroke.centerline_px : g.points_px, g.closed,
                                            draw.hidden_width_px, draw.dash_offset_px, brush.cap, {});
             if (strip.indices.empty()) continue;
-            draw.first_index = indices.size();
-            draw.index_count = GLsizei(strip.indices.size());
-            draw.length_px = float(strip.length_px);
-            draw.closed = strip.closed;
-            const auto base = uint32_t(vertices.size());
-            for (const uint32_t i : strip.indices) indices.push_back(base + i);
-            vertices.insert(vertices.end(), strip.vertices.begin(), strip.vertices.end());
+            append(strip, draw);
             draws.push_back(draw);
         }
         fn.BindVertexArray(stroke_vao);
