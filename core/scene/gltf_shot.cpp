@@ -355,6 +355,7 @@ struct GltfShot::Impl {
     void read_animations();
     void read_objects();
     void read_skins();
+    void orient_mirrored();
     void weld();
     void compact();
     void choose_camera();
@@ -690,6 +691,50 @@ void GltfShot::Impl::read_objects() {
     if (objects.empty()) throw InputError(file + ": the scene has no triangles to draw");
 }
 
+// glTF 2.0 (meshes): the sign of the determinant of a node's world transform sets its
+// triangles' winding, counterclockwise where it is positive and clockwise where a mirroring scale
+// makes it negative. A mirrored object's triangles are turned to counterclockwise, so that every
+// face of the frame's mesh faces out as the file means it: stippling and hatching draw on the
+// faces turned to the camera, and the brush and the tone take the light from the faces' sides.
+// The sign is read at the first frame; an object whose scale keys mirror it at some times and not
+// at others keeps that winding, with a warning.
+void GltfShot::Impl::orient_mirrored() {
+    const double start = time_range ? time_range->first : 0.0;
+    auto mirrored_at = [&](double time) {
+        const std::vector<glm::dmat4> world = world_at(time, nullptr);
+        std::vector<bool> mirrored(geometry.size());
+        for (size_t o = 0; o < geometry.size(); ++o) {
+            mirrored[o] = glm::determinant(glm::dmat3(world[size_t(geometry[o].node)])) < 0.0;
+        }
+        return mirrored;
+    };
+    const std::vector<bool> mirrored = mirrored_at(start);
+    for (size_t o = 0; o < geometry.size(); ++o) {
+        if (!mirrored[o]) continue;
+        for (glm::uvec3& t : geometry[o].triangles) std::swap(t.y, t.z);
+    }
+    // Only a scale channel with a value of zero or below can change the sign: then every key
+    // time of such a channel is looked at.
+    std::vector<double> times;
+    for (const Channel& c : channels) {
+        if (c.path != Path::kScale) continue;
+        if (std::none_of(c.values.begin(), c.values.end(), [](double v) { return !(v > 0.0); })) continue;
+        times.insert(times.end(), c.times.begin(), c.times.end());
+    }
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    std::vector<bool> warned(geometry.size(), false);
+    for (const double time : times) {
+        const std::vector<bool> now = mirrored_at(time);
+        for (size_t o = 0; o < geometry.size(); ++o) {
+            if (now[o] == mirrored[o] || warned[o]) continue;
+            warned[o] = true;
+            warnings.push_back(file + ": " + at("nodes", size_t(objects[o].node)) + " ('" + quote_value(objects[o].name) +
+                               "') is mirrored at some times and not at others; its faces keep the winding of the first frame");
+        }
+    }
+}
+
 // Welds the source vertices of each object that share a position (within kWeldFraction of its
 // size) and move alike (the same skin influences and morph offsets), so that a seam where an
 // exporter split vertices is no boundary.
@@ -961,6 +1006,7 @@ GltfShot::GltfShot(const std::filesystem::path& path, const GltfOptions& options
     m.read_skins();
     m.read_objects();
     m.read_animations();
+    m.orient_mirrored();
     m.weld();
     m.compact();
     m.choose_camera();

@@ -134,6 +134,49 @@ TEST_F(Gltf, HoldoutObjectsHideLinesAndDrawNone) {
 // A wall through the cube's middle: an intersection line of the cube and the wall, drawn in its
 // own layer and counted in the stats; off with lines.intersection false or when one object turns
 // the kind off. An OBJ file of the same two groups draws the same lines.
+// A ball mirrored by its node's scale is the same ball: the file winds its triangles clockwise
+// (glTF 2.0: a negative determinant turns the winding), which inkline turns back, so it is lit,
+// stippled and drawn as the plain one. Before, its faces were read as turned inwards: no dot was
+// drawn on its visible side, and the brush took its width from the light on the far side.
+TEST_F(Gltf, AMirroredObjectIsLitAndStippledAsThePlainOne) {
+    const core::Mesh ball = test::uv_sphere(48, 24, 1.0);  // symmetric about x = 0
+    std::vector<float> positions;
+    for (const glm::vec3& p : ball.positions) positions.insert(positions.end(), {p.x, p.y, p.z});
+    std::vector<uint32_t> indices;
+    for (const glm::uvec3& t : ball.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    struct Drawn {
+        size_t dots = 0;
+        double mean_width = 0.0;
+    };
+    auto draw = [&](double scale_x, const std::string& name) {
+        test::GltfBuilder b;
+        const int node = b.mesh_node("Ball", positions, indices);
+        b.json()["nodes"][size_t(node)]["scale"] = {scale_x, 1, 1};
+        const int cam = b.node("Camera");
+        b.json()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"aspectRatio", 1.0}, {"znear", 0.1}}}}};
+        b.json()["nodes"][size_t(cam)]["camera"] = 0;
+        b.json()["nodes"][size_t(cam)]["translation"] = {0, 0, 5};
+        b.finish_scene();
+        b.write(dir / (name + ".glb"));
+        const auto r = test::run_inkline("render " + (dir / (name + ".glb")).string() + " --size 400x400 --tone stipple --json " +
+                                         (dir / (name + "/%04d.json")).string() + " -q");
+        EXPECT_EQ(r.code, 0) << r.output;
+        const nlohmann::json j = nlohmann::json::parse(test::read_text(dir / name / "0001.json"));
+        Drawn d;
+        d.dots = j["tone"]["dots"].size();
+        size_t samples = 0;
+        for (const auto& s : j["strokes"]) {
+            for (const auto& w : s["width"]) d.mean_width += w.get<double>(), ++samples;
+        }
+        d.mean_width /= double(std::max<size_t>(samples, 1));
+        return d;
+    };
+    const Drawn plain = draw(1.0, "plain"), mirrored = draw(-1.0, "mirrored");
+    ASSERT_GT(plain.dots, 1000u);
+    EXPECT_NEAR(double(mirrored.dots), double(plain.dots), 0.05 * double(plain.dots));
+    EXPECT_NEAR(mirrored.mean_width, plain.mean_width, 0.01 * plain.mean_width);
+}
+
 TEST_F(Gltf, ObjectsThatCrossDrawIntersectionLinesInTheirOwnLayer) {
     test::GltfBuilder b = moving_cube();
     b.json().erase("animations");

@@ -8,6 +8,7 @@
 #include "core/mesh/topology.h"
 #include "core/scene/scene.h"
 #include "tests/support/gltf.h"
+#include "tests/support/shapes.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/trigonometric.hpp>
@@ -113,6 +114,77 @@ TEST_F(GltfShotTest, MatrixNodesAndSharedMeshesGiveOneObjectPerInstance) {
     ASSERT_EQ(shot.rest().triangles.size(), 2u);
     EXPECT_EQ(shot.face_objects()[1], 1u);
     expect_near(shot.rest().positions[3], {5, 6, 7});
+}
+
+// The cube's triangles, wound counterclockwise seen from outside, as a glTF mesh; every node
+// named in `nodes` gets an instance of it.
+void add_cube_mesh(GltfBuilder& b) {
+    const core::Mesh cube = test::cube(0.5);
+    std::vector<float> positions;
+    for (const glm::vec3& p : cube.positions) positions.insert(positions.end(), {p.x, p.y, p.z});
+    std::vector<uint32_t> indices;
+    for (const glm::uvec3& t : cube.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
+    b.mesh_node("plain", positions, indices);
+}
+
+// Faces of each object whose normal points towards the object's middle (none on a closed
+// convex object facing out).
+std::vector<size_t> inward_faces(const core::GltfShot& shot) {
+    const core::Mesh& mesh = shot.rest();
+    std::vector<size_t> inward;
+    for (const core::GltfObject& o : shot.objects()) {
+        glm::dvec3 middle(0.0);
+        for (uint32_t f = o.first_face; f < o.first_face + o.faces; ++f) {
+            for (int k = 0; k < 3; ++k) middle += glm::dvec3(mesh.positions[mesh.triangles[f][k]]) / (3.0 * o.faces);
+        }
+        size_t count = 0;
+        for (uint32_t f = o.first_face; f < o.first_face + o.faces; ++f) {
+            const glm::uvec3 t = mesh.triangles[f];
+            const glm::dvec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+            if (glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0 - middle) < 0.0) ++count;
+        }
+        inward.push_back(count);
+    }
+    return inward;
+}
+
+TEST_F(GltfShotTest, MirroredNodesTurnTheirTrianglesToFaceOut) {
+    GltfBuilder b;
+    add_cube_mesh(b);
+    auto& nodes = b.json()["nodes"];
+    auto instance = [&](const std::string& name) {
+        const int n = b.node(name);
+        nodes[size_t(n)]["mesh"] = 0;
+        return n;
+    };
+    nodes[size_t(instance("mirrored"))]["scale"] = {-1, 1, 1};
+    const int flip = b.node("flip");
+    nodes[size_t(flip)]["scale"] = {1, -2, 1};
+    b.add_child(flip, instance("mirrored by its parent"));
+    const int flop = b.node("flop");
+    nodes[size_t(flop)]["scale"] = {1, 1, -1};
+    const int twice = instance("mirrored twice");
+    nodes[size_t(twice)]["scale"] = {-1, 1, 1};
+    b.add_child(flop, twice);
+    nodes[size_t(instance("matrix"))]["matrix"] = {0, 0, 3, 0, 0, 1, 0, 0, 1, 0, 0, 0, 4, 0, 0, 1};  // x and z swapped: a mirror
+    b.finish_scene();
+
+    const core::GltfShot shot = load(b);
+    ASSERT_EQ(shot.objects().size(), 5u);
+    EXPECT_EQ(inward_faces(shot), std::vector<size_t>(5, 0));
+    EXPECT_TRUE(shot.warnings().empty());
+
+    // A scale key that turns the cube inside out on the way: the first frame's winding is kept,
+    // and a warning names the node.
+    GltfBuilder c;
+    add_cube_mesh(c);
+    animate(c, 0, "scale", {0.0f, 1.0f}, {1, 1, 1, -1, 1, 1}, "LINEAR", "VEC3");
+    c.finish_scene();
+    const core::GltfShot turning = load(c);
+    EXPECT_EQ(inward_faces(turning), std::vector<size_t>{0});
+    ASSERT_EQ(turning.warnings().size(), 1u);
+    EXPECT_NE(turning.warnings()[0].find("nodes[0] ('plain') is mirrored at some times and not at others"), std::string::npos)
+        << turning.warnings()[0];
 }
 
 TEST_F(GltfShotTest, EachSamplerKindInterpolatesAsTheSpecificationSays) {
