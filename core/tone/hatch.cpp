@@ -250,6 +250,12 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
 
     // In screen space each vertex's place across the lines is this frame's.
     const bool screen = options_.space == HatchSpace::kScreen;
+    // In screen space, w (h - c) at a point of clip coordinates `clip`, where h is its image
+    // position across the family's lines: linear in clip coordinates, so a line h = c is a plane
+    // through the eye, which also meets sides reaching behind the camera (where h is undefined).
+    const auto screen_level = [&](const glm::dvec2& across, const glm::dvec4& clip, double c) {
+        return across.x * half_w * (clip.x + clip.w) + across.y * half_h * (clip.w - clip.y) - c * clip.w;
+    };
     for (Family& family : families_) {
         if (!screen) break;
         internal::parallel_for(mesh.positions.size(), 8192, [&](size_t begin, size_t end) {
@@ -274,13 +280,14 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                                      glm::dvec3(mesh.positions[t.z])};
             if (glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), eye.toward(p[0])) <= 0.0) return;  // back-facing
             const double h[3] = {family.h[t.x], family.h[t.y], family.h[t.z]};
-            const double h_lo = std::min({h[0], h[1], h[2]}), h_hi = std::max({h[0], h[1], h[2]});
-            if (!(h_hi > h_lo)) return;
+            double h_lo = std::min({h[0], h[1], h[2]}), h_hi = std::max({h[0], h[1], h[2]});
             const bool in_front = projection.in_front(vertex_clip[t.x]) && projection.in_front(vertex_clip[t.y]) &&
                                   projection.in_front(vertex_clip[t.z]);
-            // A face reaching behind the camera is hatched on its part in view (object space: in
-            // screen space h is the image position, which a point behind the camera has not).
-            if (!in_front && screen) return;
+            // A face reaching behind the camera is hatched on its part in view. In screen space its
+            // corners behind the camera have no h: its range of h is that of its part in view, and
+            // such a corner's side of a line is read from screen_level.
+            const bool unplaced = screen && !in_front;
+            if (!unplaced && !(h_hi > h_lo)) return;
             internal::ViewPolygon part;
             if (in_front) {
                 glm::dvec2 q[3];
@@ -293,6 +300,14 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
             } else {
                 part = internal::part_in_view(projection, p[0], p[1], p[2]);
                 if (part.count < 3) return;
+            }
+            if (unplaced) {
+                h_lo = INFINITY, h_hi = -INFINITY;
+                for (size_t k = 0; k < part.count; ++k) {
+                    const double v = glm::dot(family.across, projection.pixel_from_clip(part.vertices[k].clip));
+                    h_lo = std::min(h_lo, v), h_hi = std::max(h_hi, v);
+                }
+                if (!(h_hi > h_lo)) return;
             }
             const FaceFrame frame(mesh, t, family.h);
             if (!frame.valid()) return;
@@ -336,18 +351,28 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                 line.face = face;
                 line.plane = plane;
                 int found = 0;
+                // Which side of the line a corner lies on (a corner on it counts as above).
+                const auto above = [&](int k) {
+                    const glm::dvec4& clip = vertex_clip[t[k]];
+                    return unplaced && !projection.in_front(clip) ? screen_level(family.across, clip, c) >= 0.0 : h[k] >= c;
+                };
                 for (int k = 0; k < 3 && found < 2; ++k) {
                     const int l = (k + 1) % 3;
-                    if ((h[k] >= c) == (h[l] >= c)) continue;
+                    if (above(k) == above(l)) continue;
                     const uint32_t edge = face_edges_[face][k];  // the side (t[k], t[l])
                     // From the side's own first vertex: both of its faces compute the same point.
                     const glm::uvec2 ends = table.edge_vertices[edge];
                     const double h0 = family.h[ends.x], h1 = family.h[ends.y];
                     double along = (c - h0) / (h1 - h0);
-                    if (screen) {
+                    const glm::dvec4 &clip0 = vertex_clip[ends.x], &clip1 = vertex_clip[ends.y];
+                    if (screen && !(projection.in_front(clip0) && projection.in_front(clip1))) {
+                        // A side reaching behind the camera: where it meets the line's plane.
+                        const double l0 = screen_level(family.across, clip0, c), l1 = screen_level(family.across, clip1, c);
+                        along = l0 / (l0 - l1);
+                    } else if (screen) {
                         // h runs evenly on the image, not along the edge in space: the point of
                         // the edge whose image lies on the line.
-                        const double w0 = vertex_clip[ends.x].w, w1 = vertex_clip[ends.y].w;
+                        const double w0 = clip0.w, w1 = clip1.w;
                         along = along * w0 / (along * w0 + (1.0 - along) * w1);
                     }
                     const glm::dvec3 e0(mesh.positions[ends.x]), e1(mesh.positions[ends.y]);

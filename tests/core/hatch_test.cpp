@@ -224,12 +224,14 @@ TEST(Hatch, ScreenSpaceLinesStayOnThePage) {
     }
 }
 
-// The ground hatched at a constant tone of 0.3 (lines across z), its ink within 10% of the tone in
-// four bands of rows from far to near; the scene it was drawn with.
-core::Scene ground_hatched_evenly(const core::Mesh& plane) {
+// The ground hatched at a constant tone of 0.3 (lines across z, or on the image at 30 degrees),
+// its ink within 10% of the tone in four bands of rows from far to near; the scene it was drawn
+// with.
+core::Scene ground_hatched_evenly(const core::Mesh& plane, core::HatchSpace space = core::HatchSpace::kObject) {
     core::Scene scene = test::ground_scene(plane, {480, 320});
     scene.tone = {.mode = core::ToneMode::kHatch, .curve = {.min = 0.3, .max = 0.3}, .line_width_px = 1.0,
                   .direction = {0.0, 0.0, 1.0}};
+    if (space == core::HatchSpace::kScreen) hatch_on_screen(scene);
     const core::FrameResult r = run_frames(scene, plane).front();
     EXPECT_FALSE(r.tone.hatches.empty());
     const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
@@ -267,18 +269,23 @@ TEST(Hatch, ALargeFaceIsHatchedPointByPointUnderPerspective) {
 }
 
 // A ground plane of two triangles running from far ahead to behind the camera, as a shot's
-// ground does: hatched where it is seen, evenly in perspective (each face was left unshaded while
-// a corner of it lay behind the camera).
+// ground does: hatched where it is seen, evenly in perspective, in object space and on the image
+// (each face was left unshaded while a corner of it lay behind the camera: in screen space, where
+// a corner behind the camera has no image position to lay the lines by, until its lines were
+// found as planes through the eye).
 TEST(Hatch, AGroundPlaneRunningBehindTheCameraIsHatchedWhereItIsSeen) {
     const core::Mesh plane = test::ground_plane(6.0f, -14.0f, 8.0f);
-    const core::Scene scene = ground_hatched_evenly(plane);
-    const core::FrameResult r = run_frames(scene, plane).front();
-    const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
-    // Every drawn point is in front of the camera and on the image.
-    for (const core::Hatch& hatch : r.tone.hatches) {
-        for (const glm::dvec2& p : hatch.points_px) ASSERT_TRUE(projection.inside_image(p)) << p.x << ", " << p.y;
-        for (const glm::dvec3& p : hatch.points_world) {
-            ASSERT_TRUE(projection.in_front(projection.clip(glm::dvec3(glm::inverse(r.world_from_object) * glm::dvec4(p, 1.0)))));
+    for (const core::HatchSpace space : {core::HatchSpace::kObject, core::HatchSpace::kScreen}) {
+        SCOPED_TRACE(space == core::HatchSpace::kObject ? "object space" : "screen space");
+        const core::Scene scene = ground_hatched_evenly(plane, space);
+        const core::FrameResult r = run_frames(scene, plane).front();
+        const core::Projection projection(r.lines.camera, scene.image, r.world_from_object);
+        // Every drawn point is in front of the camera and on the image.
+        for (const core::Hatch& hatch : r.tone.hatches) {
+            for (const glm::dvec2& p : hatch.points_px) ASSERT_TRUE(projection.inside_image(p)) << p.x << ", " << p.y;
+            for (const glm::dvec3& p : hatch.points_world) {
+                ASSERT_TRUE(projection.in_front(projection.clip(glm::dvec3(glm::inverse(r.world_from_object) * glm::dvec4(p, 1.0)))));
+            }
         }
     }
 }
