@@ -283,12 +283,14 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
             double h_lo = std::min({h[0], h[1], h[2]}), h_hi = std::max({h[0], h[1], h[2]});
             const bool in_front = projection.in_front(vertex_clip[t.x]) && projection.in_front(vertex_clip[t.y]) &&
                                   projection.in_front(vertex_clip[t.z]);
-            // A face reaching behind the camera is hatched on its part in view. In screen space its
-            // corners behind the camera have no h: its range of h is that of its part in view, and
-            // such a corner's side of a line is read from screen_level.
+            // A face reaching behind the camera or out of the image is traced on its part in view:
+            // that part's range of h gives its planes, and its least gradient its finest level.
+            // In screen space a corner behind the camera has no h: its side of a line is read from
+            // screen_level.
             const bool unplaced = screen && !in_front;
             if (!unplaced && !(h_hi > h_lo)) return;
             internal::ViewPolygon part;
+            bool clipped = !in_front;
             if (in_front) {
                 glm::dvec2 q[3];
                 for (int c = 0; c < 3; ++c) q[c] = projection.pixel_from_clip(vertex_clip[t[c]]);
@@ -297,25 +299,30 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                 if (box_hi.x < 0.0 || box_hi.y < 0.0 || box_lo.x > image.width || box_lo.y > image.height) return;
                 const glm::dvec2 a = q[1] - q[0], b = q[2] - q[0];
                 if (std::abs(a.x * b.y - a.y * b.x) < 1e-12) return;  // edge-on
-            } else {
+                clipped = box_lo.x < 0.0 || box_lo.y < 0.0 || box_hi.x > image.width || box_hi.y > image.height;
+            }
+            if (clipped) {
                 part = internal::part_in_view(projection, p[0], p[1], p[2]);
                 if (part.count < 3) return;
             }
-            if (unplaced) {
+            const FaceFrame frame(mesh, t, family.h);
+            if (!frame.valid()) return;
+            if (clipped) {
                 h_lo = INFINITY, h_hi = -INFINITY;
                 for (size_t k = 0; k < part.count; ++k) {
-                    const double v = glm::dot(family.across, projection.pixel_from_clip(part.vertices[k].clip));
-                    h_lo = std::min(h_lo, v), h_hi = std::max(h_hi, v);
+                    const internal::ViewVertex& v = part.vertices[k];
+                    const glm::dvec2 b12 = frame.barycentric(v.p);
+                    const double hv = screen ? glm::dot(family.across, projection.pixel_from_clip(v.clip))
+                                             : h[0] + b12.x * (h[1] - h[0]) + b12.y * (h[2] - h[0]);
+                    h_lo = std::min(h_lo, hv), h_hi = std::max(h_hi, hv);
                 }
                 if (!(h_hi > h_lo)) return;
             }
-            const FaceFrame frame(mesh, t, family.h);
-            if (!frame.valid()) return;
 
             // The finest level any point of the face asks for: at its darkest corner, where h's
             // gradient on the image is least (the lines of level 0 lie step0 / |g| px apart); for
-            // a face reaching behind the camera, its darkest corner's tone with the least gradient
-            // of its part in view.
+            // a face reaching behind the camera or out of the image, its darkest corner's tone with
+            // the least gradient of its part in view.
             int finest = -1;
             double darkest = 0.0;
             for (int c = 0; c < 3; ++c) {
@@ -324,7 +331,7 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                                     : std::isnan(intensity) ? 0.0
                                                             : tone_of(intensity, curve);
                 darkest = std::max(darkest, tone);
-                if (!in_front) continue;
+                if (clipped) continue;
                 const double gradient = gradient_at(frame, vertex_clip[t[c]]);
                 finest = std::max(finest, finest_level(family_tone(tone, f, options_), family.step0, gradient, width));
             }
@@ -456,8 +463,12 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
             if (a.width < kMinWeight * width && b.width < kMinWeight * width) return;
             glm::dvec3 from = a.p_object, to = b.p_object;
             glm::dvec4 clip_a = projection.clip(from), clip_b = projection.clip(to);
-            if (!projection.in_front(clip_a) || !projection.in_front(clip_b)) {
-                // A segment reaching behind the camera: its points go on its stretch in view.
+            const auto in_view = [&](const glm::dvec4& clip) {
+                return projection.in_front(clip) && projection.inside_image(projection.pixel_from_clip(clip));
+            };
+            if (!in_view(clip_a) || !in_view(clip_b)) {
+                // A segment reaching behind the camera or out of the image: its points go on its
+                // stretch in view.
                 double s0 = 0.0, s1 = 1.0;
                 if (!internal::segment_in_view(projection, a.p_object, b.p_object, s0, s1)) return;
                 from = a.p_object + s0 * (b.p_object - a.p_object);

@@ -290,6 +290,19 @@ TEST(Hatch, AGroundPlaneRunningBehindTheCameraIsHatchedWhereItIsSeen) {
     }
 }
 
+// A ground far wider than the image (600 units across, 0.2 in front of the camera at its near
+// side), hatched evenly: its faces are traced on their part in view, so only the lines the view
+// asks for are traced. Before, each face's planes and finest level came from its corners, far
+// outside the image and magnified many times: each face traced its cap of 4,096 lines (8,192
+// segments, 20 times as many) and spread its lines' inner points along their whole length.
+TEST(Hatch, AGroundFarWiderThanTheImageIsTracedWhereItIsSeen) {
+    const core::Mesh plane = test::ground_plane(300.0f, -14.0f, 2.8f);
+    const core::Scene scene = ground_hatched_evenly(plane);
+    const core::FrameResult r = run_frames(scene, plane).front();
+    std::printf("wide ground: %zu segments traced, %zu points\n", r.tone.hatch_stats.segments, r.tone.hatch_stats.points);
+    EXPECT_LT(r.tone.hatch_stats.segments, 2048u);
+}
+
 // Lines run up to the strokes: a box's sides, each of one tone and two triangles, drawn with
 // their outline and creases, are hatched as evenly next to the strokes as in their middles. A
 // line that crosses a triangle in one short segment (where the diagonal meets an edge) ends

@@ -42,6 +42,11 @@ std::vector<double> ground_band_ink(const core::Mesh& plane, const core::Project
             if (px.x >= 0.0 && px.x <= image.width) side_row = std::max(side_row, px.y);
         }
     }
+    // And below its far edge, for a plane whose sides lie outside the image.
+    for (int k = 0; k <= 1000; ++k) {
+        const glm::dvec2 px = projection.pixel({lo_x + (hi_x - lo_x) * k / 1000.0, 0.0, lo_z});
+        if (px.x >= 0.0 && px.x <= image.width) side_row = std::max(side_row, px.y);
+    }
     const int first = int(std::ceil(side_row)) + 2, last = image.height;
     std::vector<double> out;
     if (first >= last - 40) return out;

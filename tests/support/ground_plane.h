@@ -22,8 +22,8 @@ core::Mesh ground_plane(float half_width, float z_far, float z_near);
 core::Scene ground_scene(const core::Mesh& plane, core::ImageSize image);
 
 // The mean of `coverage` (per pixel, rows from the top) in `bands` bands of rows from the first
-// row the plane fills from side to side (two rows below where its sides leave the image) to the
-// image's bottom, far to near. Empty when fewer than 40 such rows.
+// row the plane fills from side to side (two rows below where its sides leave the image, and below
+// its far edge) to the image's bottom, far to near. Empty when fewer than 40 such rows.
 std::vector<double> ground_band_ink(const core::Mesh& plane, const core::Projection& projection,
                                     std::span<const double> coverage, int bands);
 
