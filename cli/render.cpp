@@ -287,6 +287,12 @@ int run_info(const std::string& mesh_path) {
         for (const core::GltfObject& o : shot->objects()) std::printf("  %s (node %d): %u faces\n", o.name.c_str(), o.node, o.faces);
         if (const auto range = shot->frame_range()) std::printf("frames: %d..%d at %g fps\n", range->first, range->second, shot->fps());
         if (shot->camera()) std::printf("camera: %s (%s)\n", shot->camera()->name.c_str(), shot->camera()->orthographic ? "orthographic" : "perspective");
+        if (shot->cameras().size() > 1) {
+            std::printf("cameras: %zu (--camera NAME or INDEX)\n", shot->cameras().size());
+            for (const core::GltfCamera& c : shot->cameras()) {
+                std::printf("  %zu: %s (node %d, %s)\n", c.index, c.name.c_str(), c.node, c.orthographic ? "orthographic" : "perspective");
+            }
+        }
     }
     for (const std::string& w : loaded.warnings) std::printf("warning: %s\n", w.c_str());
     for (const std::string& w : core::mesh_warnings(r)) std::printf("warning: %s\n", w.c_str());

@@ -149,7 +149,9 @@ class Reader {
         }
         if (a.sparse.isSparse) apply_sparse(a, where, width, size, out);
         for (size_t i = 0; i < out.size(); ++i) {
-            if (!std::isfinite(out[i])) fail(file_, where, "value " + std::to_string(i / width) + " is not finite");
+            if (!std::isfinite(out[i])) {
+                fail(file_, where, "element " + std::to_string(i / width) + " (read as " + what + ") is NaN or infinite");
+            }
         }
         return out;
     }
@@ -345,6 +347,7 @@ struct GltfShot::Impl {
     std::vector<GltfObject> objects;
     std::vector<uint32_t> face_objects;
     std::optional<GltfCamera> camera;
+    std::vector<GltfCamera> cameras;  // every camera of the scene, in scene order
     Mesh rest;
     bool deforms = false;
     std::optional<std::pair<double, double>> time_range;
@@ -378,7 +381,16 @@ void GltfShot::Impl::load(const std::filesystem::path& path) {
     } else {
         ok = loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base);
     }
-    if (!ok) throw InputError(file + ": cannot read as glTF 2.0: " + (err.empty() ? std::string("unknown error") : first_line(err)));
+    if (!ok) {
+        // tinygltf quotes the whole data URI it cannot decode; the buffer is what to name.
+        if (err.find("Failed to decode 'uri'") != std::string::npos && err.find("in Buffer") != std::string::npos) {
+            fail(file, "buffers", "a buffer's data URI is not valid base64");
+        }
+        throw InputError(file + ": cannot read as glTF 2.0: " + (err.empty() ? std::string("unknown error") : first_line(err)));
+    }
+    if (model.asset.version.rfind("2.", 0) != 0) {
+        fail(file, "asset.version", "is '" + quote_value(model.asset.version) + "': only glTF 2.x is read");
+    }
     for (const std::string& required : model.extensionsRequired) {
         if (required == "KHR_mesh_quantization" || required == "KHR_materials_unlit" ||
             required.rfind("KHR_texture", 0) == 0 || required.rfind("KHR_materials", 0) == 0) {
@@ -581,6 +593,10 @@ void GltfShot::Impl::read_skins() {
 void GltfShot::Impl::read_objects() {
     const Reader reader(model, file);
     size_t faces = 0;
+    // Primitives without a surface, and triangle lists whose count is no multiple of 3: counted,
+    // and told once with the first of each.
+    size_t skipped = 0, ragged = 0;
+    std::string first_skipped, first_ragged;
     for (const int n : order) {
         const tinygltf::Node& node = model.nodes[size_t(n)];
         if (node.mesh < 0) continue;
@@ -598,6 +614,7 @@ void GltfShot::Impl::read_objects() {
             const std::string where = mwhere + "." + at("primitives", p);
             const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
             if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+                if (skipped++ == 0) first_skipped = where;
                 continue;  // points and lines have no surface to draw lines of
             }
             const auto pos = prim.attributes.find("POSITION");
@@ -663,6 +680,7 @@ void GltfShot::Impl::read_objects() {
                 g.triangles.push_back({uint32_t(base) + a, uint32_t(base) + b, uint32_t(base) + c});
             };
             if (mode == TINYGLTF_MODE_TRIANGLES) {
+                if (indices.size() % 3 != 0 && ragged++ == 0) first_ragged = where;
                 for (size_t i = 0; i + 2 < indices.size(); i += 3) add(indices[i], indices[i + 1], indices[i + 2]);
             } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
                 for (size_t i = 0; i + 2 < indices.size(); ++i) {
@@ -678,6 +696,11 @@ void GltfShot::Impl::read_objects() {
         }
         if (g.triangles.empty()) continue;
         g.default_weights = !node.weights.empty() ? node.weights : mesh.weights;
+        if (!g.default_weights.empty() && g.default_weights.size() != target_count) {
+            warnings.push_back(file + ": " + (!node.weights.empty() ? at("nodes", size_t(n)) : mwhere) + ": " +
+                               std::to_string(g.default_weights.size()) + " morph weight(s) for " + std::to_string(target_count) +
+                               " targets; a missing weight is 0, an extra one is ignored");
+        }
         g.default_weights.resize(target_count, 0.0);
         faces += g.triangles.size();
         GltfObject object;
@@ -687,6 +710,14 @@ void GltfShot::Impl::read_objects() {
         object.faces = uint32_t(g.triangles.size());
         objects.push_back(object);
         geometry.push_back(std::move(g));
+    }
+    if (skipped > 0) {
+        warnings.push_back(file + ": " + std::to_string(skipped) + " primitive(s) of points or lines skipped, having no surface (the first: " +
+                           first_skipped + ")");
+    }
+    if (ragged > 0) {
+        warnings.push_back(file + ": " + std::to_string(ragged) + " triangle list(s) whose index count is no multiple of 3; their last indices are ignored (the first: " +
+                           first_ragged + ")");
     }
     if (objects.empty()) throw InputError(file + ": the scene has no triangles to draw");
 }
@@ -931,43 +962,54 @@ void GltfShot::Impl::evaluate(double time, std::vector<glm::vec3>& r_positions) 
             p = glm::dvec3(world[size_t(g.node)] * glm::dvec4(p, 1.0));
         }
         r_positions[w] = glm::vec3(p);
-    }
-    for (const glm::vec3& q : r_positions) {
-        for (int i = 0; i < 3; ++i) {
-            if (!(std::abs(q[i]) <= kMaxCoordinate)) {
-                throw InputError(file + ": at time " + std::to_string(time) + " s a vertex coordinate (" + std::to_string(q[i]) +
-                                 ") is beyond the limit of 1e18");
-            }
+        const glm::vec3& q = r_positions[w];
+        if (!(std::abs(q.x) <= kMaxCoordinate && std::abs(q.y) <= kMaxCoordinate && std::abs(q.z) <= kMaxCoordinate)) {
+            const float c = std::abs(q.x) <= kMaxCoordinate ? std::abs(q.y) <= kMaxCoordinate ? q.z : q.y : q.x;
+            throw InputError(file + ": " + at("nodes", size_t(g.node)) + " ('" + quote_value(objects[o].name) + "'): at time " +
+                             std::to_string(time) + " s a vertex coordinate (" + std::to_string(c) + ") is beyond the limit of 1e18");
         }
     }
 }
 
 void GltfShot::Impl::choose_camera() {
-    std::vector<int> with_camera;
     for (const int n : order) {
         const int c = model.nodes[size_t(n)].camera;
         if (c < 0) continue;
         if (size_t(c) >= model.cameras.size()) fail(file, at("nodes", size_t(n)), "camera " + std::to_string(c) + " does not exist");
-        with_camera.push_back(n);
+        const tinygltf::Camera& cam = model.cameras[size_t(c)];
+        GltfCamera entry;
+        entry.name = !cam.name.empty() ? cam.name : !model.nodes[size_t(n)].name.empty() ? model.nodes[size_t(n)].name : at("cameras", size_t(c));
+        entry.node = n;
+        entry.index = size_t(c);
+        entry.orthographic = cam.type == "orthographic";
+        cameras.push_back(entry);
     }
+    // By name first (the camera's or its node's), then by index in the file's cameras.
     int node = -1;
-    for (const int n : with_camera) {
-        const tinygltf::Camera& c = model.cameras[size_t(model.nodes[size_t(n)].camera)];
-        if (options.camera.empty() || c.name == options.camera || model.nodes[size_t(n)].name == options.camera) {
-            node = n;
+    for (const GltfCamera& entry : cameras) {
+        const tinygltf::Camera& c = model.cameras[entry.index];
+        if (options.camera.empty() || c.name == options.camera || model.nodes[size_t(entry.node)].name == options.camera) {
+            node = entry.node;
             break;
         }
     }
+    for (size_t k = 0; k < cameras.size() && node < 0; ++k) {
+        if (std::to_string(cameras[k].index) == options.camera) node = cameras[k].node;
+    }
     if (node < 0) {
-        if (!options.camera.empty()) fail(file, "cameras", "no camera named '" + quote_value(options.camera) + "' in the scene");
-        return;
+        if (options.camera.empty()) return;
+        std::string names;
+        for (size_t k = 0; k < cameras.size() && k < 8; ++k) {
+            names += (k ? ", " : "") + std::string("'") + quote_value(cameras[k].name) + "' (" + std::to_string(cameras[k].index) + ")";
+        }
+        if (cameras.size() > 8) names += ", ...";
+        fail(file, "cameras", "no camera named '" + quote_value(options.camera) + "' in the scene (it has " +
+                                  (names.empty() ? std::string("none") : names) + ")");
     }
     const auto index = size_t(model.nodes[size_t(node)].camera);
     const tinygltf::Camera& c = model.cameras[index];
     const std::string where = at("cameras", index);
-    GltfCamera out;
-    out.name = !c.name.empty() ? c.name : model.nodes[size_t(node)].name;
-    out.node = node;
+    GltfCamera out = *std::find_if(cameras.begin(), cameras.end(), [&](const GltfCamera& e) { return e.node == node; });
     if (c.type == "perspective") {
         const tinygltf::PerspectiveCamera& p = c.perspective;
         if (!(p.yfov > 0.0 && p.yfov < 3.14159)) fail(file, where + ".perspective.yfov", "must be above 0 and below pi");
@@ -1042,6 +1084,7 @@ std::vector<MeshObject> GltfShot::mesh_objects() const {
     return out;
 }
 const std::optional<GltfCamera>& GltfShot::camera() const { return impl_->camera; }
+const std::vector<GltfCamera>& GltfShot::cameras() const { return impl_->cameras; }
 
 void GltfShot::positions_at(int frame, std::vector<glm::vec3>& r_positions) const {
     impl_->evaluate(double(frame) / impl_->options.fps, r_positions);

@@ -27,7 +27,7 @@ struct Scene;
 struct GltfOptions {
     int scene = -1;         // index into the file's scenes; -1: its default scene (else the first)
     std::string animation;  // an animation's name or index; empty: every animation together
-    std::string camera;     // a camera's name, or its node's name; empty: the scene's first camera
+    std::string camera;     // a camera's name, its node's name, or its index in the file's cameras; empty: the scene's first camera
     double fps = 24.0;      // frame F is animation time F / fps
     size_t max_faces = std::numeric_limits<size_t>::max();
 };
@@ -48,8 +48,9 @@ struct GltfCameraView {
 };
 
 struct GltfCamera {
-    std::string name;  // the camera's name, else its node's
+    std::string name;  // the camera's name, else its node's, else "cameras[i]"
     int node = 0;
+    size_t index = 0;  // in the file's cameras
     bool orthographic = false;
     double yfov = 0.0;    // radians (perspective)
     double aspect = 0.0;  // width / height; 0 when the file gives none
@@ -83,6 +84,9 @@ class GltfShot final : public AnimatedMesh {
     const std::vector<GltfObject>& objects() const;
     // The chosen camera; none when the scene has none.
     const std::optional<GltfCamera>& camera() const;
+    // Every camera of the scene, in scene order: name, node, index and kind (the others' lenses
+    // unread).
+    const std::vector<GltfCamera>& cameras() const;
     GltfCameraView camera_view_at(int frame) const;
 
   private:

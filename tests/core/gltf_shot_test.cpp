@@ -463,6 +463,70 @@ TEST_F(GltfShotTest, NamedAnimationAndCameraAreChosenOrRefused) {
     EXPECT_THROW(load(b, options), InputError);
 }
 
+// Cameras by the camera's name, its node's, or its index in the file's cameras (names first);
+// every camera of the scene listed, an unnamed one as cameras[i]; a name that matches none is
+// refused with the list.
+TEST_F(GltfShotTest, CamerasAreChosenByNameOrIndex) {
+    GltfBuilder b;
+    b.mesh_node("tri", kTriangle, {0, 1, 2});
+    b.json()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}},
+                           {{"type", "orthographic"}, {"orthographic", {{"xmag", 2}, {"ymag", 1}, {"znear", 0}, {"zfar", 50}}}},
+                           {{"type", "perspective"}, {"name", "Close"}, {"perspective", {{"yfov", 0.3}, {"znear", 0.1}}}}};
+    for (int c = 0; c < 3; ++c) {
+        const int n = b.node(c == 1 ? "Side" : "");
+        b.json()["nodes"][size_t(n)]["camera"] = c;
+        b.json()["nodes"][size_t(n)]["translation"] = {0, 0, 5 + c};
+    }
+    b.finish_scene();
+    core::GltfOptions options;
+    const core::GltfShot first = load(b, options);
+    ASSERT_EQ(first.cameras().size(), 3u);
+    EXPECT_EQ(first.cameras()[0].name, "cameras[0]");
+    EXPECT_EQ(first.cameras()[1].name, "Side");
+    EXPECT_TRUE(first.cameras()[1].orthographic);
+    EXPECT_EQ(first.cameras()[2].name, "Close");
+    EXPECT_EQ(first.camera()->index, 0u);
+    for (const auto& [asked, index] : std::vector<std::pair<std::string, size_t>>{{"1", 1}, {"Side", 1}, {"Close", 2}, {"2", 2}}) {
+        options.camera = asked;
+        const core::GltfShot shot = load(b, options);
+        EXPECT_EQ(shot.camera()->index, index) << asked;
+        EXPECT_EQ(shot.camera()->orthographic, index == 1) << asked;
+    }
+    options.camera = "3";
+    try {
+        load(b, options);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("no camera named '3' in the scene (it has 'cameras[0]' (0), 'Side' (1), 'Close' (2))"),
+                  std::string::npos) << e.what();
+    }
+}
+
+// What can be drawn is drawn, with one warning each: primitives of points and lines (no
+// surface), a triangle list whose count is no multiple of 3, default weights that do not match
+// the morph targets in number.
+TEST_F(GltfShotTest, OddButDrawablePartsAreDrawnWithAWarning) {
+    GltfBuilder b;
+    b.mesh_node("tri", kTriangle, {0, 1, 2, 0, 1});  // two indices too many
+    auto& prims = b.json()["meshes"][0]["primitives"];
+    prims.push_back(prims[0]);
+    prims[1]["mode"] = 1;  // LINES
+    prims.push_back(prims[0]);
+    prims[2]["mode"] = 0;  // POINTS
+    prims[0]["targets"] = {{{"POSITION", b.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3")}}};
+    b.json()["meshes"][0]["weights"] = {0.5, 0.25};
+    b.finish_scene();
+    const core::GltfShot shot = load(b);
+    EXPECT_EQ(shot.rest().triangles.size(), 1u);
+    expect_near(shot.rest().positions[0], {0, 0, 0.5});
+    const std::vector<std::string> w = shot.warnings();
+    ASSERT_EQ(w.size(), 3u);
+    EXPECT_NE(w[0].find("meshes[0]: 2 morph weight(s) for 1 targets"), std::string::npos) << w[0];
+    EXPECT_NE(w[1].find("2 primitive(s) of points or lines skipped, having no surface (the first: meshes[0].primitives[1])"),
+              std::string::npos) << w[1];
+    EXPECT_NE(w[2].find("1 triangle list(s) whose index count is no multiple of 3"), std::string::npos) << w[2];
+}
+
 TEST_F(GltfShotTest, BrokenFilesAreRefusedWithOneLineNamingTheElement) {
     const auto base = [] {
         GltfBuilder b;
@@ -510,7 +574,7 @@ TEST_F(GltfShotTest, BrokenFilesAreRefusedWithOneLineNamingTheElement) {
         GltfBuilder b = base();
         const float nan = std::nanf("");
         animate(b, 0, "translation", {0.0f, 1.0f}, {0, 0, 0, nan, 0, 0}, "LINEAR", "VEC3");
-        expect_error(b, "value 1 is not finite");
+        expect_error(b, "element 1 (read as animations[0].samplers[0].output) is NaN or infinite");
     }
     {
         GltfBuilder b = base();
@@ -524,6 +588,27 @@ TEST_F(GltfShotTest, BrokenFilesAreRefusedWithOneLineNamingTheElement) {
             const std::string m = e.what();
             EXPECT_NE(m.find("missing.gltf"), std::string::npos) << m;
             EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+        }
+    }
+    {
+        GltfBuilder b = base();
+        b.json()["asset"]["version"] = "1.0";
+        expect_error(b, "shot.gltf: asset.version: is '1.0': only glTF 2.x is read");
+    }
+    {
+        GltfBuilder b = base();
+        const std::string text = b.gltf_text();
+        const size_t comma = text.find("base64,");
+        ASSERT_NE(comma, std::string::npos);
+        std::string broken = text;
+        broken[comma + 8] = '!';
+        std::ofstream(dir_ / "b64.gltf") << broken;
+        try {
+            core::GltfShot shot(dir_ / "b64.gltf");
+            FAIL() << "no error";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("b64.gltf: buffers: a buffer's data URI is not valid base64"), std::string::npos)
+                << e.what();
         }
     }
     {
@@ -543,6 +628,7 @@ TEST_F(GltfShotTest, ValuesBeyondTheDrawingLimitsAreRefused) {
         b.mesh_node("far", {0, 0, 0, 1e30f, 0, 0, 0, 1, 0}, {0, 1, 2});
         b.finish_scene();
         const std::string m = error_of(b);
+        EXPECT_NE(m.find("nodes[0] ('far'): at time 0.000000 s a vertex coordinate"), std::string::npos) << m;
         EXPECT_NE(m.find("is beyond the limit of 1e18"), std::string::npos) << m;
     }
     {
