@@ -1142,8 +1142,21 @@ void apply_gltf_camera(const GltfShot& shot, Scene& r_scene, int first, int last
     if (r_scene.given.camera) return;
     const std::optional<GltfCamera>& cam = shot.camera();
     if (!cam) {
-        // No camera in the file: a bare mesh's view, still when the shot is animated.
-        r_scene.camera = default_turntable_scene(r_scene.mesh.path, bounds_of(shot.rest().positions)).camera;
+        // No camera in the file: a bare mesh's view, still when the shot is animated, framing
+        // where the shot's geometry goes over the frames drawn (read at up to kFitFrames of them,
+        // evenly, the first and last included), so that nothing that moves leaves the image.
+        Bounds bounds = bounds_of(shot.rest().positions);
+        if (shot.frame_range() && shot.deforms() && last > first) {
+            constexpr int kFitFrames = 32;
+            const int steps = std::min(last - first, kFitFrames - 1);
+            std::vector<glm::vec3> positions;
+            for (int k = 0; k <= steps; ++k) {
+                shot.positions_at(first + int((int64_t(last) - first) * k / steps), positions);
+                const Bounds at = bounds_of(positions);
+                if (at.valid) bounds.add(at.min), bounds.add(at.max);
+            }
+        }
+        r_scene.camera = default_turntable_scene(r_scene.mesh.path, bounds).camera;
         if (shot.frame_range()) r_scene.camera.orbit.reset();
         return;
     }

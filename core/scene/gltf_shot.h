@@ -100,7 +100,7 @@ bool is_gltf_path(const std::filesystem::path& path);
 // The camera a glTF file gives a scene for every frame in [first, last], unless the scene gives
 // one (`given.camera`), and the image size from the camera's aspect ratio unless `image_given`.
 // A file without a camera gets a bare mesh's turntable view (docs/cli.md), still when the shot
-// is animated. An image size
+// is animated and then framed on the geometry over [first, last]. An image size
 // that differs from the camera's aspect keeps the view as Blender's automatic sensor fit does:
 // the camera's field of view along its longer side becomes the field along the image's longer
 // side. An orthographic camera stays orthographic (Camera::ortho_height), its xmag and ymag

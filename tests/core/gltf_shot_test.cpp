@@ -431,10 +431,23 @@ TEST_F(GltfShotTest, ShotsWithoutCameraGetTheTurntableView) {
     core::apply_gltf_camera(load(b), still, 1, 48, false);
     EXPECT_TRUE(still.camera.orbit.has_value());
     EXPECT_TRUE(still.camera.per_frame.empty());
-    animate(b, n, "translation", {0.0f, 1.0f}, {0, 0, 0, 1, 0, 0}, "LINEAR", "VEC3");
+    animate(b, n, "translation", {0.0f, 1.0f}, {0, 0, 0, 30, 0, 0}, "LINEAR", "VEC3");
     core::Scene animated;
-    core::apply_gltf_camera(load(b), animated, 0, 24, false);
+    const core::GltfShot moving = load(b);
+    core::apply_gltf_camera(moving, animated, 0, 24, false);
     EXPECT_FALSE(animated.camera.orbit.has_value());
+    // The view frames where the triangle goes, not only where it starts: it slides 30 units to
+    // the right over the second, and every frame's corners are in the image.
+    for (int frame = 0; frame <= 24; ++frame) {
+        std::vector<glm::vec3> positions;
+        moving.positions_at(frame, positions);
+        const core::Projection projection(core::camera_at(animated, frame, core::bounds_of(positions)), animated.image,
+                                          glm::dmat4(1.0));
+        for (const glm::vec3& p : positions) {
+            const glm::dvec2 px = projection.pixel(glm::dvec3(p));
+            EXPECT_TRUE(projection.inside_image(px)) << "frame " << frame << ": " << px.x << ", " << px.y;
+        }
+    }
     core::Scene given;
     given.given.camera = true;
     given.camera.pose.eye = {7, 7, 7};
