@@ -6,6 +6,7 @@
 #include "core/lines/chaining.h"
 #include "core/lines/features.h"
 #include "core/pipeline/stopwatch.h"
+#include "core/tone/internal/view_clip.h"
 #include "core/visibility/visibility.h"
 
 #include <glm/matrix.hpp>
@@ -22,6 +23,20 @@ namespace {
 
 bool inside(const Bounds& b, const glm::dvec3& p) {
     return glm::all(glm::greaterThanEqual(p, b.min)) && glm::all(glm::lessThanEqual(p, b.max));
+}
+
+// True when no point of the box can be seen: its eight corners all lie beyond one of the view's
+// planes (the near plane or one of the image's sides).
+bool out_of_view(const Bounds& b, const Projection& projection) {
+    for (int plane = 0; plane < 5; ++plane) {
+        bool all_beyond = true;
+        for (int k = 0; k < 8 && all_beyond; ++k) {
+            const glm::dvec3 corner(k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y, k & 4 ? b.max.z : b.min.z);
+            all_beyond = internal::inside_view_by(projection, plane, projection.clip(corner)) < 0.0;
+        }
+        if (all_beyond) return true;
+    }
+    return false;
 }
 
 // Times the steps of a run, one after another: each call returns the ms since the last (or since
@@ -97,6 +112,10 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibil
         warned_inside_ = true;
         found.warnings.push_back("frame " + std::to_string(frame) +
                                  ": the camera is inside the mesh's bounds; lines may be hidden");
+    }
+    if (!warned_outside_ && object_bounds.valid && out_of_view(object_bounds, projection)) {
+        warned_outside_ = true;
+        found.warnings.push_back("frame " + std::to_string(frame) + ": the mesh is wholly outside the camera's view; nothing is drawn");
     }
 
     // Feature edges and chains. Smooth contours replace the silhouette edges.

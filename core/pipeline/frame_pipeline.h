@@ -69,8 +69,9 @@ struct FrameResult {
     FrameTone tone;        // the tone's dots (mode kNone and none without a scene "tone")
     const Mesh* mesh = nullptr;  // the frame's mesh (object space), valid until the next run()
     glm::dmat4 world_from_object{1.0};
-    // Drawable but odd input found drawing this frame (the camera inside the mesh's bounds,
-    // said once a run), for the caller to show; the pipeline prints nothing.
+    // Drawable but odd input found drawing this frame (the camera inside the mesh's bounds, the
+    // mesh wholly outside the view: each said once a run), for the caller to show; the pipeline
+    // prints nothing.
     std::vector<std::string> warnings;
 };
 
@@ -170,6 +171,7 @@ class FramePipeline {
     bool visibility_ahead_ = false;  // ... and their visibility
     bool ahead_after_tone_ = false;  // ... but only once the frame's tone is done
     bool warned_inside_ = false;
+    bool warned_outside_ = false;
     // The next frame's lines, being found while a frame is drawn, on a thread of the pipeline's
     // own (started on the first frame found ahead). Last, so that the thread stops before the
     // state it uses goes.

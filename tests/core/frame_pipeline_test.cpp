@@ -333,6 +333,29 @@ TEST(FramePipeline, WarnsOnceWhenTheCameraIsInsideTheMeshBounds) {
                             "frame 1: the camera is inside the mesh's bounds; lines may be hidden"}));
 }
 
+// A camera that looks away from the mesh draws nothing: said once, and the frames are written.
+TEST(FramePipeline, WarnsOnceWhenTheMeshIsWhollyOutOfView) {
+    const core::Mesh mesh = test::cube(1.0);
+    for (const glm::dvec3 target : {glm::dvec3(0.0, 0.0, 20.0), glm::dvec3(-40.0, 0.0, 5.0)}) {  // behind, to the side
+        core::Scene scene = test::scene_for({.eye = {0.0, 0.0, 5.0}, .target = target}, mesh);
+        scene.last_frame = 3;
+        core::MeshFrames meshes(mesh);
+        std::vector<std::string> warnings;
+        core::FramePipeline pipeline(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+        for (int frame = 1; frame <= 3; ++frame) {
+            const core::FrameResult r = pipeline.run(frame);
+            EXPECT_TRUE(r.strokes.strokes.empty());
+            for (const std::string& w : r.warnings) warnings.push_back(w);
+        }
+        EXPECT_EQ(warnings, (std::vector<std::string>{"frame 1: the mesh is wholly outside the camera's view; nothing is drawn"}));
+    }
+    // In view, no warning.
+    const core::Scene seen = test::scene_for({.eye = {0.0, 0.0, 5.0}}, mesh);
+    core::MeshFrames meshes(mesh);
+    core::FramePipeline pipeline(seen, meshes, core::make_cpu_occlusion(core::VisibilityMode::kExact));
+    EXPECT_TRUE(pipeline.run(1).warnings.empty());
+}
+
 TEST(FramePipeline, AFrameThatCannotBeReadThrowsAndTheNextFrameIsDrawn) {
     const fs::path dir = test::fresh_temp_dir("AFrameThatCannotBeReadThrowsAndTheNextFrameIsDrawn");
     test::write_obj(dir / "f1.obj", test::cube(1.0));
