@@ -286,6 +286,11 @@ int run_info(const std::string& mesh_path) {
         std::printf("objects: %zu\n", shot->objects().size());
         for (const core::GltfObject& o : shot->objects()) std::printf("  %s (node %d): %u faces\n", o.name.c_str(), o.node, o.faces);
         if (const auto range = shot->frame_range()) std::printf("frames: %d..%d at %g fps\n", range->first, range->second, shot->fps());
+        const std::vector<std::string> animations = shot->animations();
+        if (!animations.empty()) {
+            std::printf("animations: %zu (--animation NAME or INDEX)\n", animations.size());
+            for (size_t a = 0; a < animations.size(); ++a) std::printf("  %zu: %s\n", a, animations[a].c_str());
+        }
         if (shot->camera()) std::printf("camera: %s (%s)\n", shot->camera()->name.c_str(), shot->camera()->orthographic ? "orthographic" : "perspective");
         if (shot->cameras().size() > 1) {
             std::printf("cameras: %zu (--camera NAME or INDEX)\n", shot->cameras().size());

@@ -1086,6 +1086,15 @@ std::vector<MeshObject> GltfShot::mesh_objects() const {
 const std::optional<GltfCamera>& GltfShot::camera() const { return impl_->camera; }
 const std::vector<GltfCamera>& GltfShot::cameras() const { return impl_->cameras; }
 
+std::vector<std::string> GltfShot::animations() const {
+    std::vector<std::string> out;
+    for (size_t a = 0; a < impl_->model.animations.size(); ++a) {
+        const std::string& name = impl_->model.animations[a].name;
+        out.push_back(name.empty() ? at("animations", a) : name);
+    }
+    return out;
+}
+
 void GltfShot::positions_at(int frame, std::vector<glm::vec3>& r_positions) const {
     impl_->evaluate(double(frame) / impl_->options.fps, r_positions);
 }

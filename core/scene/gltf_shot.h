@@ -84,6 +84,8 @@ class GltfShot final : public AnimatedMesh {
     const std::vector<GltfObject>& objects() const;
     // The chosen camera; none when the scene has none.
     const std::optional<GltfCamera>& camera() const;
+    // The file's animations by name ("animations[i]" for one without), in file order.
+    std::vector<std::string> animations() const;
     // Every camera of the scene, in scene order: name, node, index and kind (the others' lenses
     // unread).
     const std::vector<GltfCamera>& cameras() const;

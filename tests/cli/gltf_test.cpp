@@ -358,7 +358,22 @@ TEST_F(Gltf, InfoReportsTheWeldedMeshItsObjectsFramesAndCamera) {
     EXPECT_NE(r.output.find("boundary edges: 0\n"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("objects: 1\n  Cube (node 0): 12 faces\n"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("frames: 1..24 at 24 fps\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("animations: 1 (--animation NAME or INDEX)\n  0: Slide\n"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("camera: Camera (perspective)\n"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("cameras:"), std::string::npos) << r.output;  // one camera: no list
+    // A second camera, unnamed: every camera listed with its index.
+    test::GltfBuilder b = moving_cube();
+    b.json()["cameras"].push_back({{"type", "orthographic"}, {"orthographic", {{"xmag", 2}, {"ymag", 1}, {"znear", 0}, {"zfar", 50}}}});
+    const int second = b.node("");
+    b.json()["nodes"][size_t(second)]["camera"] = 1;
+    b.json()["scenes"][0]["nodes"].push_back(second);
+    b.write(dir / "two.glb");
+    const auto two = test::run_inkline("info " + (dir / "two.glb").string());
+    ASSERT_EQ(two.code, 0) << two.output;
+    EXPECT_NE(two.output.find("cameras: 2 (--camera NAME or INDEX)\n  0: Camera (node 1, perspective)\n"
+                              "  1: cameras[1] (node 2, orthographic)\n"),
+              std::string::npos)
+        << two.output;
 }
 
 TEST_F(Gltf, BrokenShotExitsTwoWithOneLineAndWritesNothing) {
