@@ -55,7 +55,9 @@ void add_render_options(CLI::App* cmd, inkline::cli::RenderArgs& r) {
     cmd->add_option("--gltf-scene", r.gltf_scene, "glTF input: draw this scene of the file (default: its default scene)")
         ->check(CLI::Range(0, 1 << 30));
     cmd->add_option("--animation", r.animation, "glTF input: play only this animation, by name or index (default: all together)");
-    cmd->add_option("--camera", r.camera, "glTF input: look through this camera, by its or its node's name, or its index in the file's cameras (default: the first)");
+    cmd->add_option("--camera", r.camera,
+                    "glTF input: look through this camera, by its or its node's name, or its index in the file's "
+                    "cameras (default: the first)");
     cmd->add_option("--fps", r.fps,
                     "glTF input: frame F is animation time F / fps; a write-on's frames per second (default: 24, or "
                     "the scene's fps)")

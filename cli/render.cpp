@@ -295,7 +295,8 @@ int run_info(const std::string& mesh_path) {
         if (shot->cameras().size() > 1) {
             std::printf("cameras: %zu (--camera NAME or INDEX)\n", shot->cameras().size());
             for (const core::GltfCamera& c : shot->cameras()) {
-                std::printf("  %zu: %s (node %d, %s)\n", c.index, c.name.c_str(), c.node, c.orthographic ? "orthographic" : "perspective");
+                std::printf("  %zu: %s (node %d, %s)\n", c.index, c.name.c_str(), c.node,
+                            c.orthographic ? "orthographic" : "perspective");
             }
         }
     }

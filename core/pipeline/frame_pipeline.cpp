@@ -2,11 +2,11 @@
 #include "core/pipeline/frame_pipeline.h"
 
 #include "core/error.h"
+#include "core/internal/view_clip.h"
 #include "core/internal/worker.h"
 #include "core/lines/chaining.h"
 #include "core/lines/features.h"
 #include "core/pipeline/stopwatch.h"
-#include "core/tone/internal/view_clip.h"
 #include "core/visibility/visibility.h"
 
 #include <glm/matrix.hpp>
@@ -115,7 +115,8 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibil
     }
     if (!warned_outside_ && object_bounds.valid && out_of_view(object_bounds, projection)) {
         warned_outside_ = true;
-        found.warnings.push_back("frame " + std::to_string(frame) + ": the mesh is wholly outside the camera's view; nothing is drawn");
+        found.warnings.push_back("frame " + std::to_string(frame) +
+                                 ": the mesh is wholly outside the camera's view; nothing is drawn");
     }
 
     // Feature edges and chains. Smooth contours replace the silhouette edges.

@@ -150,7 +150,8 @@ class Reader {
         if (a.sparse.isSparse) apply_sparse(a, where, width, size, out);
         for (size_t i = 0; i < out.size(); ++i) {
             if (!std::isfinite(out[i])) {
-                fail(file_, where, "element " + std::to_string(i / width) + " (read as " + what + ") is NaN or infinite");
+                fail(file_, where,
+                     "element " + std::to_string(i / width) + " (read as " + what + ") is NaN or infinite");
             }
         }
         return out;
@@ -386,7 +387,8 @@ void GltfShot::Impl::load(const std::filesystem::path& path) {
         if (err.find("Failed to decode 'uri'") != std::string::npos && err.find("in Buffer") != std::string::npos) {
             fail(file, "buffers", "a buffer's data URI is not valid base64");
         }
-        throw InputError(file + ": cannot read as glTF 2.0: " + (err.empty() ? std::string("unknown error") : first_line(err)));
+        throw InputError(
+            file + ": cannot read as glTF 2.0: " + (err.empty() ? std::string("unknown error") : first_line(err)));
     }
     if (model.asset.version.rfind("2.", 0) != 0) {
         fail(file, "asset.version", "is '" + quote_value(model.asset.version) + "': only glTF 2.x is read");
@@ -698,7 +700,8 @@ void GltfShot::Impl::read_objects() {
         g.default_weights = !node.weights.empty() ? node.weights : mesh.weights;
         if (!g.default_weights.empty() && g.default_weights.size() != target_count) {
             warnings.push_back(file + ": " + (!node.weights.empty() ? at("nodes", size_t(n)) : mwhere) + ": " +
-                               std::to_string(g.default_weights.size()) + " morph weight(s) for " + std::to_string(target_count) +
+                               std::to_string(g.default_weights.size()) + " morph weight(s) for " +
+                               std::to_string(target_count) +
                                " targets; a missing weight is 0, an extra one is ignored");
         }
         g.default_weights.resize(target_count, 0.0);
@@ -712,12 +715,15 @@ void GltfShot::Impl::read_objects() {
         geometry.push_back(std::move(g));
     }
     if (skipped > 0) {
-        warnings.push_back(file + ": " + std::to_string(skipped) + " primitive(s) of points or lines skipped, having no surface (the first: " +
-                           first_skipped + ")");
+        warnings.push_back(file + ": " + std::to_string(skipped) +
+                           " primitive(s) of points or lines skipped, having no surface (the first: " + first_skipped +
+                           ")");
     }
     if (ragged > 0) {
-        warnings.push_back(file + ": " + std::to_string(ragged) + " triangle list(s) whose index count is no multiple of 3; their last indices are ignored (the first: " +
-                           first_ragged + ")");
+        warnings.push_back(
+            file + ": " + std::to_string(ragged) +
+            " triangle list(s) whose index count is no multiple of 3; their last indices are ignored (the first: " +
+            first_ragged + ")");
     }
     if (objects.empty()) throw InputError(file + ": the scene has no triangles to draw");
 }
@@ -760,8 +766,9 @@ void GltfShot::Impl::orient_mirrored() {
         for (size_t o = 0; o < geometry.size(); ++o) {
             if (now[o] == mirrored[o] || warned[o]) continue;
             warned[o] = true;
-            warnings.push_back(file + ": " + at("nodes", size_t(objects[o].node)) + " ('" + quote_value(objects[o].name) +
-                               "') is mirrored at some times and not at others; its faces keep the winding of the first frame");
+            warnings.push_back(
+                file + ": " + at("nodes", size_t(objects[o].node)) + " ('" + quote_value(objects[o].name) +
+                "') is mirrored at some times and not at others; its faces keep the winding of the first frame");
         }
     }
 }
@@ -965,8 +972,9 @@ void GltfShot::Impl::evaluate(double time, std::vector<glm::vec3>& r_positions) 
         const glm::vec3& q = r_positions[w];
         if (!(std::abs(q.x) <= kMaxCoordinate && std::abs(q.y) <= kMaxCoordinate && std::abs(q.z) <= kMaxCoordinate)) {
             const float c = std::abs(q.x) <= kMaxCoordinate ? std::abs(q.y) <= kMaxCoordinate ? q.z : q.y : q.x;
-            throw InputError(file + ": " + at("nodes", size_t(g.node)) + " ('" + quote_value(objects[o].name) + "'): at time " +
-                             std::to_string(time) + " s a vertex coordinate (" + std::to_string(c) + ") is beyond the limit of 1e18");
+            throw InputError(file + ": " + at("nodes", size_t(g.node)) + " ('" + quote_value(objects[o].name) +
+                             "'): at time " + std::to_string(time) + " s a vertex coordinate (" + std::to_string(c) +
+                             ") is beyond the limit of 1e18");
         }
     }
 }
@@ -978,7 +986,9 @@ void GltfShot::Impl::choose_camera() {
         if (size_t(c) >= model.cameras.size()) fail(file, at("nodes", size_t(n)), "camera " + std::to_string(c) + " does not exist");
         const tinygltf::Camera& cam = model.cameras[size_t(c)];
         GltfCamera entry;
-        entry.name = !cam.name.empty() ? cam.name : !model.nodes[size_t(n)].name.empty() ? model.nodes[size_t(n)].name : at("cameras", size_t(c));
+        entry.name = !cam.name.empty()                      ? cam.name
+                     : !model.nodes[size_t(n)].name.empty() ? model.nodes[size_t(n)].name
+                                                            : at("cameras", size_t(c));
         entry.node = n;
         entry.index = size_t(c);
         entry.orthographic = cam.type == "orthographic";
@@ -988,7 +998,8 @@ void GltfShot::Impl::choose_camera() {
     int node = -1;
     for (const GltfCamera& entry : cameras) {
         const tinygltf::Camera& c = model.cameras[entry.index];
-        if (options.camera.empty() || c.name == options.camera || model.nodes[size_t(entry.node)].name == options.camera) {
+        if (options.camera.empty() || c.name == options.camera ||
+            model.nodes[size_t(entry.node)].name == options.camera) {
             node = entry.node;
             break;
         }
@@ -1000,11 +1011,13 @@ void GltfShot::Impl::choose_camera() {
         if (options.camera.empty()) return;
         std::string names;
         for (size_t k = 0; k < cameras.size() && k < 8; ++k) {
-            names += (k ? ", " : "") + std::string("'") + quote_value(cameras[k].name) + "' (" + std::to_string(cameras[k].index) + ")";
+            names += (k ? ", " : "") + std::string("'") + quote_value(cameras[k].name) + "' (" +
+                     std::to_string(cameras[k].index) + ")";
         }
         if (cameras.size() > 8) names += ", ...";
-        fail(file, "cameras", "no camera named '" + quote_value(options.camera) + "' in the scene (it has " +
-                                  (names.empty() ? std::string("none") : names) + ")");
+        fail(file, "cameras",
+             "no camera named '" + quote_value(options.camera) + "' in the scene (it has " +
+                 (names.empty() ? std::string("none") : names) + ")");
     }
     const auto index = size_t(model.nodes[size_t(node)].camera);
     const tinygltf::Camera& c = model.cameras[index];

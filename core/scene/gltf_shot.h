@@ -27,7 +27,8 @@ struct Scene;
 struct GltfOptions {
     int scene = -1;         // index into the file's scenes; -1: its default scene (else the first)
     std::string animation;  // an animation's name or index; empty: every animation together
-    std::string camera;     // a camera's name, its node's name, or its index in the file's cameras; empty: the scene's first camera
+    std::string camera;     // a camera's name, its node's name, or its index in the file's cameras; empty: the scene's
+                            // first camera
     double fps = 24.0;      // frame F is animation time F / fps
     size_t max_faces = std::numeric_limits<size_t>::max();
 };

@@ -2,10 +2,10 @@
 #include "core/tone/hatch.h"
 
 #include "core/internal/parallel.h"
+#include "core/internal/view_clip.h"
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
 #include "core/tone/internal/tone_light.h"
-#include "core/tone/internal/view_clip.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -361,7 +361,8 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                 // Which side of the line a corner lies on (a corner on it counts as above).
                 const auto above = [&](int k) {
                     const glm::dvec4& clip = vertex_clip[t[k]];
-                    return unplaced && !projection.in_front(clip) ? screen_level(family.across, clip, c) >= 0.0 : h[k] >= c;
+                    return unplaced && !projection.in_front(clip) ? screen_level(family.across, clip, c) >= 0.0
+                                                                  : h[k] >= c;
                 };
                 for (int k = 0; k < 3 && found < 2; ++k) {
                     const int l = (k + 1) % 3;
@@ -374,7 +375,8 @@ std::vector<Hatch> Hatcher::hatch(const Mesh& mesh, const EdgeTable& table, cons
                     const glm::dvec4 &clip0 = vertex_clip[ends.x], &clip1 = vertex_clip[ends.y];
                     if (screen && !(projection.in_front(clip0) && projection.in_front(clip1))) {
                         // A side reaching behind the camera: where it meets the line's plane.
-                        const double l0 = screen_level(family.across, clip0, c), l1 = screen_level(family.across, clip1, c);
+                        const double l0 = screen_level(family.across, clip0, c),
+                                     l1 = screen_level(family.across, clip1, c);
                         along = l0 / (l0 - l1);
                     } else if (screen) {
                         // h runs evenly on the image, not along the edge in space: the point of

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "core/tone/stipple.h"
 
+#include "core/internal/key_table.h"
 #include "core/internal/parallel.h"
+#include "core/internal/view_clip.h"
 #include "core/random.h"
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
 #include "core/tone/internal/tone_light.h"
-#include "core/tone/internal/view_clip.h"
-#include "core/internal/key_table.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>

@@ -153,13 +153,15 @@ TEST_F(Gltf, AMirroredObjectIsLitAndStippledAsThePlainOne) {
         const int node = b.mesh_node("Ball", positions, indices);
         b.json()["nodes"][size_t(node)]["scale"] = {scale_x, 1, 1};
         const int cam = b.node("Camera");
-        b.json()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"aspectRatio", 1.0}, {"znear", 0.1}}}}};
+        b.json()["cameras"] = {
+            {{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"aspectRatio", 1.0}, {"znear", 0.1}}}}};
         b.json()["nodes"][size_t(cam)]["camera"] = 0;
         b.json()["nodes"][size_t(cam)]["translation"] = {0, 0, 5};
         b.finish_scene();
         b.write(dir / (name + ".glb"));
-        const auto r = test::run_inkline("render " + (dir / (name + ".glb")).string() + " --size 400x400 --tone stipple --json " +
-                                         (dir / (name + "/%04d.json")).string() + " -q");
+        const auto r =
+            test::run_inkline("render " + (dir / (name + ".glb")).string() + " --size 400x400 --tone stipple --json " +
+                              (dir / (name + "/%04d.json")).string() + " -q");
         EXPECT_EQ(r.code, 0) << r.output;
         const nlohmann::json j = nlohmann::json::parse(test::read_text(dir / name / "0001.json"));
         Drawn d;
@@ -363,7 +365,8 @@ TEST_F(Gltf, InfoReportsTheWeldedMeshItsObjectsFramesAndCamera) {
     EXPECT_EQ(r.output.find("cameras:"), std::string::npos) << r.output;  // one camera: no list
     // A second camera, unnamed: every camera listed with its index.
     test::GltfBuilder b = moving_cube();
-    b.json()["cameras"].push_back({{"type", "orthographic"}, {"orthographic", {{"xmag", 2}, {"ymag", 1}, {"znear", 0}, {"zfar", 50}}}});
+    b.json()["cameras"].push_back(
+        {{"type", "orthographic"}, {"orthographic", {{"xmag", 2}, {"ymag", 1}, {"znear", 0}, {"zfar", 50}}}});
     const int second = b.node("");
     b.json()["nodes"][size_t(second)]["camera"] = 1;
     b.json()["scenes"][0]["nodes"].push_back(second);

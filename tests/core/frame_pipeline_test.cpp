@@ -347,7 +347,9 @@ TEST(FramePipeline, WarnsOnceWhenTheMeshIsWhollyOutOfView) {
             EXPECT_TRUE(r.strokes.strokes.empty());
             for (const std::string& w : r.warnings) warnings.push_back(w);
         }
-        EXPECT_EQ(warnings, (std::vector<std::string>{"frame 1: the mesh is wholly outside the camera's view; nothing is drawn"}));
+        EXPECT_EQ(
+            warnings,
+            (std::vector<std::string>{"frame 1: the mesh is wholly outside the camera's view; nothing is drawn"}));
     }
     // In view, no warning.
     const core::Scene seen = test::scene_for({.eye = {0.0, 0.0, 5.0}}, mesh);

@@ -4,21 +4,21 @@
 // files refused with one line naming the element.
 #include "core/scene/gltf_shot.h"
 
-#include "core/error.h"
-#include "core/mesh/topology.h"
-#include "core/scene/scene.h"
-#include "tests/support/gltf.h"
-#include "tests/support/shapes.h"
-
-#include <glm/gtc/constants.hpp>
-#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/constants.hpp>
+#include <glm/trigonometric.hpp>
 #include <string>
+
+#include "core/error.h"
+#include "core/mesh/topology.h"
+#include "core/scene/scene.h"
+#include "tests/support/gltf.h"
+#include "tests/support/shapes.h"
 
 namespace inkline {
 namespace {
@@ -166,7 +166,8 @@ TEST_F(GltfShotTest, MirroredNodesTurnTheirTrianglesToFaceOut) {
     const int twice = instance("mirrored twice");
     nodes[size_t(twice)]["scale"] = {-1, 1, 1};
     b.add_child(flop, twice);
-    nodes[size_t(instance("matrix"))]["matrix"] = {0, 0, 3, 0, 0, 1, 0, 0, 1, 0, 0, 0, 4, 0, 0, 1};  // x and z swapped: a mirror
+    nodes[size_t(instance("matrix"))]["matrix"] = {0, 0, 3, 0, 0, 1, 0, 0,
+                                                   1, 0, 0, 0, 4, 0, 0, 1};  // x and z swapped: a mirror
     b.finish_scene();
 
     const core::GltfShot shot = load(b);
@@ -183,7 +184,8 @@ TEST_F(GltfShotTest, MirroredNodesTurnTheirTrianglesToFaceOut) {
     const core::GltfShot turning = load(c);
     EXPECT_EQ(inward_faces(turning), std::vector<size_t>{0});
     ASSERT_EQ(turning.warnings().size(), 1u);
-    EXPECT_NE(turning.warnings()[0].find("nodes[0] ('plain') is mirrored at some times and not at others"), std::string::npos)
+    EXPECT_NE(turning.warnings()[0].find("nodes[0] ('plain') is mirrored at some times and not at others"),
+              std::string::npos)
         << turning.warnings()[0];
 }
 
@@ -482,9 +484,10 @@ TEST_F(GltfShotTest, NamedAnimationAndCameraAreChosenOrRefused) {
 TEST_F(GltfShotTest, CamerasAreChosenByNameOrIndex) {
     GltfBuilder b;
     b.mesh_node("tri", kTriangle, {0, 1, 2});
-    b.json()["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}},
-                           {{"type", "orthographic"}, {"orthographic", {{"xmag", 2}, {"ymag", 1}, {"znear", 0}, {"zfar", 50}}}},
-                           {{"type", "perspective"}, {"name", "Close"}, {"perspective", {{"yfov", 0.3}, {"znear", 0.1}}}}};
+    b.json()["cameras"] = {
+        {{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}},
+        {{"type", "orthographic"}, {"orthographic", {{"xmag", 2}, {"ymag", 1}, {"znear", 0}, {"zfar", 50}}}},
+        {{"type", "perspective"}, {"name", "Close"}, {"perspective", {{"yfov", 0.3}, {"znear", 0.1}}}}};
     for (int c = 0; c < 3; ++c) {
         const int n = b.node(c == 1 ? "Side" : "");
         b.json()["nodes"][size_t(n)]["camera"] = c;
@@ -499,7 +502,8 @@ TEST_F(GltfShotTest, CamerasAreChosenByNameOrIndex) {
     EXPECT_TRUE(first.cameras()[1].orthographic);
     EXPECT_EQ(first.cameras()[2].name, "Close");
     EXPECT_EQ(first.camera()->index, 0u);
-    for (const auto& [asked, index] : std::vector<std::pair<std::string, size_t>>{{"1", 1}, {"Side", 1}, {"Close", 2}, {"2", 2}}) {
+    for (const auto& [asked, index] :
+         std::vector<std::pair<std::string, size_t>>{{"1", 1}, {"Side", 1}, {"Close", 2}, {"2", 2}}) {
         options.camera = asked;
         const core::GltfShot shot = load(b, options);
         EXPECT_EQ(shot.camera()->index, index) << asked;
@@ -510,8 +514,10 @@ TEST_F(GltfShotTest, CamerasAreChosenByNameOrIndex) {
         load(b, options);
         FAIL() << "no error";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("no camera named '3' in the scene (it has 'cameras[0]' (0), 'Side' (1), 'Close' (2))"),
-                  std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(
+                      "no camera named '3' in the scene (it has 'cameras[0]' (0), 'Side' (1), 'Close' (2))"),
+                  std::string::npos)
+            << e.what();
     }
 }
 
@@ -535,8 +541,10 @@ TEST_F(GltfShotTest, OddButDrawablePartsAreDrawnWithAWarning) {
     const std::vector<std::string> w = shot.warnings();
     ASSERT_EQ(w.size(), 3u);
     EXPECT_NE(w[0].find("meshes[0]: 2 morph weight(s) for 1 targets"), std::string::npos) << w[0];
-    EXPECT_NE(w[1].find("2 primitive(s) of points or lines skipped, having no surface (the first: meshes[0].primitives[1])"),
-              std::string::npos) << w[1];
+    EXPECT_NE(
+        w[1].find("2 primitive(s) of points or lines skipped, having no surface (the first: meshes[0].primitives[1])"),
+        std::string::npos)
+        << w[1];
     EXPECT_NE(w[2].find("1 triangle list(s) whose index count is no multiple of 3"), std::string::npos) << w[2];
 }
 
@@ -620,7 +628,8 @@ TEST_F(GltfShotTest, BrokenFilesAreRefusedWithOneLineNamingTheElement) {
             core::GltfShot shot(dir_ / "b64.gltf");
             FAIL() << "no error";
         } catch (const InputError& e) {
-            EXPECT_NE(std::string(e.what()).find("b64.gltf: buffers: a buffer's data URI is not valid base64"), std::string::npos)
+            EXPECT_NE(std::string(e.what()).find("b64.gltf: buffers: a buffer's data URI is not valid base64"),
+                      std::string::npos)
                 << e.what();
         }
     }

@@ -284,7 +284,8 @@ TEST(Hatch, AGroundPlaneRunningBehindTheCameraIsHatchedWhereItIsSeen) {
         for (const core::Hatch& hatch : r.tone.hatches) {
             for (const glm::dvec2& p : hatch.points_px) ASSERT_TRUE(projection.inside_image(p)) << p.x << ", " << p.y;
             for (const glm::dvec3& p : hatch.points_world) {
-                ASSERT_TRUE(projection.in_front(projection.clip(glm::dvec3(glm::inverse(r.world_from_object) * glm::dvec4(p, 1.0)))));
+                ASSERT_TRUE(projection.in_front(
+                    projection.clip(glm::dvec3(glm::inverse(r.world_from_object) * glm::dvec4(p, 1.0)))));
             }
         }
     }
@@ -299,7 +300,8 @@ TEST(Hatch, AGroundFarWiderThanTheImageIsTracedWhereItIsSeen) {
     const core::Mesh plane = test::ground_plane(300.0f, -14.0f, 2.8f);
     const core::Scene scene = ground_hatched_evenly(plane);
     const core::FrameResult r = run_frames(scene, plane).front();
-    std::printf("wide ground: %zu segments traced, %zu points\n", r.tone.hatch_stats.segments, r.tone.hatch_stats.points);
+    std::printf("wide ground: %zu segments traced, %zu points\n", r.tone.hatch_stats.segments,
+                r.tone.hatch_stats.points);
     EXPECT_LT(r.tone.hatch_stats.segments, 2048u);
 }
 

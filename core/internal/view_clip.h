@@ -2,7 +2,8 @@
 // The part of a face, or of a segment, that a frame can draw on: in front of the near plane and
 // inside the image's sides, clipped in clip space (where both are planes) with each point's
 // object-space position carried along. Stippling and hatching read a face's magnification there
-// instead of at corners behind the camera or far outside the image.
+// instead of at corners behind the camera or far outside the image; the frame pipeline tells a
+// mesh wholly out of view by its bounds' corners.
 #pragma once
 
 #include "core/scene/camera.h"
