@@ -332,6 +332,15 @@ FrameResult FramePipeline::run(int frame) {
                 out.tone.dots = stippler_->stipple(mesh, table, tone_normals, projection, scene_.light, occlusion,
                                                    out.strokes.strokes, new_topology, face_tones);
                 out.tone.stipple_stats = stippler_->stats();
+                const StippleStats& st = out.tone.stipple_stats;
+                if (!warned_samples_ && st.asked > st.samples && st.samples > 0) {
+                    warned_samples_ = true;
+                    out.warnings.push_back("frame " + std::to_string(frame) + ": stippling asks for " +
+                                           std::to_string(st.asked) + " surface samples and keeps " +
+                                           std::to_string(st.samples) +
+                                           " (tone.max_samples): dots where the surface is seen closest are sparser "
+                                           "than the tone asks");
+                }
                 continue;
             }
             std::optional<Hatcher>& hatcher = pass.mode == ToneMode::kHatch ? hatcher_ : crosshatcher_;

@@ -70,8 +70,8 @@ struct FrameResult {
     const Mesh* mesh = nullptr;  // the frame's mesh (object space), valid until the next run()
     glm::dmat4 world_from_object{1.0};
     // Drawable but odd input found drawing this frame (the camera inside the mesh's bounds, the
-    // mesh wholly outside the view: each said once a run), for the caller to show; the pipeline
-    // prints nothing.
+    // mesh wholly outside the view, stippling held back by its sample bound: each said once a
+    // run), for the caller to show; the pipeline prints nothing.
     std::vector<std::string> warnings;
 };
 
@@ -172,6 +172,7 @@ class FramePipeline {
     bool ahead_after_tone_ = false;  // ... but only once the frame's tone is done
     bool warned_inside_ = false;
     bool warned_outside_ = false;
+    bool warned_samples_ = false;  // stippling held back by ToneOptions::max_samples
     // The next frame's lines, being found while a frame is drawn, on a thread of the pipeline's
     // own (started on the first frame found ahead). Last, so that the thread stops before the
     // state it uses goes.

@@ -336,7 +336,7 @@ ToneMode read_tone_mode(const Reader& r) {
 ToneOptions read_tone(const Reader& r) {
     r.allow_only({"mode", "gamma", "levels", "min", "max", "dot_radius_px", "fade", "line_width_px", "direction",
                   "cross_direction", "cross_from", "space", "angle_deg", "cross_angle_deg", "color", "opacity",
-                  "seed", "crease_angle_deg"});
+                  "seed", "crease_angle_deg", "max_samples"});
     ToneOptions t;
     t.mode = ToneMode::kStipple;
     if (r.has("mode")) t.mode = read_tone_mode(r);
@@ -380,6 +380,13 @@ ToneOptions read_tone(const Reader& r) {
         const int seed = r.integer("seed");
         if (seed < 0) r.fail("seed", "must be 0 or more");
         t.seed = uint64_t(seed);
+    }
+    if (r.has("max_samples")) {
+        const double most = r.number_or("max_samples", 0.0);
+        if (!(most >= 1000.0 && most <= 2e9) || most != std::floor(most)) {
+            r.fail("max_samples", "must be a whole number from 1000 to 2000000000");
+        }
+        t.max_samples = size_t(most);
     }
     if (r.has("crease_angle_deg")) {
         t.crease_angle_deg = r.number_or("crease_angle_deg", 0.0);

@@ -406,7 +406,8 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
     });
     double most = 0.0;
     for (double limit : face_limit) most = std::max(most, limit);
-    samples_->extend_to(size_t(std::min(most + 1.0, 1e15)), options_.max_samples);
+    stats_.asked = size_t(std::min(most + 1.0, 1e15));
+    samples_->extend_to(stats_.asked, options_.max_samples);
     const std::span<const SurfaceSamples::Sample> samples = samples_->samples();
     stats_.samples = samples.size();
 

@@ -92,6 +92,7 @@ struct Dot {
 
 struct StippleStats {
     size_t samples = 0;     // surface samples built so far
+    size_t asked = 0;       // samples the densest face asked for; more than `samples` when max_samples held them back
     size_t considered = 0;  // samples within the densest prefix the frame can ask for
     size_t wanted = 0;      // front-facing, in the image, asked for by the tone
     size_t inked = 0;       // of those, under a visible stroke's ink (left out)

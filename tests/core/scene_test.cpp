@@ -329,6 +329,11 @@ TEST(Scene, ToneBlockSetsTheTone) {
         R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, "tone": {"crease_angle_deg": 35}})",
         "scene.json");
     EXPECT_EQ(c.tone.crease_angle_deg, 35.0);
+    EXPECT_EQ(c.tone.max_samples, 8'000'000u) << "the default";
+    const core::Scene m = core::parse_scene(
+        R"({"mesh": "m.obj", "camera": {"eye": [0,0,4], "target": [0,0,0]}, "tone": {"max_samples": 20000000}})",
+        "scene.json");
+    EXPECT_EQ(m.tone.max_samples, 20'000'000u);
 }
 
 TEST(Scene, ToneCurveFollowsTheLight) {
@@ -381,6 +386,10 @@ TEST(Scene, ToneErrorsNameTheKey) {
         {R"("tone": {"seed": -3})", "key 'tone.seed'"},
         {R"("tone": {"crease_angle_deg": 181})", "key 'tone.crease_angle_deg': must be between 0 and 180"},
         {R"("tone": {"crease_angle_deg": "sharp"})", "key 'tone.crease_angle_deg'"},
+        {R"("tone": {"max_samples": 999})", "key 'tone.max_samples': must be a whole number from 1000 to 2000000000"},
+        {R"("tone": {"max_samples": 1500.5})", "key 'tone.max_samples': must be a whole number"},
+        {R"("tone": {"max_samples": 3e9})", "key 'tone.max_samples': must be a whole number"},
+        {R"("tone": {"max_samples": "many"})", "key 'tone.max_samples'"},
         {R"("tone": "stipple")", "key 'tone': expected an object"},
         {R"("tone": {"space": "page"})", "key 'tone.space': expected \"object\" or \"screen\""},
         {R"("tone": {"space": "screen", "direction": [1, 0, 0]})",

@@ -459,6 +459,34 @@ TEST(Tone, NoDotTouchesAStroke) {
     EXPECT_EQ(in_outline, 0u);
 }
 
+// A close view asks for more surface samples than tone.max_samples keeps: the dots are drawn from
+// those kept, and a warning says so once a run. With room enough, no warning.
+TEST(Tone, ASampleBoundThatHoldsTheDotsBackIsSaidOnce) {
+    const core::Mesh mesh = torus_behind_sphere();
+    test::View view = kTorusView;
+    view.size = 256;
+    core::Scene scene = test::scene_for(view, mesh);
+    scene.tone = stipple(0.4);
+    scene.last_frame = 2;
+    scene.tone.max_samples = 1000;
+    const std::vector<core::FrameResult> held = run_frames(scene, mesh, raycast_or_exact());
+    std::vector<std::string> warnings;
+    for (const core::FrameResult& r : held) {
+        EXPECT_FALSE(r.tone.dots.empty());
+        EXPECT_LT(r.tone.stipple_stats.samples, r.tone.stipple_stats.asked);
+        warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+    }
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("frame 1: stippling asks for "), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find(" (tone.max_samples): dots where the surface is seen closest are sparser"), std::string::npos)
+        << warnings[0];
+    scene.tone.max_samples = 8'000'000;
+    for (const core::FrameResult& r : run_frames(scene, mesh, raycast_or_exact())) {
+        EXPECT_TRUE(r.warnings.empty());
+        EXPECT_GE(r.tone.stipple_stats.samples, r.tone.stipple_stats.asked);
+    }
+}
+
 // g. Determinism: two runs give the same dots, bit for bit.
 TEST(Tone, TwoRunsGiveTheSameDots) {
     const core::Mesh mesh = torus_behind_sphere();
