@@ -390,6 +390,23 @@ void GltfShot::Impl::load(const std::filesystem::path& path) {
         throw InputError(
             file + ": cannot read as glTF 2.0: " + (err.empty() ? std::string("unknown error") : first_line(err)));
     }
+    // tinygltf reads on past what it can skip (an animation channel without a target node, say),
+    // telling it in err, a line each: up to three of them, in one warning.
+    if (!err.empty()) {
+        std::string told;
+        size_t lines = 0;
+        for (size_t at = 0; at < err.size();) {
+            size_t end = err.find('\n', at);
+            if (end == std::string::npos) end = err.size();
+            std::string line = err.substr(at, end - at);
+            at = end + 1;
+            while (!line.empty() && (line.back() == '.' || line.back() == ' ' || line.back() == '\r')) line.pop_back();
+            if (line.empty()) continue;
+            if (lines++ < 3) told += (told.empty() ? "" : "; ") + quote_value(line, 160);
+        }
+        if (lines > 3) told += "; and " + std::to_string(lines - 3) + " more";
+        if (!told.empty()) warnings.push_back(file + ": skipped in reading: " + told);
+    }
     if (model.asset.version.rfind("2.", 0) != 0) {
         fail(file, "asset.version", "is '" + quote_value(model.asset.version) + "': only glTF 2.x is read");
     }
