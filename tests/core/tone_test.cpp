@@ -61,6 +61,15 @@ core::Mesh torus_behind_sphere() {
 }
 const test::View kTorusView{.eye = {0.4, 1.6, 4.2}, .fov_y_deg = 40.0, .size = 512};
 
+// The torus and sphere seen from kTorusView at `size` px, stippled to tone 0.4.
+core::Scene stippled_torus_scene(const core::Mesh& mesh, int size) {
+    test::View view = kTorusView;
+    view.size = size;
+    core::Scene scene = test::scene_for(view, mesh);
+    scene.tone = stipple(0.4);
+    return scene;
+}
+
 core::VisibilityMode raycast_or_exact() {
     return core::raycast_available() ? core::VisibilityMode::kRaycast : core::VisibilityMode::kExact;
 }
@@ -316,11 +325,8 @@ double ink_clearance(const std::vector<core::Stroke>& strokes, const glm::dvec2&
 // on: the dots next to the strokes' ink too).
 TEST(Tone, DarkerToneDrawsASupersetAtTheSamePlaces) {
     const core::Mesh mesh = torus_behind_sphere();
-    test::View view = kTorusView;
-    view.size = 320;
-    core::Scene scene = test::scene_for(view, mesh);
+    core::Scene scene = stippled_torus_scene(mesh, 320);
     scene.light = kSideLight;
-    scene.tone = stipple(0.4);
     const core::FrameResult light = std::move(run_frames(scene, mesh, raycast_or_exact()).front());
     scene.tone = stipple(0.7);
     const core::FrameResult dark = std::move(run_frames(scene, mesh, raycast_or_exact()).front());
@@ -463,10 +469,7 @@ TEST(Tone, NoDotTouchesAStroke) {
 // those kept, and a warning says so once a run. With room enough, no warning.
 TEST(Tone, ASampleBoundThatHoldsTheDotsBackIsSaidOnce) {
     const core::Mesh mesh = torus_behind_sphere();
-    test::View view = kTorusView;
-    view.size = 256;
-    core::Scene scene = test::scene_for(view, mesh);
-    scene.tone = stipple(0.4);
+    core::Scene scene = stippled_torus_scene(mesh, 256);
     scene.last_frame = 2;
     scene.tone.max_samples = 1000;
     const std::vector<core::FrameResult> held = run_frames(scene, mesh, raycast_or_exact());
@@ -490,10 +493,7 @@ TEST(Tone, ASampleBoundThatHoldsTheDotsBackIsSaidOnce) {
 // g. Determinism: two runs give the same dots, bit for bit.
 TEST(Tone, TwoRunsGiveTheSameDots) {
     const core::Mesh mesh = torus_behind_sphere();
-    test::View view = kTorusView;
-    view.size = 384;
-    core::Scene scene = test::scene_for(view, mesh);
-    scene.tone = stipple(0.4);
+    core::Scene scene = stippled_torus_scene(mesh, 384);
     scene.last_frame = 2;
     scene.object_rotation = core::Rotation{.axis = {0.0, 1.0, 0.0}, .degrees = 4.0};
     scene.camera.near.reset();
