@@ -104,7 +104,7 @@ WriteOnAnimation write_on_animation(const core::FrameStrokes& strokes, const cor
 
 // A dot of tone (core::Dot as the writers draw it): a filled circle.
 struct ToneDot {
-    uint32_t sample = 0;  // the surface sample it stands for (written as data-sample)
+    uint64_t sample = 0;  // the surface sample it stands for (written as data-sample)
     glm::dvec2 center_px{0.0};
     double radius_px = 0.0;
     uint16_t ink = 0;  // index in ToneLayer::inks, when it has several

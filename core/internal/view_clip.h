@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <span>
 
 namespace inkline::core::internal {
 
@@ -34,18 +35,17 @@ inline double inside_view_by(const Projection& projection, int plane, const glm:
     }
 }
 
-// A triangle clipped by the five planes: at most 3 + 5 vertices.
+// A convex polygon of up to 9 corners (a triangle clipped by a box) clipped by the five planes:
+// at most 9 + 5 vertices.
 struct ViewPolygon {
-    std::array<ViewVertex, 8> vertices;
+    std::array<ViewVertex, 14> vertices;
     size_t count = 0;
 };
 
-inline ViewPolygon part_in_view(const Projection& projection, const glm::dvec3& a, const glm::dvec3& b,
-                                const glm::dvec3& c) {
+inline ViewPolygon part_in_view(const Projection& projection, std::span<const glm::dvec3> corners) {
     ViewPolygon polygon;
-    polygon.count = 3;
-    const glm::dvec3 corners[3] = {a, b, c};
-    for (size_t k = 0; k < 3; ++k) polygon.vertices[k] = {projection.clip(corners[k]), corners[k]};
+    polygon.count = std::min<size_t>(corners.size(), 9);
+    for (size_t k = 0; k < polygon.count; ++k) polygon.vertices[k] = {projection.clip(corners[k]), corners[k]};
     for (int plane = 0; plane < 5 && polygon.count > 0; ++plane) {
         ViewPolygon clipped;
         for (size_t i = 0; i < polygon.count; ++i) {
@@ -61,6 +61,12 @@ inline ViewPolygon part_in_view(const Projection& projection, const glm::dvec3& 
         polygon = clipped;
     }
     return polygon;
+}
+
+inline ViewPolygon part_in_view(const Projection& projection, const glm::dvec3& a, const glm::dvec3& b,
+                                const glm::dvec3& c) {
+    const glm::dvec3 corners[3] = {a, b, c};
+    return part_in_view(projection, corners);
 }
 
 // The stretch [r_from, r_to] of the segment a -> b (0 at a, 1 at b) in view; false when none.

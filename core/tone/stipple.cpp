@@ -15,15 +15,14 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 namespace inkline::core {
 namespace {
 
-// Level 0 keeps about this many samples; every later level roughly doubles the count.
-constexpr double kFirstLevelSamples = 32.0;
-// Candidates thrown per level, per square of its spacing: enough to fill the level's gaps
-// almost to saturation.
-constexpr double kCandidatesPerSquare = 3.0;
+// The first frame builds the levels everywhere whose points on the whole surface are at most
+// this many times those the frame asks for.
+constexpr double kEagerShare = 8.0;
 // A dot smaller than this share of a full dot's area is not drawn.
 constexpr double kMinWeight = 0.01;
 // Dots foreshorten: where the surface turns from the camera by theta, a dot's area shrinks by
@@ -35,113 +34,6 @@ constexpr double kForeshortening = 0.5;
 // little from the centerline's half width at joins and where it is simplified.
 constexpr double kInkClearancePx = 0.25;
 constexpr double kLeastInkRadius = 0.35;
-
-// A grid cell, 21 bits an axis.
-uint64_t pack_cell(const glm::ivec3& c) {
-    const auto part = [](int v) { return uint64_t(uint32_t(v) & 0x1fffffu); };
-    return part(c.x) | (part(c.y) << 21) | (part(c.z) << 42);
-}
-glm::ivec3 cell_of(const glm::vec3& p, double cell) { return glm::ivec3(glm::floor(glm::dvec3(p) / cell)); }
-
-// Grid cells in blocks of 8 x 8 x 8: a hash of the blocks (a surface meets few, so it stays in
-// cache) and each block's cells side by side, so that a cell's neighbours are near in memory
-// too, and the 2 x 2 x 2 cells around a point are mostly one block's. A cell's value is Value{}
-// until set.
-template <typename Value>
-class BlockedCells {
-  public:
-    static constexpr size_t kCells = 512;
-
-    explicit BlockedCells(size_t expected_cells) : blocks_(expected_cells / 32 + 16) {}
-
-    Value& operator[](const glm::ivec3& c) {
-        uint32_t& block = blocks_[block_key(c)];
-        if (block == 0) {
-            values_.resize(values_.size() + kCells);
-            block = uint32_t(values_.size() / kCells);
-        }
-        return values_[(block - 1) * kCells + local(c)];
-    }
-    // A block's kCells values, in local() order; nullptr for a block with none set. Valid until
-    // a cell of a new block is set.
-    const Value* block(uint64_t key) const {
-        const uint32_t* block = blocks_.find(key);
-        return block ? &values_[(*block - 1) * kCells] : nullptr;
-    }
-    // How many values the blocks hold: it grows when a block is added.
-    size_t size() const { return values_.size(); }
-
-    static uint64_t block_key(const glm::ivec3& c) { return pack_cell(c >> kShift); }
-    static size_t local(const glm::ivec3& c) { return size_t(((c.z & 7) << 6) | ((c.y & 7) << 3) | (c.x & 7)); }
-    // Orders cells block by block, then within a block (the order of the values).
-    static std::pair<uint64_t, uint32_t> order(const glm::ivec3& c) { return {block_key(c), uint32_t(local(c))}; }
-
-  private:
-    static constexpr int kShift = 3;
-
-    internal::KeyTable<uint32_t> blocks_;  // block -> 1 + its index
-    std::vector<Value> values_;
-};
-
-constexpr uint32_t kNoPoint = 0xffffffffu;
-
-// The points a level's spacing test looks at, by grid cell: the earlier levels' points sorted by
-// cell (a cell's points side by side, and a block's cells too), and the level's own as they are
-// kept (each cell's last, the others linked through `next`), in one record a cell so that a cell
-// costs one lookup.
-class LevelCells {
-  public:
-    struct Cell {
-        uint32_t begin = 0, count = 0;  // the earlier points in it: earlier_[begin, begin + count)
-        uint32_t head = kNoPoint;       // this level's last point in it
-    };
-
-    LevelCells(std::span<const glm::vec3> earlier, double cell, size_t expected)
-        : cell_(cell), cells_(earlier.size() + expected) {
-        std::vector<std::pair<std::pair<uint64_t, uint32_t>, uint32_t>> keyed(earlier.size());
-        std::vector<glm::ivec3> cells(earlier.size());
-        for (uint32_t i = 0; i < earlier.size(); ++i) {
-            cells[i] = cell_of(earlier[i], cell);
-            keyed[i] = {BlockedCells<Cell>::order(cells[i]), i};
-        }
-        std::sort(keyed.begin(), keyed.end());
-        earlier_.reserve(earlier.size());
-        for (size_t i = 0; i < keyed.size();) {
-            size_t j = i;
-            while (j < keyed.size() && keyed[j].first == keyed[i].first) earlier_.push_back(earlier[keyed[j++].second]);
-            Cell& c = cells_[cells[keyed[i].second]];
-            c.begin = uint32_t(i), c.count = uint32_t(j - i);
-            i = j;
-        }
-    }
-    double cell() const { return cell_; }
-
-    // The cell record of c, or nullptr where no point lies in c's block. `cache` keeps the last
-    // block looked up (the 2 x 2 x 2 cells around a point are mostly one block's).
-    struct Cache {
-        uint64_t key = ~uint64_t(0);
-        size_t size = 0;
-        const Cell* block = nullptr;
-    };
-    const Cell* find(const glm::ivec3& c, Cache& r_cache) const {
-        const uint64_t key = BlockedCells<Cell>::block_key(c);
-        if (key != r_cache.key || r_cache.size != cells_.size()) r_cache = {key, cells_.size(), cells_.block(key)};
-        return r_cache.block ? r_cache.block + BlockedCells<Cell>::local(c) : nullptr;
-    }
-    std::span<const glm::vec3> earlier(const Cell& c) const { return {earlier_.data() + c.begin, c.count}; }
-
-    // Files this level's point `point` in cell c.
-    void insert(const glm::ivec3& c, uint32_t point, std::vector<uint32_t>& r_next) {
-        uint32_t& head = cells_[c].head;
-        r_next[point] = head;
-        head = point;
-    }
-
-  private:
-    double cell_;
-    std::vector<glm::vec3> earlier_;
-    BlockedCells<Cell> cells_;
-};
 
 // Mean weight of the dots asked for when each fades in over `fade` of its threshold: the
 // thresholds are divided by it so that the dots' areas add up to the density asked for.
@@ -169,105 +61,127 @@ double dot_density(double tone, double radius_px) {
     return fill / (std::numbers::pi * radius_px * radius_px);
 }
 
-SurfaceSamples::SurfaceSamples(const Mesh& mesh, uint64_t seed) : seed_(seed) {
-    corners_.reserve(mesh.triangles.size() * 3);
-    cdf_.reserve(mesh.triangles.size());
-    for (const glm::uvec3& t : mesh.triangles) {
-        const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
-        corners_.push_back(a);
-        corners_.push_back(b);
-        corners_.push_back(c);
-        const double area = 0.5 * glm::length(face_normal(mesh.positions, t));
-        area_ += std::isfinite(area) ? area : 0.0;
-        cdf_.push_back(area_);
-    }
-    face_offsets_.assign(cdf_.size() + 1, 0);
-}
+double Stippler::build_samples(const Mesh& mesh,
+                               const std::function<double(uint32_t, const SurfaceSamples::Part&)>& need) {
+    SurfaceSamples& s = *samples_;
+    if (s.levels() == 0) return 0.0;
+    const size_t faces = mesh.triangles.size();
+    const size_t held = s.size();
+    face_built_.resize(faces, -1);
 
-void SurfaceSamples::extend_to(size_t count, size_t max_count) {
-    count = std::min(count, max_count);
-    // Each level is at most about twice the last, and a level is never cut short: a full level
-    // keeps the prefix even.
-    while (samples_.size() < count && area_ > 0.0 && samples_.size() * 2 + 64 <= std::max<size_t>(max_count, 64) &&
-           level_ < 64) {
-        add_level();
-    }
-}
-
-void SurfaceSamples::add_level() {
-    radius_ = level_ == 0 ? std::sqrt(area_ / kFirstLevelSamples) : radius_ / std::numbers::sqrt2;
-    SplitMix64 rng(seed_ ^ SplitMix64::hash(uint64_t(level_) + 1));
-    ++level_;
-    const double r = radius_;
-    const double per_area = kCandidatesPerSquare / (r * r);
-    const size_t expected = size_t(std::ceil(per_area * area_ * 0.5)) + 16;
-    // Cells twice the spacing: a ball of the spacing's radius meets at most two cells per axis.
-    // Earlier levels' points sorted by cell; this level's filed in the same cells as they come.
-    const size_t level_start = samples_.size();
-    LevelCells grid(points_, 2.0 * r, expected);
-    LevelCells::Cache cache;
-    std::vector<uint32_t> next(expected, kNoPoint);
-
-    // Candidates face by face (nearby faces are near in memory too), as many per face as its
-    // area asks for, rounded at random.
-    const float r2 = float(r * r);
-    double below = 0.0;
-    for (uint32_t face = 0; face < cdf_.size(); ++face) {
-        const double area = cdf_[face] - below;
-        below = cdf_[face];
-        const double wanted = per_area * area;
-        auto count = size_t(wanted);
-        if (rng.uniform(0.0, 1.0) < wanted - double(count)) ++count;
-        const glm::vec3* c = &corners_[size_t(face) * 3];
-        for (size_t k = 0; k < count; ++k) {
-            const double s = std::sqrt(rng.uniform(0.0, 1.0));
-            const double v = rng.uniform(0.0, 1.0);
-            const auto b1 = float(s * (1.0 - v)), b2 = float(s * v);
-            const glm::vec3 p = (1.0f - b1 - b2) * c[0] + b1 * c[1] + b2 * c[2];
-
-            const glm::dvec3 scaled = glm::dvec3(p) / grid.cell();
-            const glm::ivec3 cell(glm::floor(scaled));
-            const glm::ivec3 step(scaled.x - cell.x < 0.5 ? -1 : 1, scaled.y - cell.y < 0.5 ? -1 : 1,
-                                  scaled.z - cell.z < 0.5 ? -1 : 1);
-            bool near = false;
-            for (int n = 0; n < 8 && !near; ++n) {
-                const glm::ivec3 at = cell + glm::ivec3(n & 1 ? step.x : 0, n & 2 ? step.y : 0, n & 4 ? step.z : 0);
-                const LevelCells::Cell* near_cell = grid.find(at, cache);
-                if (!near_cell) continue;
-                for (const glm::vec3& q : grid.earlier(*near_cell)) {
-                    const glm::vec3 d = q - p;
-                    if (glm::dot(d, d) < r2) {
-                        near = true;
-                        break;
-                    }
-                }
-                for (uint32_t q = near_cell->head; q != kNoPoint && !near; q = next[q]) {
-                    const glm::vec3 d = points_[level_start + q] - p;
-                    if (glm::dot(d, d) < r2) near = true;
-                }
-            }
-            if (near) continue;
-            const auto index = uint32_t(points_.size() - level_start);
-            points_.push_back(p);
-            samples_.push_back({face, b1, b2});
-            if (next.size() <= index) next.resize(next.size() * 2, kNoPoint);
-            grid.insert(cell, index, next);
+    // The faces asking for a level not yet built over their whole box. A face wider than a few
+    // tiles of a level (a ground, a wall) is built from then on tile by tile, where its part in
+    // the tile asks for the level; the next level's tiles are looked for in those.
+    constexpr int kNarrowTiles = 16;
+    struct Pending {
+        uint32_t face = 0;
+        int level = 0;
+        bool wide = false;
+        std::vector<glm::ivec3> tiles;  // a wide face's tiles at the level being built
+    };
+    std::vector<Pending> pending;
+    int deepest = -1;
+    // The first time, the levels whose points on the whole surface are at most kEagerShare times
+    // those asked for are built everywhere at once (a point costs a fraction of one built tile by
+    // tile, and an object turning or a camera moving then seldom builds more).
+    if (!eager_built_) {
+        double asked = 0.0;  // samples the faces ask for, about
+        for (uint32_t f = 0; f < faces; ++f) {
+            if (s.face_area(f) <= 0.0 || !(face_limit_[f] > 0.0)) continue;
+            // (A wide face asks for its finest level only where it is seen closest: left out.)
+            const int level = s.level_for(face_limit_[f]);
+            if (s.tiles_across(f, level) <= kNarrowTiles) asked += s.face_area(f) * s.density(level);
+        }
+        eager_built_ = asked > 0.0;  // (a frame that asks for none leaves it to the next)
+        const double most = std::min(kEagerShare * asked, 0.25 * double(options_.max_samples));
+        int eager = -1;
+        while (eager + 1 < s.levels() && s.density(eager + 1) * s.area() <= most) ++eager;
+        if (eager >= 0) {
+            s.build_everywhere(eager);
+            for (uint32_t f = 0; f < faces; ++f) face_built_[f] = int8_t(s.face_area(f) > 0.0 ? eager : -1);
         }
     }
-    // The level's samples in random order: any prefix of it is spread over the whole surface.
-    for (size_t i = samples_.size(); i > level_start + 1; --i) {
-        const size_t j = level_start + size_t(rng.next() % uint64_t(i - level_start));
-        std::swap(samples_[i - 1], samples_[j]);
-        std::swap(points_[i - 1], points_[j]);
+    for (uint32_t f = 0; f < faces; ++f) {
+        const double limit = face_limit_[f];
+        if (!(limit > 0.0) || s.face_area(f) <= 0.0) continue;
+        if (face_built_[f] >= 0 && limit <= s.density(face_built_[f])) continue;
+        const int level = s.level_for(limit);
+        if (level <= face_built_[f]) continue;
+        pending.push_back({.face = f, .level = level, .wide = false, .tiles = {}});
+        deepest = std::max(deepest, level);
     }
 
-    // Each face's samples, ascending.
-    face_offsets_.assign(cdf_.size() + 1, 0);
-    for (const Sample& sample : samples_) ++face_offsets_[sample.face + 1];
-    for (size_t f = 0; f < cdf_.size(); ++f) face_offsets_[f + 1] += face_offsets_[f];
-    face_samples_.resize(samples_.size());
-    std::vector<uint32_t> fill(face_offsets_.begin(), face_offsets_.end() - 1);
-    for (uint32_t i = 0; i < samples_.size(); ++i) face_samples_[fill[samples_[i].face]++] = i;
+    const auto tile_order = [](const glm::ivec3& a, const glm::ivec3& b) {
+        return std::tie(a.z, a.y, a.x) < std::tie(b.z, b.y, b.x);
+    };
+    int built = deepest;
+    double held_back = 0.0;  // samples the levels not built would have added, about
+    std::vector<uint32_t> narrow;
+    std::vector<glm::ivec3> candidates;
+    for (int j = 0; j <= deepest; ++j) {
+        const double below = s.density(j - 1), share = s.density(j) - below;
+        narrow.clear();
+        double adds = 0.0;
+        for (Pending& p : pending) {
+            if (p.level < j) continue;
+            if (!p.wide && s.tiles_across(p.face, j) <= kNarrowTiles) {
+                if (face_built_[p.face] < j) {
+                    narrow.push_back(p.face);
+                    adds += s.face_area(p.face) * share;
+                }
+                continue;
+            }
+            candidates.clear();
+            glm::dvec3 lo, hi;
+            const auto add = [&](const glm::ivec3& at) { candidates.push_back(at); };
+            if (!p.wide) {
+                s.face_box(p.face, lo, hi);
+                s.tiles_over(j, lo, hi, add);
+            } else {
+                for (const glm::ivec3& at : p.tiles) {
+                    s.tile_box(j - 1, at, lo, hi);
+                    s.tiles_over(j, lo, hi, add);
+                }
+                std::sort(candidates.begin(), candidates.end(), tile_order);
+                candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+            }
+            p.wide = true;
+            p.tiles.clear();
+            for (const glm::ivec3& at : candidates) {
+                s.tile_box(j, at, lo, hi);
+                const SurfaceSamples::Part part = s.part_in_box(p.face, lo, hi);
+                if (part.count < 3 || !(need(p.face, part) > below)) continue;
+                p.tiles.push_back(at);
+                adds += s.part_area(p.face, part) * share;
+            }
+        }
+        if (double(s.size()) + adds > double(options_.max_samples)) {
+            built = j - 1;
+            for (const Pending& p : pending) {
+                if (p.level >= j) held_back += s.face_area(p.face) * (s.density(p.level) - below);
+            }
+            break;
+        }
+        for (uint32_t f : narrow) {
+            s.build_face(f, j);
+            face_built_[f] = int8_t(j);
+        }
+        for (const Pending& p : pending) {
+            if (p.level < j || !p.wide) continue;
+            for (const glm::ivec3& at : p.tiles) s.build_tile(j, at);
+        }
+    }
+    s.finish();
+    if (built < deepest && held > 0) {
+        // Held back while holding samples of earlier frames: start again from none, which gives
+        // the samples this frame needs (the same points whatever was built before).
+        s.clear();
+        face_built_.assign(faces, -1);
+        eager_built_ = false;
+        return build_samples(mesh, need);
+    }
+    stats_.asked = size_t(std::min(double(s.size()) + held_back, 1e15));
+    return built < deepest ? s.density(built) : INFINITY;
 }
 
 std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, const ToneNormals& normals,
@@ -279,6 +193,8 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
     if (!samples_ || topology_changed || samples_->faces() != mesh.triangles.size()) {
         samples_.emplace(mesh, options_.seed);
         face_edge_.clear();
+        face_built_.clear();
+        eager_built_ = false;
     }
 
     const glm::dmat4& m = projection.clip_from_object();
@@ -352,12 +268,11 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
             lit_tone.tone = std::isnan(lit_tone.intensity) ? darkest : tone_of(lit_tone.intensity, scene_curve);
         }
     });
-    // The largest area scale over foreshortening at the vertices of the part of a face a dot can
-    // be drawn on (internal::part_in_view), as the faces' limits below take it at their corners;
-    // 0 where nothing of it is in view.
-    const auto visible_part_scale = [&](const glm::uvec3& t, const glm::dvec3& unit_n) {
-        const internal::ViewPolygon part = internal::part_in_view(
-            projection, glm::dvec3(mesh.positions[t.x]), glm::dvec3(mesh.positions[t.y]), glm::dvec3(mesh.positions[t.z]));
+    // The largest area scale over foreshortening at the vertices of the part of a polygon on a
+    // face (unit normal unit_n) that a dot can be drawn on (internal::part_in_view), as the faces'
+    // limits below take it at their corners; 0 where nothing of it is in view.
+    const auto visible_part_scale = [&](std::span<const glm::dvec3> polygon, const glm::dvec3& unit_n) {
+        const internal::ViewPolygon part = internal::part_in_view(projection, polygon);
         double most = 0.0;
         for (size_t i = 0; i < part.count; ++i) {
             const internal::ViewVertex& v = part.vertices[i];
@@ -366,7 +281,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
         }
         return most;
     };
-    // Per face, the most samples any point of it can ask for: the darkest tone of its corners
+    // Per face, the most density (samples per unit area) any point of it can ask for: the darkest tone of its corners
     // (the interpolated normal's light is never below its corners' least) at the largest area
     // scale of its corners (with a margin for the variation across a face under perspective), or
     // where a corner is behind the camera or outside the image, of its part inside them. Zero
@@ -374,7 +289,8 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
     constexpr double kScaleMargin = 1.1;
     std::vector<double>& face_limit = face_limit_;
     face_limit.assign(mesh.triangles.size(), 0.0);
-    const double area = samples_->area();
+    std::vector<double>& face_ink = face_ink_;
+    face_ink.assign(mesh.triangles.size(), 0.0);
     internal::parallel_for(mesh.triangles.size(), 8192, [&](size_t begin, size_t end) {
         for (size_t f = begin; f < end; ++f) {
             const ToneCurve* curve = curve_of(f);
@@ -399,16 +315,26 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
                                       : std::isnan(lit_tone.intensity) ? std::max(curve->min, curve->max)
                                                                        : tone_of(lit_tone.intensity, *curve));
             }
-            if (!in_view) scale = visible_part_scale(t, unit_n);
+            if (!in_view) {
+                const glm::dvec3 polygon[3] = {p0, p1, p2};
+                scale = visible_part_scale(polygon, unit_n);
+            }
             if (!(scale > 0.0)) continue;
-            face_limit[f] = dot_density(tone, radius) * kScaleMargin * scale * area / kappa;
+            face_ink[f] = dot_density(tone, radius) * kScaleMargin / kappa;
+            face_limit[f] = face_ink[f] * scale;
         }
     });
-    double most = 0.0;
-    for (double limit : face_limit) most = std::max(most, limit);
-    stats_.asked = size_t(std::min(most + 1.0, 1e15));
-    samples_->extend_to(stats_.asked, options_.max_samples);
-    const std::span<const SurfaceSamples::Sample> samples = samples_->samples();
+    const double most_density = build_samples(mesh, [&](uint32_t f, const SurfaceSamples::Part& part) {
+        const glm::uvec3 t = mesh.triangles[f];
+        const glm::dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
+        std::array<glm::dvec3, 9> polygon;
+        for (size_t i = 0; i < part.count; ++i) {
+            polygon[i] = (1.0 - part.b[i].x - part.b[i].y) * p0 + part.b[i].x * p1 + part.b[i].y * p2;
+        }
+        const glm::dvec3 unit_n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+        return face_ink[f] * visible_part_scale(std::span(polygon.data(), part.count), unit_n);
+    });
+    const SurfaceSamples& samples = *samples_;
     stats_.samples = samples.size();
 
     // Dots asked for: faces in parallel slices, joined in order, then sorted by sample.
@@ -419,17 +345,16 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
     internal::run_tasks(slices, [&](size_t s) {
         std::vector<Dot>& dots = found[s];
         for (size_t f = faces * s / slices; f < faces * (s + 1) / slices; ++f) {
-            const double limit = face_limit[f];
+            const double limit = std::min(face_limit[f], most_density);
             if (limit <= 0.0) continue;  // also where the face is left unshaded
             const ToneCurve& curve = *curve_of(f);
             const glm::uvec3 t = mesh.triangles[f], g = normals.corners(uint32_t(f), t);
             const glm::dvec3 p0(mesh.positions[t.x]), p1(mesh.positions[t.y]), p2(mesh.positions[t.z]);
             const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
             const glm::dvec3 unit_n = glm::normalize(n);
-            for (uint32_t i : samples_->on_face(uint32_t(f))) {
-                if (double(i) >= limit) break;
+            for (const SurfaceSamples::Sample& sample : samples.on_face(uint32_t(f))) {
+                if (sample.rank >= limit) break;
                 ++considered[s];
-                const SurfaceSamples::Sample& sample = samples[i];
                 const double b1 = sample.b1, b2 = sample.b2, b0 = 1.0 - b1 - b2;
                 const glm::dvec3 p = b0 * p0 + b1 * p1 + b2 * p2;
                 const glm::dvec4 clip = m * glm::dvec4(p, 1.0);
@@ -440,16 +365,16 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
                 const double scale = area_scale(clip, unit_n) / shrunk;
                 const std::span<const glm::dvec3> at = normals.normals;
                 const double tone = tone_at(p, b0 * at[g.x] + b1 * at[g.y] + b2 * at[g.z], n, curve);
-                const double threshold = dot_density(tone, radius) * scale * area / kappa;
-                const double rank = double(i);
+                const double threshold = dot_density(tone, radius) * scale / kappa;
+                const double rank = sample.rank;
                 double weight = 0.0;
                 if (fade > 0.0) {
-                    weight = std::clamp((threshold - rank) / (fade * (rank + 1.0)), 0.0, 1.0);
+                    weight = std::clamp((threshold - rank) / (fade * rank), 0.0, 1.0);
                 } else {
                     weight = threshold > rank ? 1.0 : 0.0;
                 }
                 if (weight < kMinWeight) continue;
-                dots.push_back({.sample = i,
+                dots.push_back({.sample = sample.id,
                                 .face = uint32_t(f),
                                 .barycentric = {b0, b1, b2},
                                 .point_px = px,
@@ -460,7 +385,7 @@ std::vector<Dot> Stippler::stipple(const Mesh& mesh, const EdgeTable& table, con
         }
     });
     for (size_t c : considered) stats_.considered += c;
-    std::vector<std::pair<uint32_t, const Dot*>> order;
+    std::vector<std::pair<uint64_t, const Dot*>> order;
     for (const std::vector<Dot>& part : found) {
         for (const Dot& d : part) order.emplace_back(d.sample, &d);
     }

@@ -2,11 +2,11 @@
 // Tone by stippling (scene "tone", docs/tone.md): dots on the visible surface, denser where it is
 // darker, from the same light as the brush.
 //
-// The dots are points of a nested blue-noise set on the surface (SurfaceSamples): sample i, a
-// face and barycentric coordinates, is drawn where the density the tone asks for there covers
-// the first i + 1 samples. A darker tone, or a camera coming closer, draws a longer prefix of the
-// same sequence, so dots are added and removed without moving the others; a dot near its
-// threshold fades in (its area grows) instead of popping. Density is counted per square pixel of
+// The dots are points of a nested blue-noise set on the surface (SurfaceSamples,
+// core/tone/surface_samples.h): a sample, a face and barycentric coordinates, is drawn where the
+// density the tone asks for there is above its rank. A darker tone, or a camera coming closer,
+// draws more of the same points, so dots are added and removed without moving the others; a dot
+// near its threshold fades in (its area grows) instead of popping. Density is counted per square pixel of
 // projected surface, so the tone holds on screen as the camera dollies.
 #pragma once
 
@@ -14,6 +14,7 @@
 #include "core/mesh/topology.h"
 #include "core/scene/camera.h"
 #include "core/strokes/brush_style.h"
+#include "core/tone/surface_samples.h"
 #include "core/tone/tone_normals.h"
 #include "core/tone/tone_options.h"
 #include "core/visibility/visibility.h"
@@ -24,6 +25,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -36,51 +38,8 @@ struct Stroke;
 // the coverage of the nested set's dots, overlaps included (docs/tone.md).
 double dot_density(double tone, double radius_px);
 
-// A nested blue-noise sequence of points on a mesh's surface (hierarchical dart throwing: level
-// k keeps the candidates at least r_k from every point kept before, r_k shrinking by sqrt(2)
-// a level), so that every prefix is spread evenly. Points are anchored on faces by barycentric
-// coordinates and follow the mesh as it deforms; the distribution is that of the mesh it was
-// built on.
-class SurfaceSamples {
-  public:
-    struct Sample {
-        uint32_t face = 0;
-        float b1 = 0.0f, b2 = 0.0f;  // barycentric coordinates of corners 1 and 2 (corner 0: 1 - b1 - b2)
-    };
-
-    SurfaceSamples(const Mesh& mesh, uint64_t seed);
-
-    // Adds levels until there are at least `count` samples (or max_count, whichever is less).
-    void extend_to(size_t count, size_t max_count);
-
-    std::span<const Sample> samples() const { return samples_; }
-    // The samples on a face, ascending.
-    std::span<const uint32_t> on_face(uint32_t face) const {
-        return {face_samples_.data() + face_offsets_[face], face_offsets_[face + 1] - face_offsets_[face]};
-    }
-    size_t size() const { return samples_.size(); }
-    // Faces of the mesh it was built on.
-    size_t faces() const { return cdf_.size(); }
-    // Surface area of the mesh it was built on (object units squared).
-    double area() const { return area_; }
-
-  private:
-    void add_level();
-
-    std::vector<glm::vec3> corners_;  // three per face, the mesh's positions when built
-    std::vector<double> cdf_;         // cumulative face areas
-    double area_ = 0.0;
-    std::vector<Sample> samples_;
-    std::vector<glm::vec3> points_;   // samples' positions, for spacing the next levels
-    std::vector<uint32_t> face_offsets_{0};  // CSR: face -> its samples in face_samples_
-    std::vector<uint32_t> face_samples_;
-    double radius_ = 0.0;             // the last level's spacing
-    uint64_t seed_ = 1;
-    int level_ = 0;
-};
-
 struct Dot {
-    uint32_t sample = 0;  // index in the surface samples: the same point of the surface in every frame
+    uint64_t sample = 0;  // the surface sample's id: the same point of the surface in every frame
     uint32_t face = 0;
     glm::dvec3 barycentric{1.0, 0.0, 0.0};
     glm::dvec2 point_px{0.0};
@@ -92,8 +51,8 @@ struct Dot {
 
 struct StippleStats {
     size_t samples = 0;     // surface samples built so far
-    size_t asked = 0;       // samples the densest face asked for; more than `samples` when max_samples held them back
-    size_t considered = 0;  // samples within the densest prefix the frame can ask for
+    size_t asked = 0;       // about the samples asked for; more than `samples` when max_samples held them back
+    size_t considered = 0;  // samples of rank below their face's most density
     size_t wanted = 0;      // front-facing, in the image, asked for by the tone
     size_t inked = 0;       // of those, under a visible stroke's ink (left out)
     size_t occluded = 0;    // of the rest, hidden by the surface
@@ -119,6 +78,11 @@ class Stippler {
     const StippleStats& stats() const { return stats_; }
 
   private:
+    // Builds the samples the faces' limits ask for, level by level while max_samples allows; need
+    // gives the most density a face's part in a tile can ask for. Returns the density up to which
+    // every face's samples are built (infinity when nothing was held back).
+    double build_samples(const Mesh& mesh, const std::function<double(uint32_t, const SurfaceSamples::Part&)>& need);
+
     ToneOptions options_;
     std::optional<SurfaceSamples> samples_;
     StippleStats stats_;
@@ -137,7 +101,12 @@ class Stippler {
         double intensity = NAN;  // of the light, for other curves; NaN without a normal
     };
     std::vector<NormalTone> normal_tone_;
-    std::vector<double> face_limit_;
+    std::vector<double> face_limit_;  // per face, the most density (samples per unit area) it asks for
+    std::vector<double> face_ink_;    // per face, its darkest tone's density per square pixel (with margins)
+    // Per face, the last level of the samples built over its whole box (-1: none yet); a face
+    // wider than a few tiles of a level is built tile by tile where the view needs it instead.
+    std::vector<int8_t> face_built_;
+    bool eager_built_ = false;  // the coarser levels built on the whole surface
     // Per face, the edge its dots' occlusion queries seed their search at, once asked for
     // (kNoIndex before); kept while the topology holds.
     std::vector<uint32_t> face_edge_;

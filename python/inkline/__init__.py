@@ -86,7 +86,7 @@ class Tone:
     barycentric: np.ndarray   # (n, 3) float64, its barycentric coordinates on that face
     radius: np.ndarray        # (n,) float64, px
     tone: np.ndarray          # (n,) float64, the tone asked for there
-    samples: np.ndarray       # (n,) uint32, the surface sample: the same point of the surface in every frame
+    samples: np.ndarray       # (n,) uint64, the surface sample: the same point of the surface in every frame
     stats: dict = field(default_factory=dict)  # samples, considered, wanted, inked, occluded (hatching: faces, segments, points, occluded, inked)
     # Hatching: one dict per hatch: family, plane, level (ints); points (k, 2), world (k, 3), width (k,)
     # float64; edges (k,) uint32.
@@ -397,7 +397,7 @@ def _tone_from_json(t: dict) -> Tone:
     return Tone(mode=str(t["mode"]), points=column("point", np.float64, 2), world=column("world", np.float64, 3),
                 faces=column("face", np.uint32, 0), barycentric=column("barycentric", np.float64, 3),
                 radius=column("radius", np.float64, 0), tone=column("tone", np.float64, 0),
-                samples=column("sample", np.uint32, 0), stats=dict(t.get("stats", {})), hatches=hatches,
+                samples=column("sample", np.uint64, 0), stats=dict(t.get("stats", {})), hatches=hatches,
                 modes=list(t.get("modes", [t["mode"]])), hatch_stats=t.get("hatch_stats"),
                 stipple_stats=t.get("stipple_stats"), inks=list(t.get("inks", [])),
                 ink=np.asarray([d.get("ink", 0) for d in dots], np.uint32))

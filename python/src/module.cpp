@@ -205,7 +205,8 @@ py::object tone_of(const Frame& frame) {
     if (tone.mode == core::ToneMode::kNone) return py::none();
     std::vector<glm::dvec2> points;
     std::vector<glm::dvec3> world, barycentric;
-    std::vector<uint32_t> faces, samples, inks;
+    std::vector<uint32_t> faces, inks;
+    std::vector<uint64_t> samples;
     std::vector<double> radius, value;
     for (const core::Dot& d : tone.dots) {
         inks.push_back(d.ink);

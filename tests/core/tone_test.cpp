@@ -301,6 +301,45 @@ TEST(Tone, DollyKeepsDotsPerSquarePixel) {
     }
 }
 
+// A close view builds samples where it looks, not over the whole surface at the closest density:
+// a camera 0.05 from a unit sphere sees a patch of about 1/1000 of it. The dots are those a
+// frame drawn alone draws, after frames that built other parts of the surface first.
+TEST(Tone, ACloseViewBuildsSamplesWhereItLooksAndDrawsWhatItDrawsAlone) {
+    const core::Mesh sphere = test::icosphere(5);
+    core::Scene scene = test::scene_for({.eye = {0.0, 0.0, 4.0}, .fov_y_deg = 40.0, .size = 512}, sphere);
+    scene.tone = stipple(0.4);
+    scene.tone.curve.min = 0.4;
+    lines_off(scene);
+    scene.camera.near = 0.01;
+    scene.camera.far.reset();
+    // From afar on +x, then close on +z, then close on +z a little aside.
+    scene.camera.per_frame[1] = {.eye = {4.0, 0.0, 0.0}, .fov_y_deg = 40.0};
+    scene.camera.per_frame[2] = {.eye = {0.0, 0.0, 1.05}, .fov_y_deg = 40.0};
+    scene.camera.per_frame[3] = {.eye = {0.01, 0.0, 1.05}, .target = {0.01, 0.0, 0.0}, .fov_y_deg = 40.0};
+    scene.last_frame = 3;
+    const std::vector<core::FrameResult> run = run_frames(scene, sphere, raycast_or_exact());
+    scene.first_frame = 3;
+    const std::vector<core::FrameResult> alone = run_frames(scene, sphere, raycast_or_exact());
+    const core::StippleStats& close = run[1].tone.stipple_stats;
+    std::printf(
+        "close view: %zu dots, %zu samples held after the far view, %zu after the close one; the frame "
+        "drawn alone: %zu dots, %zu samples\n",
+        run[1].tone.dots.size(), run[0].tone.stipple_stats.samples, close.samples, alone[0].tone.dots.size(),
+        alone[0].tone.stipple_stats.samples);
+    for (const core::FrameResult& r : run) EXPECT_TRUE(r.warnings.empty());
+    ASSERT_GT(run[1].tone.dots.size(), 3000u);
+    // The whole sphere at the close view's density would take about 1,000 times its dots.
+    EXPECT_LT(close.samples, 60 * run[1].tone.dots.size());
+    const std::vector<core::Dot>& a = run[2].tone.dots;
+    const std::vector<core::Dot>& b = alone[0].tone.dots;
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].sample, b[i].sample);
+        EXPECT_EQ(a[i].point_px, b[i].point_px);
+        EXPECT_EQ(a[i].radius_px, b[i].radius_px);
+    }
+}
+
 // The least over the drawn visible strokes of (distance from p to the centerline) - (half the
 // width there), px: negative inside the ink.
 double ink_clearance(const std::vector<core::Stroke>& strokes, const glm::dvec2& p) {
@@ -334,7 +373,7 @@ TEST(Tone, DarkerToneDrawsASupersetAtTheSamePlaces) {
     for (const core::Dot& dot : light.tone.dots) {
         const std::vector<core::Dot>& in = dark.tone.dots;
         const auto it = std::lower_bound(in.begin(), in.end(), dot.sample,
-                                         [](const core::Dot& d, uint32_t sample) { return d.sample < sample; });
+                                         [](const core::Dot& d, uint64_t sample) { return d.sample < sample; });
         if (it == in.end() || it->sample != dot.sample) {
             ++missing;
             // Within a full dot's radius of the ink: a dot that grew there would touch it.

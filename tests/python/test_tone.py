@@ -38,7 +38,7 @@ def test_tone_arrays_are_the_jsons_dots():
     assert tone.points.shape == (n, 2) and tone.world.shape == (n, 3) and tone.barycentric.shape == (n, 3)
     for a in (tone.faces, tone.radius, tone.tone, tone.samples):
         assert a.shape == (n,)
-    assert tone.faces.dtype == np.uint32 and tone.samples.dtype == np.uint32
+    assert tone.faces.dtype == np.uint32 and tone.samples.dtype == np.uint64
     assert np.all(np.diff(tone.samples.astype(np.int64)) > 0)
     np.testing.assert_allclose(tone.barycentric.sum(axis=1), 1.0, atol=1e-6)
     assert set(tone.stats) == {"samples", "considered", "wanted", "inked", "occluded"}
