@@ -133,26 +133,25 @@ uint64_t tile_seed(uint64_t seed, int level, uint64_t key, uint32_t face) {
 class SpacingGrid {
   public:
     SpacingGrid(const glm::dvec3& lo, const glm::dvec3& hi, double r)
-        : lo_(lo), hi_(hi), per_cell_(float(1.0 / r)), n_(int(std::ceil((hi.x - lo.x) / r)) + 2) {
+        : lo_(lo), hi_(hi), per_cell_(float(0.5 / r)), n_(int(std::ceil(0.5 * (hi.x - lo.x) / r)) + 2) {
         head_.assign(size_t(n_) * size_t(n_) * size_t(n_), kNone);
-        size_t k = 0;
-        for (int dz = -1; dz <= 1; ++dz) {
-            for (int dy = -1; dy <= 1; ++dy) {
-                for (int dx = -1; dx <= 1; ++dx) offsets_[k++] = (dz * n_ + dy) * n_ + dx;
-            }
-        }
     }
     void add(const glm::vec3& p) {
         if (glm::any(glm::lessThan(p, lo_)) || glm::any(glm::greaterThan(p, hi_))) return;
-        uint32_t& first = head_[index(p)];
+        uint32_t& first = head_[index(cell(p))];
         points_.push_back({p, first});
         first = uint32_t(points_.size() - 1);
     }
-    // Whether a point of the grid lies within sqrt(r2) of p (in the box).
+    // Whether a point of the grid lies within sqrt(r2) of p (in the box): in the 2 x 2 x 2 cells
+    // nearest it, cells being 2r wide.
     bool near(const glm::vec3& p, float r2) const {
-        const size_t i = index(p);
-        for (const ptrdiff_t offset : offsets_) {
-            for (uint32_t q = head_[size_t(ptrdiff_t(i) + offset)]; q != kNone; q = points_[q].next) {
+        const glm::vec3 scaled = (p - lo_) * per_cell_;
+        const glm::ivec3 c = cell(p);
+        const glm::vec3 within = scaled - (glm::vec3(c) - 1.0f);
+        const glm::ivec3 step(within.x < 0.5f ? -1 : 1, within.y < 0.5f ? -1 : 1, within.z < 0.5f ? -1 : 1);
+        for (int n = 0; n < 8; ++n) {
+            const glm::ivec3 at = c + glm::ivec3(n & 1 ? step.x : 0, n & 2 ? step.y : 0, n & 4 ? step.z : 0);
+            for (uint32_t q = head_[index(at)]; q != kNone; q = points_[q].next) {
                 const glm::vec3 d = points_[q].p - p;
                 if (glm::dot(d, d) < r2) return true;
             }
@@ -166,16 +165,15 @@ class SpacingGrid {
         glm::vec3 p;
         uint32_t next;
     };
-    size_t index(const glm::vec3& p) const {
-        const glm::ivec3 c =
-            glm::clamp(glm::ivec3(glm::floor((p - lo_) * per_cell_)), glm::ivec3(0), glm::ivec3(n_ - 3)) + 1;
-        return size_t((c.z * n_ + c.y) * n_ + c.x);
+    // A point's cell, one cell of margin on each side.
+    glm::ivec3 cell(const glm::vec3& p) const {
+        return glm::clamp(glm::ivec3(glm::floor((p - lo_) * per_cell_)), glm::ivec3(0), glm::ivec3(n_ - 3)) + 1;
     }
+    size_t index(const glm::ivec3& c) const { return size_t((c.z * n_ + c.y) * n_ + c.x); }
 
     glm::vec3 lo_, hi_;
     float per_cell_;
     int n_;
-    std::array<ptrdiff_t, 27> offsets_{};
     std::vector<uint32_t> head_;
     std::vector<Entry> points_;
 };
