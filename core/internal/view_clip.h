@@ -52,8 +52,10 @@ inline ViewPolygon part_in_view(const Projection& projection, std::span<const gl
             const ViewVertex& u = polygon.vertices[i];
             const ViewVertex& v = polygon.vertices[(i + 1) % polygon.count];
             const double du = inside_view_by(projection, plane, u.clip), dv = inside_view_by(projection, plane, v.clip);
-            if (du >= 0.0) clipped.vertices[clipped.count++] = u;
-            if ((du >= 0.0) != (dv >= 0.0)) {
+            // (A polygon made slightly concave by rounding could cross a plane more than twice:
+            // the array bounds it.)
+            if (du >= 0.0 && clipped.count < clipped.vertices.size()) clipped.vertices[clipped.count++] = u;
+            if ((du >= 0.0) != (dv >= 0.0) && clipped.count < clipped.vertices.size()) {
                 const double s = du / (du - dv);
                 clipped.vertices[clipped.count++] = {u.clip + s * (v.clip - u.clip), u.p + s * (v.p - u.p)};
             }

@@ -303,7 +303,9 @@ SurfaceSamples::Part SurfaceSamples::part_in_box(uint32_t face, const glm::dvec3
             const PartVertex& u = polygon[i];
             const PartVertex& v = polygon[(i + 1) % count];
             const double du = inside(u), dv = inside(v);
-            if (du >= 0.0) clipped[kept++] = u;
+            // (A polygon made slightly concave by rounding could cross a plane more than twice:
+            // the array bounds it.)
+            if (du >= 0.0 && kept < clipped.size()) clipped[kept++] = u;
             if ((du >= 0.0) != (dv >= 0.0) && kept < clipped.size()) {
                 const double s = du / (du - dv);
                 clipped[kept++] = {u.b + s * (v.b - u.b), u.p + s * (v.p - u.p)};
