@@ -32,6 +32,27 @@ constexpr double kDensity = 0.515;
 // Faces in a leaf of the faces' box tree.
 constexpr uint32_t kLeafFaces = 4;
 
+// The 2 x 2 x 2 cells nearest a point, cells being twice the spacing wide, hold every point
+// within the spacing of it: its cell and those across the nearer side along each axis. `cell`
+// is the point's cell and `within` its place in it, each coordinate in [0, 1).
+template <typename Visit>
+bool any_of_nearest_cells(const glm::ivec3& cell, const glm::vec3& within, Visit visit) {
+    const glm::ivec3 step(within.x < 0.5f ? -1 : 1, within.y < 0.5f ? -1 : 1, within.z < 0.5f ? -1 : 1);
+    for (int n = 0; n < 8; ++n) {
+        if (visit(cell + glm::ivec3(n & 1 ? step.x : 0, n & 2 ? step.y : 0, n & 4 ? step.z : 0))) return true;
+    }
+    return false;
+}
+
+// A level's candidates in a part of area `area`: kCandidatesPerSquare per square of the spacing r,
+// the fraction rounded at random.
+size_t candidate_count(double area, double r, SplitMix64& r_rng) {
+    const double wanted = kCandidatesPerSquare / (r * r) * area;
+    auto count = size_t(wanted);
+    if (r_rng.uniform(0.0, 1.0) < wanted - double(count)) ++count;
+    return count;
+}
+
 // Points by cells of side 2r over all of space, to find those within r of a point (in the 2 x 2
 // x 2 cells nearest it): cells in blocks of 8 x 8 x 8 behind a hash of the blocks, so that the
 // cells around a point are mostly one block's, looked up once.
@@ -60,22 +81,19 @@ class BlockGrid {
     bool near(const glm::vec3& p, float r2, Cache& r_cache) const {
         const glm::dvec3 scaled = (glm::dvec3(p) - origin_) * per_cell_;
         const glm::ivec3 c(glm::floor(scaled));
-        const glm::ivec3 step(scaled.x - c.x < 0.5 ? -1 : 1, scaled.y - c.y < 0.5 ? -1 : 1,
-                              scaled.z - c.z < 0.5 ? -1 : 1);
-        for (int n = 0; n < 8; ++n) {
-            const glm::ivec3 at = c + glm::ivec3(n & 1 ? step.x : 0, n & 2 ? step.y : 0, n & 4 ? step.z : 0);
+        return any_of_nearest_cells(c, glm::vec3(scaled - glm::dvec3(c)), [&](const glm::ivec3& at) {
             const uint64_t key = block_key(at);
             if (key != r_cache.key) {
                 const uint32_t* block = blocks_.find(key);
                 r_cache = {key, block ? heads_.data() + (*block - 1) * kCells : nullptr};
             }
-            if (r_cache.block == nullptr) continue;
+            if (r_cache.block == nullptr) return false;
             for (uint32_t q = r_cache.block[local(at)]; q != 0; q = points_[q - 1].next) {
                 const glm::vec3 d = points_[q - 1].p - p;
                 if (glm::dot(d, d) < r2) return true;
             }
-        }
-        return false;
+            return false;
+        });
     }
 
   private:
@@ -145,18 +163,14 @@ class SpacingGrid {
     // Whether a point of the grid lies within sqrt(r2) of p (in the box): in the 2 x 2 x 2 cells
     // nearest it, cells being 2r wide.
     bool near(const glm::vec3& p, float r2) const {
-        const glm::vec3 scaled = (p - lo_) * per_cell_;
         const glm::ivec3 c = cell(p);
-        const glm::vec3 within = scaled - (glm::vec3(c) - 1.0f);
-        const glm::ivec3 step(within.x < 0.5f ? -1 : 1, within.y < 0.5f ? -1 : 1, within.z < 0.5f ? -1 : 1);
-        for (int n = 0; n < 8; ++n) {
-            const glm::ivec3 at = c + glm::ivec3(n & 1 ? step.x : 0, n & 2 ? step.y : 0, n & 4 ? step.z : 0);
+        return any_of_nearest_cells(c, (p - lo_) * per_cell_ - (glm::vec3(c) - 1.0f), [&](const glm::ivec3& at) {
             for (uint32_t q = head_[index(at)]; q != kNone; q = points_[q].next) {
                 const glm::vec3 d = points_[q].p - p;
                 if (glm::dot(d, d) < r2) return true;
             }
-        }
-        return false;
+            return false;
+        });
     }
 
   private:
@@ -657,11 +671,8 @@ void SurfaceSamples::part_candidates(int level, uint64_t key, uint32_t face, con
         total += 0.5 * std::abs(u.x * v.y - u.y * v.x);
         fan[i] = total;
     }
-    const double r = radius_[size_t(level)];
-    const double wanted = kCandidatesPerSquare / (r * r) * part_area(face, part);
     SplitMix64 rng(tile_seed(seed_, level, key, face));
-    auto count = size_t(wanted);
-    if (rng.uniform(0.0, 1.0) < wanted - double(count)) ++count;
+    const size_t count = candidate_count(part_area(face, part), radius_[size_t(level)], rng);
     const glm::vec3* c = &corners_[size_t(face) * 3];
     for (size_t n = 0; n < count; ++n) {
         const double pick = rng.uniform(0.0, total);
@@ -675,11 +686,8 @@ void SurfaceSamples::part_candidates(int level, uint64_t key, uint32_t face, con
 }
 
 void SurfaceSamples::face_candidates(int level, uint32_t face, std::vector<Candidate>& r_out) const {
-    const double r = radius_[size_t(level)];
-    const double wanted = kCandidatesPerSquare / (r * r) * face_area_[face];
     SplitMix64 rng(tile_seed(seed_, level, kWholeFace, face));
-    auto count = size_t(wanted);
-    if (rng.uniform(0.0, 1.0) < wanted - double(count)) ++count;
+    const size_t count = candidate_count(face_area_[face], radius_[size_t(level)], rng);
     const glm::vec3* c = &corners_[size_t(face) * 3];
     for (size_t n = 0; n < count; ++n) {
         const double s = std::sqrt(rng.uniform(0.0, 1.0)), t = rng.uniform(0.0, 1.0);
