@@ -295,6 +295,10 @@ SurfaceSamples::Part SurfaceSamples::part_in_box(uint32_t face, const glm::dvec3
     const glm::vec3* c = &corners_[size_t(face) * 3];
     glm::dvec3 face_lo, face_hi;
     face_box(face, face_lo, face_hi);
+    // A box that the face's plane misses: nothing to clip.
+    const glm::dvec3 p0(c[0]), n = glm::cross(glm::dvec3(c[1]) - p0, glm::dvec3(c[2]) - p0);
+    const glm::dvec3 half = 0.5 * (hi - lo);
+    if (std::abs(glm::dot(n, 0.5 * (lo + hi) - p0)) > glm::dot(half, glm::abs(n))) return {};
     if (glm::all(glm::greaterThanEqual(face_lo, lo)) && glm::all(glm::lessThanEqual(face_hi, hi))) {
         Part whole;
         whole.b[1] = {1.0, 0.0};
