@@ -67,8 +67,9 @@ class Stippler {
     // hidden as `occlusion` says (prepared for this mesh and projection); the ink of `strokes`
     // (visible, drawn) covers dots under it. `normals` are those the light is read from: the
     // mesh's vertex normals (vertex_normals), or its smooth pieces' (tone_normals.h). A new
-    // topology (topology_changed) rebuilds the samples. With face_tones, each face is shaded on its own curve, and faces left unshaded get no dots (they still hide
-    // them); empty: every face on the options' curve.
+    // topology (topology_changed) rebuilds the samples. With face_tones, each face is shaded on
+    // its own curve, and faces left unshaded get no dots (they still hide them); empty: every face
+    // on the options' curve.
     std::vector<Dot> stipple(const Mesh& mesh, const EdgeTable& table, const ToneNormals& normals,
                              const Projection& projection, const Light& light, const Occlusion& occlusion,
                              std::span<const Stroke> strokes, bool topology_changed, FaceTones face_tones = {});
@@ -87,7 +88,7 @@ class Stippler {
     std::optional<SurfaceSamples> samples_;
     StippleStats stats_;
     // A frame's scratch, kept for the next: per vertex what its faces' limits read of it, per face
-    // the most samples it can ask for.
+    // the most density it can ask for.
     struct VertexView {
         glm::dvec2 px{0.0};
         glm::dvec3 jacobian{0.0};  // the pixel Jacobian's rows, crossed: square pixels per unit area along a normal
@@ -104,7 +105,7 @@ class Stippler {
     std::vector<double> face_limit_;  // per face, the most density (samples per unit area) it asks for
     std::vector<double> face_ink_;    // per face, its darkest tone's density per square pixel (with margins)
     // Per face, the last level of the samples built over its whole box (-1: none yet); a face
-    // wider than a few tiles of a level is built tile by tile where the view needs it instead.
+    // wider than 16 tiles of a level is built tile by tile where the view needs it instead.
     std::vector<int8_t> face_built_;
     bool eager_built_ = false;  // the coarser levels built on the whole surface
     // Per face, the edge its dots' occlusion queries seed their search at, once asked for
