@@ -1,10 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "core/tone/stipple.h"
 
-#include "core/internal/key_table.h"
 #include "core/internal/parallel.h"
 #include "core/internal/view_clip.h"
-#include "core/random.h"
 #include "core/strokes/strokes.h"
 #include "core/tone/internal/ink_grid.h"
 #include "core/tone/internal/tone_light.h"

@@ -291,14 +291,17 @@ int SurfaceSamples::tiles_across(uint32_t face, int level) const {
     return 1 + std::max({span.x, span.y, span.z});
 }
 
+bool SurfaceSamples::plane_meets(uint32_t face, const glm::dvec3& lo, const glm::dvec3& hi) const {
+    const glm::vec3* c = &corners_[size_t(face) * 3];
+    const glm::dvec3 p0(c[0]), n = glm::cross(glm::dvec3(c[1]) - p0, glm::dvec3(c[2]) - p0);
+    return std::abs(glm::dot(n, 0.5 * (lo + hi) - p0)) <= glm::dot(0.5 * (hi - lo), glm::abs(n));
+}
+
 SurfaceSamples::Part SurfaceSamples::part_in_box(uint32_t face, const glm::dvec3& lo, const glm::dvec3& hi) const {
+    if (!plane_meets(face, lo, hi)) return {};
     const glm::vec3* c = &corners_[size_t(face) * 3];
     glm::dvec3 face_lo, face_hi;
     face_box(face, face_lo, face_hi);
-    // A box that the face's plane misses: nothing to clip.
-    const glm::dvec3 p0(c[0]), n = glm::cross(glm::dvec3(c[1]) - p0, glm::dvec3(c[2]) - p0);
-    const glm::dvec3 half = 0.5 * (hi - lo);
-    if (std::abs(glm::dot(n, 0.5 * (lo + hi) - p0)) > glm::dot(half, glm::abs(n))) return {};
     if (glm::all(glm::greaterThanEqual(face_lo, lo)) && glm::all(glm::lessThanEqual(face_hi, hi))) {
         Part whole;
         whole.b[1] = {1.0, 0.0};
@@ -429,14 +432,10 @@ void SurfaceSamples::build_face(uint32_t face, int level) {
     glm::dvec3 lo, hi;
     face_box(face, lo, hi);
     // The tiles of its box that its plane passes through.
-    const glm::vec3* c = &corners_[size_t(face) * 3];
-    const glm::dvec3 p0(c[0]), n = glm::cross(glm::dvec3(c[1]) - p0, glm::dvec3(c[2]) - p0);
-    const double half = 0.5 * kTileSpacings * radius_[size_t(level)];
-    const double reach = half * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
     tiles_over(level, lo, hi, [&](const glm::ivec3& at) {
         glm::dvec3 tile_lo, tile_hi;
         tile_box(level, at, tile_lo, tile_hi);
-        if (std::abs(glm::dot(n, 0.5 * (tile_lo + tile_hi) - p0)) <= reach) build(level, at);
+        if (plane_meets(face, tile_lo, tile_hi)) build(level, at);
     });
 }
 
@@ -480,13 +479,9 @@ void SurfaceSamples::build_everywhere(int last) {
             }
             glm::dvec3 lo, hi;
             face_box(f, lo, hi);
-            const glm::vec3* c = &corners_[size_t(f) * 3];
-            const glm::dvec3 p0(c[0]), n = glm::cross(glm::dvec3(c[1]) - p0, glm::dvec3(c[2]) - p0);
-            const double reach = 0.5 * side * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
             tiles_over(k, lo, hi, [&](const glm::ivec3& at) {
                 glm::dvec3 tile_lo, tile_hi;
                 tile_box(k, at, tile_lo, tile_hi);
-                if (std::abs(glm::dot(n, 0.5 * (tile_lo + tile_hi) - p0)) > reach) return;
                 const Part part = part_in_box(f, tile_lo, tile_hi);
                 if (part.count < 3) return;
                 made.clear();

@@ -92,6 +92,8 @@ class SurfaceSamples {
     int tiles_across(uint32_t face, int level) const;
     // Face f's box (object space of the mesh it was built on).
     void face_box(uint32_t face, glm::dvec3& r_lo, glm::dvec3& r_hi) const;
+    // Whether face f's plane passes through the box [lo, hi].
+    bool plane_meets(uint32_t face, const glm::dvec3& lo, const glm::dvec3& hi) const;
     // Face f's part in the box [lo, hi]; count 0 where they do not meet.
     Part part_in_box(uint32_t face, const glm::dvec3& lo, const glm::dvec3& hi) const;
     // The area of a part of face f (object units squared, on the mesh it was built on).
