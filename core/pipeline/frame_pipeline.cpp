@@ -284,22 +284,39 @@ FrameResult FramePipeline::run(int frame) {
     const Projection projection(result.camera, scene_.image, world_from_object);
     const Occlusion& occlusion = *found.occlusion;
 
-    // Strokes, coherent with the last frame's.
+    // Strokes, coherent with the last frame's; a held frame draws the strokes the last one drew.
     if (change != MeshChange::kNone) stroke_normals_.clear();
-    out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_, scene_.styles,
-                                [this](std::span<const uint32_t> edges) { return object_of(edges); }, &stroke_normals_);
-    if (found.smooth_contours) {
-        const glm::dmat4 object_from_world = glm::inverse(world_from_object);
-        for (Stroke& stroke : out.strokes.strokes) {
-            const StrokeGeometry& g = stroke.geometry;
-            if (g.kind != LineKind::kSilhouette) continue;
-            std::vector<glm::dvec3> points;
-            points.reserve(g.points_world.size());
-            for (const glm::dvec3& p : g.points_world) points.emplace_back(object_from_world * glm::dvec4(p, 1.0));
-            stroke.faces = faces_crossed(mesh, table, points, g.edges);
+    const bool held = held_ && change == MeshChange::kNone && held_->camera == result.camera &&
+                      held_->light == result.light && held_->world_from_object == world_from_object &&
+                      held_->polylines == result.polylines && held_->occluded == result.occluded;
+    if (held) {
+        out.strokes = held_->strokes;
+        out.strokes.frame = frame;
+        StrokeStats& s = out.strokes.stats;
+        s.inherited = out.strokes.strokes.size();
+        s.inherited_length_px = s.visible_length_px;
+    } else {
+        out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_, scene_.styles,
+                                    [this](std::span<const uint32_t> edges) { return object_of(edges); },
+                                    &stroke_normals_);
+        if (found.smooth_contours) {
+            const glm::dmat4 object_from_world = glm::inverse(world_from_object);
+            for (Stroke& stroke : out.strokes.strokes) {
+                const StrokeGeometry& g = stroke.geometry;
+                if (g.kind != LineKind::kSilhouette) continue;
+                std::vector<glm::dvec3> points;
+                points.reserve(g.points_world.size());
+                for (const glm::dvec3& p : g.points_world) points.emplace_back(object_from_world * glm::dvec4(p, 1.0));
+                stroke.faces = faces_crossed(mesh, table, points, g.edges);
+            }
+        }
+        drawing_order_.assign(out.strokes.strokes);
+        held_.reset();
+        if (next_may_hold(frame, result, world_from_object)) {
+            held_ = HeldStrokes{result.polylines, result.occluded, result.camera, result.light, world_from_object,
+                                out.strokes};
         }
     }
-    drawing_order_.assign(out.strokes.strokes);
     out.mesh = &mesh;
     out.world_from_object = world_from_object;
     const double strokes_ms = step("strokes");
@@ -368,6 +385,17 @@ FrameResult FramePipeline::run(int frame) {
                 {"strokes", strokes_ms}};
     if (scene_.tone.mode != ToneMode::kNone) stats.ms.emplace_back("tone", tone_ms);
     return out;
+}
+
+bool FramePipeline::next_may_hold(int frame, const FrameLines& lines, const glm::dmat4& world_from_object) const {
+    if (meshes_.deforming()) return false;
+    const glm::dmat4 next_motion = world_from_object_at(scene_, frame + 1);
+    if (next_motion != world_from_object) return false;
+    try {
+        return camera_at(scene_, frame + 1, transformed(object_bounds_, next_motion)) == lines.camera;
+    } catch (const InputError&) {
+        return false;  // no camera for it: that frame fails when it comes
+    }
 }
 
 void FramePipeline::plan_tone_passes(size_t faces) {

@@ -136,6 +136,20 @@ class FramePipeline {
     // With smooth contours on a mesh that does not change, its boundary and crease edges.
     std::optional<std::vector<FeatureEdge>> still_edges_;
     StrokeCoherence coherence_;
+    // The last frame's strokes and what they were drawn from, kept while the next frame may be
+    // held (a mesh that holds still, under the same camera): a frame with the same lines,
+    // camera, light and mesh draws the same strokes. Drawn again, the repairs that read the
+    // strokes of the frame before could answer otherwise in a tangle, and alternate.
+    struct HeldStrokes {
+        std::vector<Polyline> polylines, occluded;
+        Camera camera;
+        Light light;
+        glm::dmat4 world_from_object{1.0};
+        FrameStrokes strokes;
+    };
+    std::optional<HeldStrokes> held_;
+    // Whether frame + 1 may repeat this frame, camera and mesh alike.
+    bool next_may_hold(int frame, const FrameLines& lines, const glm::dmat4& world_from_object) const;
     Bounds object_bounds_;              // of the mesh, while it holds still
     VertexNormalCache stroke_normals_;  // the strokes' vertex normals, while the mesh holds still
     DrawingOrder drawing_order_;

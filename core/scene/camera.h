@@ -15,6 +15,8 @@ namespace inkline::core {
 struct ImageSize {
     int width = 0;   // px
     int height = 0;  // px
+
+    bool operator==(const ImageSize&) const = default;
 };
 
 struct Camera {
@@ -29,6 +31,7 @@ struct Camera {
     std::optional<double> ortho_height{};
 
     bool orthographic() const { return ortho_height.has_value(); }
+    bool operator==(const Camera&) const = default;
 };
 
 // Where a camera sees from, in one coordinate space, as a homogeneous point: the eye of a

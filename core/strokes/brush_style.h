@@ -18,6 +18,8 @@ struct Light {
     bool is_point = false;
     glm::dvec3 direction{-0.4, -0.6, -0.7};  // directional: pointing from the light
     glm::dvec3 position{0.0};               // point light, world space
+
+    bool operator==(const Light&) const = default;
 };
 
 // How an end with width is closed: a half circle, flat across, or flat half a width beyond.

@@ -80,6 +80,7 @@ struct Polyline {
     int32_t object = -1;                   // index into the frame's objects; -1 without objects
 
     double length_px() const;
+    bool operator==(const Polyline&) const = default;
 };
 
 // Splits every chain by visibility. Parts outside the image or behind the near plane are

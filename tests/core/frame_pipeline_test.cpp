@@ -498,6 +498,44 @@ TEST(FramePipeline, AForkedProcessDrawsOnWithoutTheWorkerThread) {
     expect_same_lines(pipeline.run(2).lines, reference[1].lines);  // the parent goes on as before
 }
 
+// A shot that holds still (the same mesh and camera as the frame before) draws the strokes the
+// frame before drew, and from its first frame those of a run of that frame alone: the stroke
+// repairs that read last frame's strokes would answer otherwise there, and, in a tangle, could
+// answer one way and the other in turn (the shot would flicker). Once the camera moves, strokes
+// are made again; when it stops, the frames hold from there.
+TEST(FramePipeline, AHeldShotDrawsTheStrokesOfTheFrameBefore) {
+    // Bumps give the silhouette dips behind their neighbouring faces: short occluded gaps.
+    const core::Mesh mesh = test::combine(test::bumpy_sphere(test::icosphere(5), {.count = 60, .height_max = 0.12}),
+                                          test::torus(1.0, 0.35, 48, 24), {0.3f, -0.2f, -1.4f});
+    core::Scene scene = test::scene_for(kView, mesh);
+    scene.last_frame = 8;
+    for (int frame = 1; frame <= 8; ++frame) {
+        const double turn = frame <= 4 ? 0.0 : 0.05 * std::min(frame - 4, 3);  // still, moving, still
+        scene.camera.per_frame[frame] = {.eye = {kView.eye.x + turn, kView.eye.y, kView.eye.z}, .fov_y_deg = 40.0};
+    }
+    core::MeshFrames meshes(mesh), alone_meshes(mesh);
+    const std::vector<core::FrameResult> frames =
+        run_all(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast));
+    core::Scene first_alone = scene;
+    first_alone.last_frame = 1;
+    const std::vector<core::FrameResult> alone =
+        run_all(first_alone, alone_meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast));
+    ASSERT_GT(frames[0].strokes.stats.bridges, 0u) << "the shot must have gaps for the repairs to bridge";
+    expect_same_strokes(frames[0].strokes, alone[0].strokes);
+    for (const int frame : {2, 3, 4, 8}) {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        const core::FrameStrokes& held = frames[size_t(frame - 1)].strokes;
+        const core::FrameStrokes& before = frames[size_t(frame - 2)].strokes;
+        expect_same_strokes(held, before);
+        EXPECT_EQ(held.frame, frame);
+        EXPECT_EQ(held.stats.inherited, held.strokes.size());
+        EXPECT_EQ(held.stats.inherited_length_px, held.stats.visible_length_px);
+    }
+    EXPECT_NE(frames[4].lines.camera.eye, frames[3].lines.camera.eye);
+    EXPECT_NE(frames[4].strokes.strokes[0].geometry.points_px, frames[3].strokes.strokes[0].geometry.points_px)
+        << "the camera moved: strokes made again";
+}
+
 // A frame whose lines cannot be found (here: no camera for it) throws from its own run(), even
 // when they were looked for ahead, during the frame before; the frame after it is drawn.
 TEST(FramePipeline, AFrameWithoutACameraThrowsFromItsOwnRunAndTheNextIsDrawn) {
