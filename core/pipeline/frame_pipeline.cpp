@@ -13,13 +13,22 @@
 #include <glm/vector_relational.hpp>
 
 #include <exception>
+#include <functional>
 #include <new>
+#include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
 
 namespace inkline::core {
 namespace {
+
+// A hash of the mesh's positions, bit for bit.
+size_t positions_hash(const Mesh& mesh) {
+    const std::string_view bytes(reinterpret_cast<const char*>(mesh.positions.data()),
+                                 mesh.positions.size() * sizeof(glm::vec3));
+    return std::hash<std::string_view>{}(bytes);
+}
 
 bool inside(const Bounds& b, const glm::dvec3& p) {
     return glm::all(glm::greaterThanEqual(p, b.min)) && glm::all(glm::lessThanEqual(p, b.max));
@@ -106,6 +115,7 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibil
     first_lines_ = false;
     if (found.change != MeshChange::kNone) object_bounds_ = bounds_of(mesh.positions);
     const Bounds& object_bounds = object_bounds_;
+    found.object_bounds = object_bounds;
     found.lines.camera = camera_at(scene_, frame, transformed(object_bounds, found.world_from_object));
     const Projection projection(found.lines.camera, scene_.image, found.world_from_object);
     if (!warned_inside_ && !projection.orthographic() && inside(object_bounds, projection.eye_object().xyz)) {
@@ -286,9 +296,11 @@ FrameResult FramePipeline::run(int frame) {
 
     // Strokes, coherent with the last frame's; a held frame draws the strokes the last one drew.
     if (change != MeshChange::kNone) stroke_normals_.clear();
-    const bool held = held_ && change == MeshChange::kNone && held_->camera == result.camera &&
+    const bool moving = change != MeshChange::kNone;
+    const bool held = held_ && change != MeshChange::kTopology && held_->camera == result.camera &&
                       held_->light == result.light && held_->world_from_object == world_from_object &&
-                      held_->polylines == result.polylines && held_->occluded == result.occluded;
+                      held_->polylines == result.polylines && held_->occluded == result.occluded &&
+                      (!moving || held_->positions_hash == positions_hash(mesh));
     if (held) {
         out.strokes = held_->strokes;
         out.strokes.frame = frame;
@@ -312,9 +324,9 @@ FrameResult FramePipeline::run(int frame) {
         }
         drawing_order_.assign(out.strokes.strokes);
         held_.reset();
-        if (next_may_hold(frame, result, world_from_object)) {
-            held_ = HeldStrokes{result.polylines, result.occluded, result.camera, result.light, world_from_object,
-                                out.strokes};
+        if (next_may_hold(frame, result, world_from_object, found.object_bounds)) {
+            held_ = HeldStrokes{result.polylines, result.occluded,           result.camera, result.light,
+                                world_from_object,  moving ? positions_hash(mesh) : 0, out.strokes};
         }
     }
     out.mesh = &mesh;
@@ -387,12 +399,12 @@ FrameResult FramePipeline::run(int frame) {
     return out;
 }
 
-bool FramePipeline::next_may_hold(int frame, const FrameLines& lines, const glm::dmat4& world_from_object) const {
-    if (meshes_.deforming()) return false;
+bool FramePipeline::next_may_hold(int frame, const FrameLines& lines, const glm::dmat4& world_from_object,
+                                  const Bounds& object_bounds) const {
     const glm::dmat4 next_motion = world_from_object_at(scene_, frame + 1);
     if (next_motion != world_from_object) return false;
     try {
-        return camera_at(scene_, frame + 1, transformed(object_bounds_, next_motion)) == lines.camera;
+        return camera_at(scene_, frame + 1, transformed(object_bounds, next_motion)) == lines.camera;
     } catch (const InputError&) {
         return false;  // no camera for it: that frame fails when it comes
     }

@@ -106,6 +106,7 @@ class FramePipeline {
         const Mesh* mesh = nullptr;
         glm::dmat4 world_from_object{1.0};
         MeshChange change = MeshChange::kNone;
+        Bounds object_bounds;  // of the mesh, object space (the camera's fit)
         std::vector<Chain> chains;
         bool smooth_contours = false;
         const Occlusion* occlusion = nullptr;  // the frame's occlusion test; null until visible
@@ -137,19 +138,22 @@ class FramePipeline {
     std::optional<std::vector<FeatureEdge>> still_edges_;
     StrokeCoherence coherence_;
     // The last frame's strokes and what they were drawn from, kept while the next frame may be
-    // held (a mesh that holds still, under the same camera): a frame with the same lines,
-    // camera, light and mesh draws the same strokes. Drawn again, the repairs that read the
-    // strokes of the frame before could answer otherwise in a tangle, and alternate.
+    // held (the same camera next frame): a frame with the same lines, camera, light and mesh
+    // draws the same strokes. Drawn again, the repairs that read the strokes of the frame before
+    // could answer otherwise in a tangle, and alternate.
     struct HeldStrokes {
         std::vector<Polyline> polylines, occluded;
         Camera camera;
         Light light;
         glm::dmat4 world_from_object{1.0};
+        size_t positions_hash = 0;  // of a moving mesh's positions (which a held frame repeats)
         FrameStrokes strokes;
     };
     std::optional<HeldStrokes> held_;
-    // Whether frame + 1 may repeat this frame, camera and mesh alike.
-    bool next_may_hold(int frame, const FrameLines& lines, const glm::dmat4& world_from_object) const;
+    // Whether frame + 1 may repeat this frame: the same object motion and camera (the mesh
+    // holding still, its bounds the same).
+    bool next_may_hold(int frame, const FrameLines& lines, const glm::dmat4& world_from_object,
+                       const Bounds& object_bounds) const;
     Bounds object_bounds_;              // of the mesh, while it holds still
     VertexNormalCache stroke_normals_;  // the strokes' vertex normals, while the mesh holds still
     DrawingOrder drawing_order_;

@@ -536,6 +536,44 @@ TEST(FramePipeline, AHeldShotDrawsTheStrokesOfTheFrameBefore) {
         << "the camera moved: strokes made again";
 }
 
+// A moving mesh (a skinned or morphing shot) under a still camera holds too, while it stands
+// still: here at frames 1-3, then it slides, then stops again from frame 6.
+class StillSlideStill final : public core::AnimatedMesh {
+  public:
+    static core::Mesh mesh_at(int frame) {
+        const float shift = 0.1f * float(std::clamp(frame, 3, 6) - 3);
+        return test::combine(test::bumpy_sphere(test::icosphere(5), {.count = 60, .height_max = 0.12}),
+                             test::torus(1.0, 0.35, 48, 24), {0.3f + shift, -0.2f, -1.4f});
+    }
+    const core::Mesh& rest() const override { return rest_; }
+    bool deforms() const override { return true; }
+    void positions_at(int frame, std::vector<glm::vec3>& r_positions) const override {
+        r_positions = mesh_at(frame).positions;
+    }
+
+  private:
+    core::Mesh rest_ = mesh_at(1);
+};
+
+TEST(FramePipeline, AMovingMeshThatStandsStillHoldsTheStrokesOfTheFrameBefore) {
+    core::Scene scene = test::scene_for(kView, StillSlideStill::mesh_at(1));
+    scene.last_frame = 8;
+    core::MeshFrames meshes(std::make_shared<StillSlideStill>(), "still, slide, still");
+    const std::vector<core::FrameResult> frames =
+        run_all(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast));
+    const auto points = [&](int frame) {
+        std::vector<std::vector<glm::dvec2>> lines;
+        for (const core::Stroke& stroke : frames[size_t(frame - 1)].strokes.strokes) lines.push_back(stroke.geometry.points_px);
+        return lines;
+    };
+    for (const int frame : {4, 5, 6}) EXPECT_NE(points(frame), points(frame - 1)) << "frame " << frame << ": the mesh moved";
+    for (const int frame : {2, 3, 7, 8}) {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        expect_same_strokes(frames[size_t(frame - 1)].strokes, frames[size_t(frame - 2)].strokes);
+        EXPECT_EQ(frames[size_t(frame - 1)].strokes.stats.inherited, frames[size_t(frame - 1)].strokes.strokes.size());
+    }
+}
+
 // A frame whose lines cannot be found (here: no camera for it) throws from its own run(), even
 // when they were looked for ahead, during the frame before; the frame after it is drawn.
 TEST(FramePipeline, AFrameWithoutACameraThrowsFromItsOwnRunAndTheNextIsDrawn) {
