@@ -319,10 +319,13 @@ StrokeInk stroke_ink(std::span<const glm::dvec2> centerline, std::span<const dou
     return ink;
 }
 
-FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
-                           const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence,
-                           std::span<const StyleRule> rules, const ObjectOfEdges& object_of,
-                           VertexNormalCache* normals) {
+namespace {
+
+// build_strokes, made once from the memory r_coherence holds.
+FrameStrokes build_strokes_once(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
+                                const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence,
+                                std::span<const StyleRule> rules, const ObjectOfEdges& object_of,
+                                VertexNormalCache* normals) {
     FrameStrokes out;
     out.frame = frame.frame;
     // Visible lines are stroked alike whether or not hidden lines are output: with hidden lines
@@ -452,6 +455,27 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     }
     r_coherence.remember(std::move(traces), next_id);
     out.styles = sheet.take();
+    return out;
+}
+
+}  // namespace
+
+FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
+                           const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence,
+                           std::span<const StyleRule> rules, const ObjectOfEdges& object_of,
+                           VertexNormalCache* normals) {
+    const bool first = r_coherence.traces().empty();
+    if (first) {
+        // Without memory the repairs join less (gaps up to new_gap_px, no strokes rejoined), and
+        // the next frame, with it, would join more: the first frame is drawn as if it followed
+        // itself.
+        build_strokes_once(frame, mesh, table, projection, style, r_coherence, rules, object_of, normals);
+    }
+    FrameStrokes out = build_strokes_once(frame, mesh, table, projection, style, r_coherence, rules, object_of, normals);
+    if (first) {
+        out.stats.inherited = 0;
+        out.stats.inherited_length_px = 0.0;
+    }
     return out;
 }
 
