@@ -218,6 +218,20 @@ void FramePipeline::find_visible(FoundLines& found) {
 
     // Visibility. Occluded parts are always found (the samples are classified anyway): the
     // stroke stage bridges short ones. Without lines.hidden they stay out of the output.
+    const bool still = !meshes_.deforming();
+    if (held_lines_ && still && held_lines_->camera == result.camera &&
+        held_lines_->world_from_object == found.world_from_object) {
+        // A still mesh under the camera of the frame before: the same lines and the same
+        // occlusion test (as prepared for that frame, and not prepared since).
+        found.occlusion = held_lines_->occlusion;
+        result.polylines = held_lines_->polylines;
+        result.occluded = held_lines_->occluded;
+        result.objects = held_lines_->objects;
+        found.chains = std::vector<Chain>();
+        found.visibility_ms = step("visibility");
+        return;
+    }
+    held_lines_.reset();
     found.occlusion = &occlusion_->prepare(mesh, table, projection, found.change);
     const double occlusion_ms = step("occlusion");
     result.polylines = split_by_visibility(found.chains, mesh, table, projection, *found.occlusion, {.keep_hidden = true});
@@ -239,6 +253,10 @@ void FramePipeline::find_visible(FoundLines& found) {
         for (size_t i = 0; i < result.polylines.size(); ++i) result.polylines[i].id = uint32_t(i);
     }
     if (!scene_.lines.hidden) set_aside_occluded(result);
+    if (still && next_may_hold(result.frame, result, found.world_from_object, found.object_bounds)) {
+        held_lines_ = HeldLines{result.polylines, result.occluded,          result.objects,
+                                result.camera,    found.world_from_object, found.occlusion};
+    }
     found.visibility_ms = occlusion_ms + step("visibility");
 }
 
@@ -326,16 +344,20 @@ FrameResult FramePipeline::run(int frame) {
         held_.reset();
         if (next_may_hold(frame, result, world_from_object, found.object_bounds)) {
             held_ = HeldStrokes{result.polylines, result.occluded,           result.camera, result.light,
-                                world_from_object,  moving ? positions_hash(mesh) : 0, out.strokes};
+                                world_from_object,  moving ? positions_hash(mesh) : 0, out.strokes,
+                                std::nullopt};
         }
     }
     out.mesh = &mesh;
     out.world_from_object = world_from_object;
     const double strokes_ms = step("strokes");
 
-    // Tone: dots on the visible surface, none under the strokes' ink.
+    // Tone: dots on the visible surface, none under the strokes' ink; a held frame's as they were.
     double tone_ms = 0.0;
-    if (scene_.tone.mode != ToneMode::kNone) {
+    if (held && held_->tone) {
+        out.tone = *held_->tone;
+        tone_ms = step("tone");
+    } else if (scene_.tone.mode != ToneMode::kNone) {
         if (change == MeshChange::kTopology || tone_face_edges_.size() != mesh.triangles.size()) {
             tone_face_edges_ = face_edges(mesh, table);
         }
@@ -381,6 +403,7 @@ FrameResult FramePipeline::run(int frame) {
             out.tone.hatch_stats += hatcher->stats();
         }
         ink_tone_marks(out.tone);
+        if (held_) held_->tone = out.tone;
         tone_ms = step("tone");
     }
     if (ahead_after_tone_) find_lines_ahead(frame + 1);

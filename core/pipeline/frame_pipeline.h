@@ -148,8 +148,20 @@ class FramePipeline {
         glm::dmat4 world_from_object{1.0};
         size_t positions_hash = 0;  // of a moving mesh's positions (which a held frame repeats)
         FrameStrokes strokes;
+        std::optional<FrameTone> tone;  // with a scene "tone"
     };
     std::optional<HeldStrokes> held_;
+    // The last frame's visible lines and occlusion test, kept while the mesh holds still and
+    // the next frame's camera is this frame's: a frame under that camera takes them without
+    // looking again. Read and written only where visibility is found (one thread at a time).
+    struct HeldLines {
+        std::vector<Polyline> polylines, occluded;
+        std::vector<MeshObject> objects;
+        Camera camera;
+        glm::dmat4 world_from_object{1.0};
+        const Occlusion* occlusion = nullptr;
+    };
+    std::optional<HeldLines> held_lines_;
     // Whether frame + 1 may repeat this frame: the same object motion and camera (the mesh
     // holding still, its bounds the same).
     bool next_may_hold(int frame, const FrameLines& lines, const glm::dmat4& world_from_object,

@@ -499,8 +499,9 @@ TEST(FramePipeline, AForkedProcessDrawsOnWithoutTheWorkerThread) {
     expect_same_lines(pipeline.run(2).lines, reference[1].lines);  // the parent goes on as before
 }
 
-// A shot that holds still (the same mesh and camera as the frame before) draws the strokes the
-// frame before drew, and from its first frame those of a run of that frame alone: the stroke
+// A shot that holds still (the same mesh and camera as the frame before) draws the lines,
+// strokes and tone the frame before drew, and from its first frame those of a run of that frame
+// alone: the stroke
 // repairs that read last frame's strokes would answer otherwise there, and, in a tangle, could
 // answer one way and the other in turn (the shot would flicker). Once the camera moves, strokes
 // are made again; when it stops, the frames hold from there.
@@ -510,6 +511,7 @@ TEST(FramePipeline, AHeldShotDrawsTheStrokesOfTheFrameBefore) {
                                           test::torus(1.0, 0.35, 48, 24), {0.3f, -0.2f, -1.4f});
     core::Scene scene = test::scene_for(kView, mesh);
     scene.last_frame = 8;
+    scene.tone = {.mode = core::ToneMode::kStipple, .curve = {.max = 0.6}};
     for (int frame = 1; frame <= 8; ++frame) {
         const double turn = frame <= 4 ? 0.0 : 0.05 * std::min(frame - 4, 3);  // still, moving, still
         scene.camera.per_frame[frame] = {.eye = {kView.eye.x + turn, kView.eye.y, kView.eye.z}, .fov_y_deg = 40.0};
@@ -525,6 +527,24 @@ TEST(FramePipeline, AHeldShotDrawsTheStrokesOfTheFrameBefore) {
     expect_same_strokes(frames[0].strokes, alone[0].strokes);
     for (const int frame : {2, 3, 4, 8}) {
         SCOPED_TRACE("frame " + std::to_string(frame));
+        // The lines of a held frame are taken as they were found: the same as found afresh.
+        core::Scene only = scene;
+        only.first_frame = only.last_frame = frame;
+        core::MeshFrames only_meshes(mesh);
+        const core::FrameResult afresh =
+            run_all(only, only_meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast))[0];
+        expect_same_lines(frames[size_t(frame - 1)].lines, afresh.lines);
+        // And its dots: those of the frame before; while that one's strokes are those of the
+        // first frame (a run of one frame's), the same as drawn afresh (the dots keep off the ink).
+        const std::vector<core::Dot>& dots = frames[size_t(frame - 1)].tone.dots;
+        const std::vector<core::Dot>& dots_before = frames[size_t(frame - 2)].tone.dots;
+        ASSERT_FALSE(dots.empty());
+        ASSERT_EQ(dots.size(), dots_before.size());
+        for (size_t i = 0; i < dots.size(); ++i) EXPECT_EQ(dots[i].point_px, dots_before[i].point_px);
+        if (frame <= 4) {
+            ASSERT_EQ(dots.size(), afresh.tone.dots.size());
+            for (size_t i = 0; i < dots.size(); ++i) EXPECT_EQ(dots[i].sample, afresh.tone.dots[i].sample);
+        }
         const core::FrameStrokes& held = frames[size_t(frame - 1)].strokes;
         const core::FrameStrokes& before = frames[size_t(frame - 2)].strokes;
         expect_same_strokes(held, before);
