@@ -254,8 +254,12 @@ void FramePipeline::find_visible(FoundLines& found) {
     }
     if (!scene_.lines.hidden) set_aside_occluded(result);
     if (still && next_may_hold(result.frame, result, found.world_from_object, found.object_bounds)) {
-        held_lines_ = HeldLines{result.polylines, result.occluded,          result.objects,
-                                result.camera,    found.world_from_object, found.occlusion};
+        held_lines_ = HeldLines{.polylines = result.polylines,
+                                .occluded = result.occluded,
+                                .objects = result.objects,
+                                .camera = result.camera,
+                                .world_from_object = found.world_from_object,
+                                .occlusion = found.occlusion};
     }
     found.visibility_ms = occlusion_ms + step("visibility");
 }
@@ -326,9 +330,9 @@ FrameResult FramePipeline::run(int frame) {
         s.inherited = out.strokes.strokes.size();
         s.inherited_length_px = s.visible_length_px;
     } else {
-        out.strokes = build_strokes(result, mesh, table, projection, scene_.brush, coherence_, scene_.styles,
-                                    [this](std::span<const uint32_t> edges) { return object_of(edges); },
-                                    &stroke_normals_);
+        out.strokes = build_strokes(
+            result, mesh, table, projection, scene_.brush, coherence_, scene_.styles,
+            [this](std::span<const uint32_t> edges) { return object_of(edges); }, &stroke_normals_);
         if (found.smooth_contours) {
             const glm::dmat4 object_from_world = glm::inverse(world_from_object);
             for (Stroke& stroke : out.strokes.strokes) {
@@ -343,9 +347,14 @@ FrameResult FramePipeline::run(int frame) {
         drawing_order_.assign(out.strokes.strokes);
         held_.reset();
         if (next_may_hold(frame, result, world_from_object, found.object_bounds)) {
-            held_ = HeldStrokes{result.polylines, result.occluded,           result.camera, result.light,
-                                world_from_object,  moving ? positions_hash(mesh) : 0, out.strokes,
-                                std::nullopt};
+            held_ = HeldStrokes{.polylines = result.polylines,
+                                .occluded = result.occluded,
+                                .camera = result.camera,
+                                .light = result.light,
+                                .world_from_object = world_from_object,
+                                .positions_hash = moving ? positions_hash(mesh) : 0,
+                                .strokes = out.strokes,
+                                .tone = std::nullopt};
         }
     }
     out.mesh = &mesh;

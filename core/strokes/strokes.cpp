@@ -471,7 +471,8 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
         // itself.
         build_strokes_once(frame, mesh, table, projection, style, r_coherence, rules, object_of, normals);
     }
-    FrameStrokes out = build_strokes_once(frame, mesh, table, projection, style, r_coherence, rules, object_of, normals);
+    FrameStrokes out =
+        build_strokes_once(frame, mesh, table, projection, style, r_coherence, rules, object_of, normals);
     if (first) {
         out.stats.inherited = 0;
         out.stats.inherited_length_px = 0.0;

@@ -399,10 +399,11 @@ TEST(FramePipeline, LinesFoundAheadDrawTheSameAsLinesFoundInTurn) {
     }
 }
 
-// A mesh that moves in memory, as a skinned glTF shot does: the sphere slides across the torus.
-class SlidingSphere final : public core::AnimatedMesh {
+// A mesh that moves in memory, as a skinned glTF shot does: frame f's mesh is MeshAt(f).
+template <core::Mesh (*MeshAt)(int)>
+class MovingMesh final : public core::AnimatedMesh {
   public:
-    static core::Mesh mesh_at(int frame) { return torus_behind_sphere(-0.9f + 0.3f * float(frame - 1)); }
+    static core::Mesh mesh_at(int frame) { return MeshAt(frame); }
     const core::Mesh& rest() const override { return rest_; }
     bool deforms() const override { return true; }
     void positions_at(int frame, std::vector<glm::vec3>& r_positions) const override {
@@ -412,6 +413,10 @@ class SlidingSphere final : public core::AnimatedMesh {
   private:
     core::Mesh rest_ = mesh_at(1);
 };
+
+// The sphere slides across the torus.
+core::Mesh sliding_sphere_at(int frame) { return torus_behind_sphere(-0.9f + 0.3f * float(frame - 1)); }
+using SlidingSphere = MovingMesh<sliding_sphere_at>;
 
 // A moving mesh is kept twice over: the mesh of a frame stays as it was while the next frame's is
 // made, and is made again only after two other frames.
@@ -499,6 +504,13 @@ TEST(FramePipeline, AForkedProcessDrawsOnWithoutTheWorkerThread) {
     expect_same_lines(pipeline.run(2).lines, reference[1].lines);  // the parent goes on as before
 }
 
+// A bumpy sphere before a torus, moved along x by `shift`: the bumps give the silhouette dips
+// behind their neighbouring faces, short occluded gaps for the stroke repairs.
+core::Mesh bumps_before_torus(float shift) {
+    return test::combine(test::bumpy_sphere(test::icosphere(5), {.count = 60, .height_max = 0.12}),
+                         test::torus(1.0, 0.35, 48, 24), {0.3f + shift, -0.2f, -1.4f});
+}
+
 // A shot that holds still (the same mesh and camera as the frame before) draws the lines,
 // strokes and tone the frame before drew, and from its first frame those of a run of that frame
 // alone: the stroke
@@ -506,9 +518,7 @@ TEST(FramePipeline, AForkedProcessDrawsOnWithoutTheWorkerThread) {
 // answer one way and the other in turn (the shot would flicker). Once the camera moves, strokes
 // are made again; when it stops, the frames hold from there.
 TEST(FramePipeline, AHeldShotDrawsTheStrokesOfTheFrameBefore) {
-    // Bumps give the silhouette dips behind their neighbouring faces: short occluded gaps.
-    const core::Mesh mesh = test::combine(test::bumpy_sphere(test::icosphere(5), {.count = 60, .height_max = 0.12}),
-                                          test::torus(1.0, 0.35, 48, 24), {0.3f, -0.2f, -1.4f});
+    const core::Mesh mesh = bumps_before_torus(0.0f);
     core::Scene scene = test::scene_for(kView, mesh);
     scene.last_frame = 8;
     scene.tone = {.mode = core::ToneMode::kStipple, .curve = {.max = 0.6}};
@@ -593,22 +603,8 @@ TEST(FramePipeline, TheFrameAfterTheFirstKeepsItsStrokes) {
 
 // A moving mesh (a skinned or morphing shot) under a still camera holds too, while it stands
 // still: here at frames 1-3, then it slides, then stops again from frame 6.
-class StillSlideStill final : public core::AnimatedMesh {
-  public:
-    static core::Mesh mesh_at(int frame) {
-        const float shift = 0.1f * float(std::clamp(frame, 3, 6) - 3);
-        return test::combine(test::bumpy_sphere(test::icosphere(5), {.count = 60, .height_max = 0.12}),
-                             test::torus(1.0, 0.35, 48, 24), {0.3f + shift, -0.2f, -1.4f});
-    }
-    const core::Mesh& rest() const override { return rest_; }
-    bool deforms() const override { return true; }
-    void positions_at(int frame, std::vector<glm::vec3>& r_positions) const override {
-        r_positions = mesh_at(frame).positions;
-    }
-
-  private:
-    core::Mesh rest_ = mesh_at(1);
-};
+core::Mesh still_slide_still_at(int frame) { return bumps_before_torus(0.1f * float(std::clamp(frame, 3, 6) - 3)); }
+using StillSlideStill = MovingMesh<still_slide_still_at>;
 
 TEST(FramePipeline, AMovingMeshThatStandsStillHoldsTheStrokesOfTheFrameBefore) {
     core::Scene scene = test::scene_for(kView, StillSlideStill::mesh_at(1));
@@ -618,10 +614,14 @@ TEST(FramePipeline, AMovingMeshThatStandsStillHoldsTheStrokesOfTheFrameBefore) {
         run_all(scene, meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast));
     const auto points = [&](int frame) {
         std::vector<std::vector<glm::dvec2>> lines;
-        for (const core::Stroke& stroke : frames[size_t(frame - 1)].strokes.strokes) lines.push_back(stroke.geometry.points_px);
+        for (const core::Stroke& stroke : frames[size_t(frame - 1)].strokes.strokes) {
+            lines.push_back(stroke.geometry.points_px);
+        }
         return lines;
     };
-    for (const int frame : {4, 5, 6}) EXPECT_NE(points(frame), points(frame - 1)) << "frame " << frame << ": the mesh moved";
+    for (const int frame : {4, 5, 6}) {
+        EXPECT_NE(points(frame), points(frame - 1)) << "frame " << frame << ": the mesh moved";
+    }
     for (const int frame : {2, 3, 7, 8}) {
         SCOPED_TRACE("frame " + std::to_string(frame));
         expect_same_strokes(frames[size_t(frame - 1)].strokes, frames[size_t(frame - 2)].strokes);
