@@ -15,8 +15,6 @@ namespace inkline::core {
 struct ImageSize {
     int width = 0;   // px
     int height = 0;  // px
-
-    bool operator==(const ImageSize&) const = default;
 };
 
 struct Camera {
