@@ -128,6 +128,11 @@ FramePipeline::FoundLines FramePipeline::find_lines(int frame, bool with_visibil
         found.warnings.push_back("frame " + std::to_string(frame) +
                                  ": the mesh is wholly outside the camera's view; nothing is drawn");
     }
+    if (with_visibility && holds_lines(found)) {
+        take_held_lines(found, true);
+        found.visibility_ms = step("visibility");
+        return found;
+    }
 
     // Feature edges and chains. Smooth contours replace the silhouette edges.
     double tracker_build_ms = 0.0;
@@ -218,16 +223,8 @@ void FramePipeline::find_visible(FoundLines& found) {
 
     // Visibility. Occluded parts are always found (the samples are classified anyway): the
     // stroke stage bridges short ones. Without lines.hidden they stay out of the output.
-    const bool still = !meshes_.deforming();
-    if (held_lines_ && still && held_lines_->camera == result.camera &&
-        held_lines_->world_from_object == found.world_from_object) {
-        // A still mesh under the camera of the frame before: the same lines and the same
-        // occlusion test (as prepared for that frame, and not prepared since).
-        found.occlusion = held_lines_->occlusion;
-        result.polylines = held_lines_->polylines;
-        result.occluded = held_lines_->occluded;
-        result.objects = held_lines_->objects;
-        found.chains = std::vector<Chain>();
+    if (holds_lines(found)) {
+        take_held_lines(found, false);
         found.visibility_ms = step("visibility");
         return;
     }
@@ -253,15 +250,37 @@ void FramePipeline::find_visible(FoundLines& found) {
         for (size_t i = 0; i < result.polylines.size(); ++i) result.polylines[i].id = uint32_t(i);
     }
     if (!scene_.lines.hidden) set_aside_occluded(result);
-    if (still && next_may_hold(result.frame, result, found.world_from_object, found.object_bounds)) {
+    if (!meshes_.deforming() && next_may_hold(result.frame, result, found.world_from_object, found.object_bounds)) {
         held_lines_ = HeldLines{.polylines = result.polylines,
                                 .occluded = result.occluded,
                                 .objects = result.objects,
+                                .stats = result.stats,
+                                .smooth_contours = found.smooth_contours,
                                 .camera = result.camera,
                                 .world_from_object = found.world_from_object,
                                 .occlusion = found.occlusion};
     }
     found.visibility_ms = occlusion_ms + step("visibility");
+}
+
+bool FramePipeline::holds_lines(const FoundLines& found) const {
+    return held_lines_ && !meshes_.deforming() && held_lines_->camera == found.lines.camera &&
+           held_lines_->world_from_object == found.world_from_object;
+}
+
+void FramePipeline::take_held_lines(FoundLines& found, bool with_stats) const {
+    FrameLines& lines = found.lines;
+    found.occlusion = held_lines_->occlusion;
+    lines.polylines = held_lines_->polylines;
+    lines.occluded = held_lines_->occluded;
+    lines.objects = held_lines_->objects;
+    found.chains = std::vector<Chain>();
+    if (with_stats) {
+        lines.stats = held_lines_->stats;
+        lines.stats.edges_tested = 0;
+        lines.stats.faces_tested = 0;
+        found.smooth_contours = held_lines_->smooth_contours;
+    }
 }
 
 FramePipeline::FoundLines FramePipeline::lines_of(int frame) {

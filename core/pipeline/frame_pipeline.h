@@ -153,15 +153,22 @@ class FramePipeline {
     std::optional<HeldStrokes> held_;
     // The last frame's visible lines and occlusion test, kept while the mesh holds still and
     // the next frame's camera is this frame's: a frame under that camera takes them without
-    // looking again. Read and written only where visibility is found (one thread at a time).
+    // looking again (where its visibility is found with its lines, without extracting them
+    // either). Read and written only where visibility is found (one thread at a time).
     struct HeldLines {
         std::vector<Polyline> polylines, occluded;
         std::vector<MeshObject> objects;
+        FrameStats stats;  // what extraction found (the edges and faces it tested: none when held)
+        bool smooth_contours = false;
         Camera camera;
         glm::dmat4 world_from_object{1.0};
         const Occlusion* occlusion = nullptr;
     };
     std::optional<HeldLines> held_lines_;
+    // Whether the found lines' frame repeats the held lines' (a still mesh, the same camera).
+    bool holds_lines(const FoundLines& found) const;
+    // The held lines as the found ones, with their extraction's stats when it did not run.
+    void take_held_lines(FoundLines& found, bool with_stats) const;
     // Whether frame + 1 may repeat this frame: the same object motion and camera (the mesh
     // holding still, its bounds the same).
     bool next_may_hold(int frame, const FrameLines& lines, const glm::dmat4& world_from_object,

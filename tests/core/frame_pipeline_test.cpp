@@ -544,6 +544,7 @@ TEST(FramePipeline, AHeldShotDrawsTheStrokesOfTheFrameBefore) {
         const core::FrameResult afresh =
             run_all(only, only_meshes, core::make_cpu_occlusion(core::VisibilityMode::kRaycast))[0];
         expect_same_lines(frames[size_t(frame - 1)].lines, afresh.lines);
+        EXPECT_EQ(frames[size_t(frame - 1)].lines.stats.feature_edges, afresh.lines.stats.feature_edges);
         // And its dots: those of the frame before; while that one's strokes are those of the
         // first frame (a run of one frame's), the same as drawn afresh (the dots keep off the ink).
         const std::vector<core::Dot>& dots = frames[size_t(frame - 1)].tone.dots;
