@@ -537,12 +537,12 @@ void SurfaceSamples::build_everywhere(int last) {
                               [](const Candidate& a, const Candidate& b) { return a.id < b.id; });
                     std::vector<Candidate>& out = kept[n];
                     for (const Candidate& c : mine) {
-                        if (grid.near(c.p, r2, cache)) continue;
+                        // The tile's own points first: fewer, and the nearest.
                         const bool close = std::any_of(out.begin(), out.end(), [&](const Candidate& q) {
                             const glm::vec3 d = q.p - c.p;
                             return glm::dot(d, d) < r2;
                         });
-                        if (!close) out.push_back(c);
+                        if (!close && !grid.near(c.p, r2, cache)) out.push_back(c);
                     }
                 }
             });
