@@ -5,6 +5,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <map>
+#include <span>
 #include <tuple>
 
 #include "core/strokes/internal/sample_tree.h"
@@ -73,10 +74,12 @@ struct Pair {
 
 // Overlap (px) of every candidate with every compatible trace it touches.
 // trees: class_trees of the traces not taken; radius: this round's. Pairs whose visibility
-// changed are found only when `cross` asks for them.
+// changed are found only when `cross` asks for them. r_hits: for each candidate searched, the
+// nearest sample of its own class at each of its samples.
 std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const std::vector<StrokeTrace>& traces,
                            const std::vector<SampleTree>& trees, double radius, bool cross,
-                           const std::vector<uint8_t>& candidate_done, const std::vector<uint8_t>& trace_taken) {
+                           const std::vector<uint8_t>& candidate_done, const std::vector<uint8_t>& trace_taken,
+                           std::vector<std::vector<SampleTree::Hit>>& r_hits) {
     // (edge, trace) pairs, sorted, to look up the traces that used an edge.
     std::vector<std::pair<uint32_t, size_t>> edge_owner;
     for (size_t t = 0; t < traces.size(); ++t) {
@@ -111,9 +114,12 @@ std::vector<Pair> overlaps(const std::vector<StrokeCandidate>& candidates, const
         const double share = cand.samples_px.empty() ? 0.0 : cand.length_px / double(cand.samples_px.size());
         const SampleTree& same = trees[class_of(cand.geometry.kind, cand.geometry.visible)];
         const SampleTree& other = trees[class_of(cand.geometry.kind, !cand.geometry.visible)];
+        std::vector<SampleTree::Hit>& hits = r_hits[c];
+        hits.clear();
         for (const glm::dvec2& p : cand.samples_px) {
             if (!(share > 0.0)) break;
-            if (const SampleTree::Hit hit = same.nearest(p, radius); hit.trace != size_t(-1)) add(hit.trace, share);
+            hits.push_back(same.nearest(p, radius));
+            if (hits.back().trace != size_t(-1)) add(hits.back().trace, share);
             if (!cross) continue;
             if (const SampleTree::Hit hit = other.nearest(p, radius); hit.trace != size_t(-1)) add(hit.trace, share);
         }
@@ -192,14 +198,17 @@ std::optional<glm::dvec2> loop_start(const StrokeCandidate& cand, const StrokeTr
 }
 
 // Direction and u offset of a candidate from last frame's u at its nearest samples within
-// radius (px).
-void propagate(const StrokeCandidate& cand, const StrokeTrace& trace, double radius, StrokeMatch& r_match) {
-    std::vector<TracedSample> samples;
-    for (size_t k = 0; k < trace.samples_px.size(); ++k) samples.push_back({trace.samples_px[k], 0, k});
-    const SampleTree tree(std::move(samples));
+// radius (px) of trace t, searched in `tree`, the tree of t's class. nearest: where given, the
+// nearest sample within radius at each of the candidate's samples among a set of traces that
+// holds t: where that is t's, or none, it is t's nearest too.
+void propagate(const StrokeCandidate& cand, const std::vector<StrokeTrace>& traces, size_t t, const SampleTree& tree,
+               double radius, std::span<const SampleTree::Hit> nearest, StrokeMatch& r_match) {
+    const StrokeTrace& trace = traces[t];
+    const auto of_trace = [t](size_t trace_index, size_t) { return trace_index == t; };
     std::vector<double> s, u;
     for (size_t i = 0; i < cand.samples_px.size(); ++i) {
-        const SampleTree::Hit hit = tree.nearest(cand.samples_px[i], radius);
+        const bool known = i < nearest.size() && (nearest[i].trace == t || nearest[i].trace == size_t(-1));
+        const SampleTree::Hit hit = known ? nearest[i] : tree.nearest(cand.samples_px[i], radius, of_trace);
         if (hit.trace == size_t(-1)) continue;
         s.push_back(cand.samples_arc[i]);
         u.push_back(trace.samples_u[hit.sample]);
@@ -373,6 +382,7 @@ std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidat
     // round takes any.
     const std::vector<SampleTree>* trees = trees_.get();
     std::vector<SampleTree> untaken;
+    std::vector<std::vector<SampleTree::Hit>> hits(candidates.size());
     bool stale = false;
     for (const bool cross : {false, true}) {
         if (cross && !mixed) break;
@@ -385,7 +395,8 @@ std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidat
             }
             // Largest overlaps first; ties by candidate, then trace, so the result is
             // deterministic.
-            std::vector<Pair> pairs = overlaps(candidates, traces_, *trees, radius, cross, candidate_done, trace_taken);
+            std::vector<Pair> pairs =
+                overlaps(candidates, traces_, *trees, radius, cross, candidate_done, trace_taken, hits);
             if (!cross) std::erase_if(pairs, [](const Pair& p) { return p.cross; });
             std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
                 return std::tie(a.cross, b.score, a.candidate, a.trace) < std::tie(b.cross, a.score, b.candidate, b.trace);
@@ -397,7 +408,9 @@ std::vector<StrokeMatch> StrokeCoherence::match(const std::vector<StrokeCandidat
                 StrokeMatch& m = matches[p.candidate];
                 m.id = traces_[p.trace].id;
                 m.inherited = true;
-                propagate(candidates[p.candidate], traces_[p.trace], radius, m);
+                const StrokeTrace& trace = traces_[p.trace];
+                propagate(candidates[p.candidate], traces_, p.trace, (*trees_)[class_of(trace.kind, trace.visible)],
+                          radius, p.cross ? std::span<const SampleTree::Hit>() : hits[p.candidate], m);
             }
         }
     }
