@@ -19,7 +19,7 @@ inline constexpr double kBacktrackPx = 2.0;
 inline constexpr double kBacktrackTurnDeg = 120.0;
 
 struct StrokePathOptions {
-    double spacing_px = 0.5;        // resampling step
+    double spacing_px = 1.0;        // resampling step
     double smooth_px = 2.0;         // Gaussian sigma along the path; 0 keeps the cleaned polyline
     double max_deviation_px = 0.5;  // no sample moves farther than this from the exact polyline
 };

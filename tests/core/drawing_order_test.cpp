@@ -401,7 +401,9 @@ Steadiness turntable_steadiness(const core::Mesh& mesh, int frames, double degre
 }
 
 TEST(DrawingOrder, LevelsAndOrderHoldOverATorusTurntableAtThreeDegreesAFrame) {
-    const Steadiness s = turntable_steadiness(test::torus(1.0, 0.4, 96, 48), 40, 3.0);
+    // Half a turn: the torus settles into two strokes a frame, and more than 100 of them are
+    // carried from one frame to the next.
+    const Steadiness s = turntable_steadiness(test::torus(1.0, 0.4, 96, 48), 60, 3.0);
     std::printf("torus: %zu kept strokes, same level %.4f, same place %.4f\n", s.kept, s.level, s.order);
     EXPECT_GT(s.kept, 100u);
     EXPECT_GE(s.level, 0.95);
