@@ -1,16 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "export/svg.h"
 
-#include "core/error.h"
+#include "export/internal/number_text.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <unordered_map>
 #include <vector>
 
@@ -48,41 +46,16 @@ class Writer {
         out_ += std::to_string(v);
         return *this;
     }
-    // A number with bounded decimals and no trailing zeros: the digits printf's %.*f gives
-    // (both round the exact binary value correctly), without the format parsing.
+    // A number with bounded decimals and no trailing zeros (internal::append_fixed).
     Writer& number(double v) {
-        // Fixed notation writes every integer digit: a far plane of 1e300 takes 301 of them.
-        char buf[512];
-        const auto [end, error] = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals_);
-        INKLINE_CHECK(error == std::errc());
-        auto n = int(end - buf);
-        if (decimals_ > 0) {
-            while (n > 0 && buf[n - 1] == '0') --n;
-            if (n > 0 && buf[n - 1] == '.') --n;
-        }
-        if (n == 2 && buf[0] == '-' && buf[1] == '0') {  // "-0" after rounding
-            buf[0] = '0';
-            n = 1;
-        }
-        out_.append(buf, size_t(n));
+        internal::append_fixed(out_, v, decimals_);
         return *this;
     }
     // A count of units of the last decimal (10^-decimals), written as number() writes that
     // value, or with `short_form` without the 0 before the point (-0.5 as -.5): differences of
     // rounded coordinates stay exact.
     Writer& units(long long u, bool short_form = false) {
-        if (u < 0) out_ += '-';
-        const unsigned long long a = u < 0 ? 0ull - (unsigned long long)u : (unsigned long long)u;
-        if (!(short_form && a < unit_ && a != 0)) out_ += std::to_string(a / unit_);
-        unsigned long long frac = a % unit_;
-        if (frac != 0) {
-            int digits = decimals_;
-            while (frac % 10 == 0) frac /= 10, --digits;
-            std::string f = std::to_string(frac);
-            out_ += '.';
-            out_.append(size_t(digits) - f.size(), '0');
-            out_ += f;
-        }
+        internal::append_units(out_, u, decimals_, short_form);
         return *this;
     }
     // The text written so far ends in a number with a decimal point.
