@@ -141,13 +141,57 @@ double median(std::vector<double> v) {
     return v[mid];
 }
 
-// Distance from p to a closed polyline.
-double distance_to_loop(const glm::dvec2& p, const std::vector<glm::dvec2>& loop) {
-    double best = HUGE_VAL;
-    for (size_t i = 0; i < loop.size(); ++i)
-        best = std::min(best, distance_to_segment(p, loop[i], loop[(i + 1) % loop.size()]));
-    return best;
-}
+// Distances from points to a closed polyline: the least distance_to_segment over its segments,
+// as a pass over every segment finds it. Segments go in runs of kRun, each in its box; the run
+// whose box lies nearest is measured first, and a run whose box lies farther than the nearest
+// segment so far is passed over.
+class LoopDistance {
+  public:
+    explicit LoopDistance(const std::vector<glm::dvec2>& loop) : loop_(loop) {
+        for (size_t first = 0; first < loop.size(); first += kRun) {
+            Box box{loop[first], loop[first]};
+            for (size_t i = first; i <= std::min(first + kRun, loop.size()); ++i) {
+                const glm::dvec2& q = loop[i % loop.size()];
+                box.lo = glm::min(box.lo, q), box.hi = glm::max(box.hi, q);
+            }
+            boxes_.push_back(box);
+        }
+    }
+
+    double operator()(const glm::dvec2& p) const {
+        double best = HUGE_VAL;
+        size_t nearest_run = 0;
+        double nearest_d2 = HUGE_VAL;
+        for (size_t r = 0; r < boxes_.size(); ++r) {
+            if (const double d2 = distance2(boxes_[r], p); d2 < nearest_d2) nearest_d2 = d2, nearest_run = r;
+        }
+        const auto measure = [&](size_t r) {
+            for (size_t i = r * kRun; i < std::min((r + 1) * kRun, loop_.size()); ++i)
+                best = std::min(best, distance_to_segment(p, loop_[i], loop_[(i + 1) % loop_.size()]));
+        };
+        if (!boxes_.empty()) measure(nearest_run);
+        for (size_t r = 0; r < boxes_.size(); ++r) {
+            // A segment lies no nearer than its box; the margin is far more than rounding.
+            if (r == nearest_run || distance2(boxes_[r], p) > best * best * (1.0 + 1e-9) + 1e-18) continue;
+            measure(r);
+        }
+        return best;
+    }
+
+  private:
+    static constexpr size_t kRun = 8;
+    struct Box {
+        glm::dvec2 lo, hi;
+    };
+    static double distance2(const Box& box, const glm::dvec2& p) {
+        const double dx = std::max({box.lo.x - p.x, p.x - box.hi.x, 0.0});
+        const double dy = std::max({box.lo.y - p.y, p.y - box.hi.y, 0.0});
+        return dx * dx + dy * dy;
+    }
+
+    const std::vector<glm::dvec2>& loop_;
+    std::vector<Box> boxes_;  // of each run of segments
+};
 
 // The loop's new start, within kMatchRadiusPx of last frame's: the point that costs least now
 // (its distance from last frame's start) plus later (kStartLookahead frames of the motion the
@@ -161,9 +205,10 @@ std::optional<glm::dvec2> loop_start(const StrokeCandidate& cand, const StrokeTr
     const auto sn = std::ptrdiff_t(n);
     auto wrap = [sn](std::ptrdiff_t i) { return size_t(((i % sn) + sn) % sn); };
     // Motion at samples near last frame's start, computed once each.
+    const LoopDistance to_last_loop(trace.samples_px);
     std::vector<double> motion(n, -1.0);
     auto motion_at = [&](size_t i) {
-        if (motion[i] < 0.0) motion[i] = distance_to_loop(cand.samples_px[i], trace.samples_px);
+        if (motion[i] < 0.0) motion[i] = to_last_loop(cand.samples_px[i]);
         return motion[i];
     };
     auto mean_motion = [&](size_t i) {
