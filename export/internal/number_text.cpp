@@ -20,18 +20,22 @@ unsigned long long power_of_ten(int decimals) {
 
 void append_units(std::string& r_out, long long u, int decimals, bool short_form) {
     const unsigned long long unit = power_of_ten(decimals);
-    if (u < 0) r_out += '-';
+    // A sign, 20 integer digits, a point and 19 decimals at most.
+    char buf[48];
+    char* end = buf;
+    if (u < 0) *end++ = '-';
     const unsigned long long a = u < 0 ? 0ull - (unsigned long long)u : (unsigned long long)u;
-    if (!(short_form && a < unit && a != 0)) r_out += std::to_string(a / unit);
+    if (!(short_form && a < unit && a != 0)) end = std::to_chars(end, buf + sizeof buf, a / unit).ptr;
     unsigned long long frac = a % unit;
     if (frac != 0) {
         int digits = decimals;
         while (frac % 10 == 0) frac /= 10, --digits;
-        const std::string f = std::to_string(frac);
-        r_out += '.';
-        r_out.append(size_t(digits) - f.size(), '0');
-        r_out += f;
+        *end++ = '.';
+        // The fraction's digits, its leading zeros included.
+        for (int k = digits - 1; k >= 0; --k, frac /= 10) end[k] = char('0' + frac % 10);
+        end += digits;
     }
+    r_out.append(buf, size_t(end - buf));
 }
 
 void append_fixed(std::string& r_out, double v, int decimals) {
