@@ -10,6 +10,7 @@
 #include <glm/trigonometric.hpp>
 #include <numbers>
 #include <optional>
+#include <tuple>
 
 #include "core/strokes/stroke_path.h"
 
@@ -225,6 +226,86 @@ bool edges_meet(const Ring& ring) {
     return false;
 }
 
+// The sign of the turn a -> b -> c (+1 left, -1 right, 0 on one line), exact: from doubles where
+// their error bound settles it (J. R. Shewchuk, Adaptive Precision Floating-Point Arithmetic and
+// Fast Robust Geometric Predicates, 1997: orient2d's first stage), else from CGAL.
+int orientation(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+    const double left = (a.x - c.x) * (b.y - c.y), right = (a.y - c.y) * (b.x - c.x);
+    const double det = left - right, magnitude = std::abs(left) + std::abs(right);
+    // (3 + 16 eps) eps, eps = 2^-53; far from underflow, where the bound holds.
+    constexpr double kErrorBound = 3.3306690738754716e-16;
+    if (std::abs(det) > kErrorBound * magnitude && magnitude > 1e-280) return det > 0.0 ? 1 : -1;
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    switch (CGAL::orientation(Kernel::Point_2(a.x, a.y), Kernel::Point_2(b.x, b.y), Kernel::Point_2(c.x, c.y))) {
+        case CGAL::LEFT_TURN: return 1;
+        case CGAL::RIGHT_TURN: return -1;
+        default: return 0;
+    }
+}
+
+// Whether c, on the line through a and b, lies on the segment ab.
+bool within(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+    return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y &&
+           c.y <= std::max(a.y, b.y);
+}
+
+// Whether the closed segments pq and rs share a point (exact).
+bool segments_meet(const glm::dvec2& p, const glm::dvec2& q, const glm::dvec2& r, const glm::dvec2& s) {
+    const int d1 = orientation(r, s, p), d2 = orientation(r, s, q);
+    const int d3 = orientation(p, q, r), d4 = orientation(p, q, s);
+    if (d1 * d2 < 0 && d3 * d4 < 0) return true;
+    return (d1 == 0 && within(r, s, p)) || (d2 == 0 && within(r, s, q)) || (d3 == 0 && within(p, q, r)) ||
+           (d4 == 0 && within(p, q, s));
+}
+
+// CGAL::is_simple_2's answer without its sweep, or none past a budget of edge pairs: a ring of
+// four points or more is simple when no two edges that do not follow one another meet. A point
+// that comes twice makes two such edges meet, and so does an edge that folds back over the one
+// before it: the edge after the shorter of the two starts on the longer. The edges are swept
+// along the ring's longer side, each tested against those whose span there it overlaps.
+std::optional<bool> simple_by_sweep(const Ring& ring) {
+    const size_t n = ring.size();
+    for (const glm::dvec2& p : ring) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) return std::nullopt;
+    }
+    // A triangle: three distinct points not on one line.
+    if (n == 3) {
+        return ring[0] != ring[1] && ring[1] != ring[2] && ring[2] != ring[0] &&
+               orientation(ring[0], ring[1], ring[2]) != 0;
+    }
+    glm::dvec2 lo = ring[0], hi = ring[0];
+    for (const glm::dvec2& p : ring) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const int axis = hi.x - lo.x >= hi.y - lo.y ? 0 : 1;
+    struct Edge {
+        glm::dvec2 lo, hi;  // its box
+        uint32_t index;
+    };
+    std::vector<Edge> edges(n);
+    for (size_t e = 0; e < n; ++e) {
+        const glm::dvec2 &a = ring[e], &b = ring[(e + 1) % n];
+        edges[e] = {glm::min(a, b), glm::max(a, b), uint32_t(e)};
+    }
+    std::sort(edges.begin(), edges.end(),
+              [axis](const Edge& a, const Edge& b) { return std::tie(a.lo[axis], a.index) < std::tie(b.lo[axis], b.index); });
+    std::vector<const Edge*> active;
+    size_t budget = kEdgePairsPerEdge * n;
+    for (const Edge& e : edges) {
+        std::erase_if(active, [&](const Edge* f) { return f->hi[axis] < e.lo[axis]; });
+        for (const Edge* f : active) {
+            const int other = 1 - axis;
+            if (f->hi[other] < e.lo[other] || e.hi[other] < f->lo[other]) continue;
+            const size_t d = e.index > f->index ? e.index - f->index : f->index - e.index;
+            if (d <= 1 || d == n - 1) continue;  // neighbours share a corner
+            if (budget-- == 0) return std::nullopt;
+            if (segments_meet(ring[e.index], ring[(e.index + 1) % n], ring[f->index], ring[(f->index + 1) % n])) {
+                return false;
+            }
+        }
+        active.push_back(&e);
+    }
+    return true;
+}
+
 Ring dedupe(std::vector<glm::dvec2> ring) {
     Ring out;
     for (const glm::dvec2& p : ring) {
@@ -320,6 +401,8 @@ double outline_area(const std::vector<Ring>& rings) {
 
 bool is_simple(const Ring& ring) {
     using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    if (ring.size() < 3) return false;
+    if (const std::optional<bool> known = simple_by_sweep(ring)) return *known;
     std::vector<Kernel::Point_2> points;
     for (const glm::dvec2& p : ring) points.emplace_back(p.x, p.y);
     return points.size() >= 3 && CGAL::is_simple_2(points.begin(), points.end(), Kernel());

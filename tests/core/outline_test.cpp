@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "core/strokes/outline.h"
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -277,6 +279,65 @@ TEST(Outline, StrokeWhoseEndsOverlapIsSimplifiedToo) {
     ASSERT_EQ(apart.size(), 1u);
     EXPECT_TRUE(core::is_simple(apart[0]));
     EXPECT_NEAR(double(rings[0].size()), double(apart[0].size()), 0.1 * double(apart[0].size()));
+}
+
+// is_simple answers as CGAL's sweep does: on rings with every degeneracy a small grid gives
+// (points twice, edges folding back, straight runs, a point on another edge, touching corners),
+// and on larger rings, simple or crossing, some past the sweep's budget.
+TEST(Outline, IsSimpleAnswersAsCgalsSweep) {
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    const auto cgal = [](const core::Ring& ring) {
+        std::vector<Kernel::Point_2> points;
+        for (const dvec2& p : ring) points.emplace_back(p.x, p.y);
+        return CGAL::is_simple_2(points.begin(), points.end(), Kernel());
+    };
+    std::mt19937 random(11);
+    size_t simple = 0, rings = 0;
+    const auto check = [&](const core::Ring& ring, int round) {
+        const bool expected = cgal(ring);
+        ASSERT_EQ(core::is_simple(ring), expected) << "round " << round << ", " << ring.size() << " points";
+        simple += expected ? 1 : 0;
+        ++rings;
+    };
+    for (int round = 0; round < 20000; ++round) {
+        const size_t n = 3 + size_t(round) % 10;
+        std::uniform_int_distribution<int> coordinate(0, round % 2 == 0 ? 3 : 6);
+        core::Ring ring;
+        for (size_t i = 0; i < n; ++i) ring.push_back(dvec2(coordinate(random), coordinate(random)));
+        check(ring, round);
+    }
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int round = 0; round < 400; ++round) {
+        // A wobbly circle, simple; every fourth crossed by swapping two points; every third
+        // pinched so that one point lands on another edge; every fifth a star of spikes into
+        // its centre, whose edges all overlap there (past the sweep's budget when large).
+        const size_t n = 4 + size_t(round) * 13 % 600;
+        core::Ring ring;
+        for (size_t i = 0; i < n; ++i) {
+            const double a = 2.0 * std::numbers::pi * double(i) / double(n);
+            double r = 50.0 + 5.0 * std::sin(9.0 * a) * unit(random);
+            if (round % 5 == 4 && i % 2 == 1) r = 0.5;
+            ring.push_back(r * dvec2(std::cos(a), std::sin(a)));
+        }
+        if (round % 4 == 1) std::swap(ring[n / 3], ring[2 * n / 3]);
+        if (round % 3 == 2 && n > 8) ring[n / 2] = 0.5 * (ring[1] + ring[2]);
+        check(ring, round);
+    }
+    // Points a few units in the last place from an edge (after J. R. Shewchuk's example), on it
+    // or either side of it: the answer rests on exact orientation.
+    const dvec2 a(12.0, 12.0), b(-12.0, -12.0);
+    for (int i = 0; i < 32; ++i) {
+        for (int j = 0; j < 32; ++j) {
+            const dvec2 near(0.5 + std::ldexp(double(i), -53), 0.5 + std::ldexp(double(j), -53));
+            for (const dvec2& side : {dvec2(3.0, -3.0), dvec2(-3.0, 3.0)}) {
+                check({a, b, side, near}, i * 32 + j);
+                check({b, near, a, side}, i * 32 + j);
+            }
+        }
+    }
+    // Both answers were asked for often.
+    EXPECT_GT(simple, rings / 10);
+    EXPECT_LT(simple, rings - rings / 10);
 }
 
 }  // namespace
