@@ -41,7 +41,8 @@ double signed_area(const Ring& ring);
 // Area covered by rings that nest as build_outline makes them: |sum of signed areas|.
 double outline_area(const std::vector<Ring>& rings);
 
-// True when the ring does not touch or cross itself (CGAL::is_simple_2).
+// True when the ring does not touch or cross itself: CGAL::is_simple_2's answer, swept in
+// doubles with exact orientations where that is cheaper.
 bool is_simple(const Ring& ring);
 
 // Douglas-Peucker simplification of a closed ring within tolerance_px.
