@@ -63,6 +63,8 @@ Side offset_side(std::span<const glm::dvec2> c, std::span<const double> w, const
                  bool closed, double sign, double step_rad) {
     Side side;
     const size_t n = c.size();
+    side.points.reserve(n + n / 4);
+    side.arc.reserve(n + n / 4);
     // Unit normals turning by less than this sine (and forwards) turn by less than a step: no
     // extra point, and no need for the angle. The margin keeps rounding on the safe side.
     const double sin_step = step_rad < 0.5 * std::numbers::pi ? std::sin(step_rad) * (1.0 - 1e-9) : 0.0;
@@ -111,6 +113,7 @@ std::vector<glm::dvec2> remove_folds(const Side& side, double reach) {
     const size_t n = p.size();
     std::vector<glm::dvec2> out;
     if (n == 0) return out;
+    out.reserve(n);
     // turned[k]: absolute turning at points 1..k; tiny[k]: tiny segments among 0..k-1.
     std::vector<double> turned(n, 0.0);
     std::vector<uint32_t> tiny(n + 1, 0);
@@ -308,6 +311,7 @@ std::optional<bool> simple_by_sweep(const Ring& ring) {
 
 Ring dedupe(std::vector<glm::dvec2> ring) {
     Ring out;
+    out.reserve(ring.size());
     for (const glm::dvec2& p : ring) {
         if (out.empty() || glm::length(p - out.back()) > kSamePointPx) out.push_back(p);
     }
@@ -333,7 +337,9 @@ std::vector<Ring> build_outline(std::span<const glm::dvec2> c, std::span<const d
         rings.push_back(dedupe({right.rbegin(), right.rend()}));
     } else {
         // Left side forwards, end cap, right side backwards, start cap.
-        std::vector<glm::dvec2> ring = left;
+        std::vector<glm::dvec2> ring;
+        ring.reserve(left.size() + right.size() + 64);
+        ring.assign(left.begin(), left.end());
         if (w.back() > kCapMinWidthPx) end_cap(c.back(), perp(t.back()), t.back(), 0.5 * w.back(), step, options.cap, ring);
         ring.insert(ring.end(), right.rbegin(), right.rend());
         if (w.front() > kCapMinWidthPx) {
