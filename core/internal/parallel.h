@@ -26,6 +26,24 @@ inline size_t hardware_threads() {
     return cores;
 }
 
+// Worker threads (core/internal/worker.h) running a task now: a frame pipeline's next frame's
+// lines, found while a frame is drawn.
+inline std::atomic<size_t>& busy_workers() {
+    static std::atomic<size_t> count{0};
+    return count;
+}
+// Whether the calling thread is a Worker's.
+inline bool& on_worker_thread() {
+    thread_local bool on = false;
+    return on;
+}
+
+// Cores left to a loop on the calling thread by the Workers busy beside it (at least one).
+inline size_t free_threads() {
+    const size_t busy = busy_workers().load(std::memory_order_relaxed) - (on_worker_thread() ? 1 : 0);
+    return busy < hardware_threads() ? hardware_threads() - busy : 1;
+}
+
 // Runs task(t) for t in [0, count): t = 0 on the calling thread, the others on new threads where
 // they can be started, else on the calling thread after its own. The first exception of any task
 // is rethrown here after all of them have stopped.
@@ -74,13 +92,15 @@ void parallel_for(size_t n, size_t min_parallel, const Body& body) {
 
 // Calls body(i) once for every i in [0, n) when the items' costs differ widely (a frame's strokes:
 // one long line and many short ones): items are handed out one at a time, the heaviest first (by
-// weight, larger first), to as many threads as there are cores, when the total weight is at
-// least min_parallel_weight. Each item runs alone, so writes to its own output element keep the
+// weight, larger first), to as many threads as there are cores that no busy Worker holds, when
+// the total weight is at least min_parallel_weight. (On two cores, a frame's strokes drawn while
+// the next frame's lines are found run on one: a second thread would only take turns with the
+// Worker, and starting it costs more than it gains.) Each item runs alone, so writes to its own output element keep the
 // result independent of scheduling.
 template <typename Body>
 void parallel_for_each(std::span<const double> weight, double min_parallel_weight, const Body& body) {
     const size_t n = weight.size();
-    const size_t threads = std::min(hardware_threads(), n);
+    const size_t threads = std::min(free_threads(), n);
     if (threads <= 1 || std::accumulate(weight.begin(), weight.end(), 0.0) < min_parallel_weight) {
         for (size_t i = 0; i < n; ++i) body(i);
         return;

@@ -21,6 +21,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/internal/parallel.h"
+
 namespace inkline::core::internal {
 
 class Worker {
@@ -59,7 +61,12 @@ class Worker {
                 thread_ = std::thread([shared = shared_.get()] { serve(*shared); });
                 owner_ = getpid();
             }
-            shared_->tasks.emplace_back([job] { (*job)(); });
+            // Busy from now until the task is done (core/internal/parallel.h).
+            busy_workers().fetch_add(1, std::memory_order_relaxed);
+            shared_->tasks.emplace_back([job] {
+                (*job)();
+                busy_workers().fetch_sub(1, std::memory_order_relaxed);
+            });
         }
         shared_->wake.notify_one();
         return result;
@@ -75,6 +82,7 @@ class Worker {
     };
 
     static void serve(Shared& shared) {
+        on_worker_thread() = true;
         for (;;) {
             std::function<void()> task;
             {
