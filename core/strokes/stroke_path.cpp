@@ -183,6 +183,8 @@ StrokePath build_stroke_path(std::span<const glm::dvec2> points, bool closed, co
     const std::vector<size_t> kept = remove_backtracking(points, closed);
     std::vector<glm::dvec2> cleaned;
     std::vector<double> cleaned_g;
+    cleaned.reserve(kept.size());
+    cleaned_g.reserve(kept.size());
     for (size_t k : kept) cleaned.push_back(points[k]), cleaned_g.push_back(double(k));
     const std::vector<double> cleaned_arc = cumulative_arc(cleaned);
     const double length = cleaned_arc.back();
@@ -201,6 +203,8 @@ StrokePath build_stroke_path(std::span<const glm::dvec2> points, bool closed, co
     std::vector<glm::dvec2> even;
     std::vector<double> even_g;
     const size_t last = closed ? count - 1 : count;
+    even.reserve(last + 2);
+    even_g.reserve(last + 2);
     for (size_t j = 0, s = 0; j <= last; ++j) {
         const double a = j == count ? length : double(j) * step;
         while (s + 2 < cleaned.size() && cleaned_arc[s + 1] < a) ++s;
