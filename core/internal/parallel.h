@@ -90,13 +90,13 @@ void parallel_for(size_t n, size_t min_parallel, const Body& body) {
     run_tasks(slices, [&](size_t s) { body(n * s / slices, n * (s + 1) / slices); });
 }
 
-// Calls body(i) once for every i in [0, n) when the items' costs differ widely (a frame's strokes:
-// one long line and many short ones): items are handed out one at a time, the heaviest first (by
-// weight, larger first), to as many threads as there are cores that no busy Worker holds, when
-// the total weight is at least min_parallel_weight. (On two cores, a frame's strokes drawn while
-// the next frame's lines are found run on one: a second thread would only take turns with the
-// Worker, and starting it costs more than it gains.) Each item runs alone, so writes to its own output element keep the
-// result independent of scheduling.
+// Calls body(i) once for every i in [0, n) when the items' costs differ widely (a frame's
+// strokes: one long line and many short ones): items are handed out one at a time, the heaviest
+// first (by weight, larger first), to as many threads as there are cores that no busy Worker
+// holds, when the total weight is at least min_parallel_weight. (On two cores, a frame's strokes
+// drawn while the next frame's lines are found run on one: a second thread would only take turns
+// with the Worker, and starting it costs more than it gains.) Each item runs alone, so writes to
+// its own output element keep the result independent of scheduling.
 template <typename Body>
 void parallel_for_each(std::span<const double> weight, double min_parallel_weight, const Body& body) {
     const size_t n = weight.size();

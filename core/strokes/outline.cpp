@@ -240,9 +240,12 @@ int orientation(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
     if (std::abs(det) > kErrorBound * magnitude && magnitude > 1e-280) return det > 0.0 ? 1 : -1;
     using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
     switch (CGAL::orientation(Kernel::Point_2(a.x, a.y), Kernel::Point_2(b.x, b.y), Kernel::Point_2(c.x, c.y))) {
-        case CGAL::LEFT_TURN: return 1;
-        case CGAL::RIGHT_TURN: return -1;
-        default: return 0;
+        case CGAL::LEFT_TURN:
+            return 1;
+        case CGAL::RIGHT_TURN:
+            return -1;
+        default:
+            return 0;
     }
 }
 
@@ -288,8 +291,9 @@ std::optional<bool> simple_by_sweep(const Ring& ring) {
         const glm::dvec2 &a = ring[e], &b = ring[(e + 1) % n];
         edges[e] = {glm::min(a, b), glm::max(a, b), uint32_t(e)};
     }
-    std::sort(edges.begin(), edges.end(),
-              [axis](const Edge& a, const Edge& b) { return std::tie(a.lo[axis], a.index) < std::tie(b.lo[axis], b.index); });
+    std::sort(edges.begin(), edges.end(), [axis](const Edge& a, const Edge& b) {
+        return std::tie(a.lo[axis], a.index) < std::tie(b.lo[axis], b.index);
+    });
     std::vector<const Edge*> active;
     size_t budget = kEdgePairsPerEdge * n;
     for (const Edge& e : edges) {
