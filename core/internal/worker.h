@@ -61,12 +61,13 @@ class Worker {
                 thread_ = std::thread([shared = shared_.get()] { serve(*shared); });
                 owner_ = getpid();
             }
-            // Busy from now until the task is done (core/internal/parallel.h).
-            busy_workers().fetch_add(1, std::memory_order_relaxed);
             shared_->tasks.emplace_back([job] {
                 (*job)();
                 busy_workers().fetch_sub(1, std::memory_order_relaxed);
             });
+            // Busy from now until the task is done (core/internal/parallel.h); the thread takes
+            // it only once the lock is let go. (A process forked meanwhile keeps the count.)
+            busy_workers().fetch_add(1, std::memory_order_relaxed);
         }
         shared_->wake.notify_one();
         return result;
