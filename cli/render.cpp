@@ -177,20 +177,32 @@ int run_render(const RenderArgs& args) {
     for (const std::string& w : meshes.warnings()) warn(w);
     Writers writers(outputs, args, scene);
     Progress progress(std::max(rendered.count(), 0), !args.quiet && !args.verbose);
-    // Writes a drawn frame's files: once, or with a write-on as the frames that show it.
+    size_t files = 0;
+    // Once a drawn frame's files are all written: its line with -v.
+    const auto written = [&](int frame) -> Writers::Written {
+        return [&, frame](const core::FrameResult& drawn, size_t) {
+            if (!args.verbose) return;
+            const core::FrameStats& stats = drawn.lines.stats;
+            std::fprintf(stderr, "frame %d: %zu strokes, %zu of %zu edges tested", frame, drawn.strokes.strokes.size(),
+                         stats.edges_tested, stats.edges);
+            for (const auto& [stage, ms] : stats.ms) std::fprintf(stderr, ", %s %.1f ms", stage.c_str(), ms);
+            std::fprintf(stderr, "\n");
+        };
+    };
+    // Hands a drawn frame to the writers: once, or with a write-on as the frames that show it.
     const auto write = [&](core::FrameResult& result) {
-        size_t written = 0;
+        const int frame = result.lines.frame;
+        if (preview) {
+            preview->write(result, outputs.preview);
+            ++files;
+        }
         if (write_on.seconds == 0.0) {
-            written += writers.write(result);
-            if (preview) {
-                preview->write(result, outputs.preview);
-                ++written;
-            }
-            return written;
+            files += writers.write(std::move(result), written(frame));
+            return;
         }
         const core::WriteOnSchedule schedule = core::schedule_write_on(result.strokes, write_on.seconds);
-        written += writers.write_animated_svg(result, schedule);
-        const int frame = result.lines.frame, until = frame == frames.last ? write_on.written_last : frame;
+        files += writers.write_animated_svg(result, schedule);
+        const int until = frame == frames.last ? write_on.written_last : frame;
         for (int shown_frame = frame; shown_frame <= until; ++shown_frame) {
             core::FrameResult shown;
             shown.lines = result.lines;
@@ -200,17 +212,17 @@ int run_render(const RenderArgs& args) {
             shown.tone = result.tone;  // the tone is there from the start, under the strokes being drawn
             shown.mesh = result.mesh;
             shown.world_from_object = result.world_from_object;
-            written += writers.write(shown);
             if (preview) {
                 preview->write(shown, outputs.preview);
-                ++written;
+                ++files;
             }
+            // The drawn frame's line once the last frame showing it is written.
+            files += writers.write(std::move(shown), shown_frame == until ? written(frame) : Writers::Written{});
         }
-        return written;
     };
 
     const auto start = std::chrono::steady_clock::now();
-    size_t strokes = 0, files = 0, failed = 0;
+    size_t strokes = 0, failed = 0;
     double fast_forward_ms = 0.0;
     for (int frame = frames.first; frame <= rendered.last; ++frame) {
         if (frame < rendered.first) {
@@ -236,16 +248,9 @@ int run_render(const RenderArgs& args) {
             continue;
         }
         for (const std::string& w : result.warnings) warn(w);
-        files += write(result);
         strokes += result.strokes.strokes.size();
+        write(result);
         progress.frame_done();
-        if (args.verbose) {
-            const core::FrameStats& stats = result.lines.stats;
-            std::fprintf(stderr, "frame %d: %zu strokes, %zu of %zu edges tested", frame, result.strokes.strokes.size(),
-                         stats.edges_tested, stats.edges);
-            for (const auto& [stage, ms] : stats.ms) std::fprintf(stderr, ", %s %.1f ms", stage.c_str(), ms);
-            std::fprintf(stderr, "\n");
-        }
     }
     files += writers.finish(failed == 0, warn);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

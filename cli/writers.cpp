@@ -13,10 +13,12 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <system_error>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include <signal.h>
 #include <unistd.h>
@@ -24,33 +26,45 @@
 namespace inkline::cli {
 namespace fs = std::filesystem;
 
-// One frame's PNG, drawn and encoded on a thread of its own. The file is written by the caller:
-// write_file_atomically's interrupt cleanup follows one temporary at a time, and the thread
-// takes no SIGINT, SIGTERM or SIGHUP, so the handler always runs where that temporary is known.
+namespace {
+
+// Starts `work` on a thread that takes no SIGINT, SIGTERM or SIGHUP, so that interrupts are
+// handled on the thread that started the run (the handler removes the temporaries of every
+// thread; write_file_atomically). Throws std::system_error when no thread is to be had (a thread
+// or memory limit).
+std::thread thread_without_interrupts(std::function<void()> work) {
+    sigset_t interrupts, previous;
+    sigemptyset(&interrupts);
+    for (const int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&interrupts, s);
+    // A new thread starts with its creator's signal mask.
+    pthread_sigmask(SIG_BLOCK, &interrupts, &previous);
+    try {
+        std::thread thread(std::move(work));
+        pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+        return thread;
+    } catch (...) {
+        pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+        throw;
+    }
+}
+
+}  // namespace
+
+// One frame's PNG, drawn and encoded on a thread of its own beside the frame's other files.
 class Writers::PngThread {
   public:
-    PngThread(fs::path path, std::shared_ptr<const output::Drawing> drawing)
-        : path_(std::move(path)), drawing_(std::move(drawing)) {
-        sigset_t interrupts, previous;
-        sigemptyset(&interrupts);
-        for (const int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&interrupts, s);
-        // A new thread starts with its creator's signal mask.
-        pthread_sigmask(SIG_BLOCK, &interrupts, &previous);
+    explicit PngThread(std::shared_ptr<const output::Drawing> drawing) : drawing_(std::move(drawing)) {
         try {
-            thread_ = std::thread([this] { encode(); });
+            thread_ = thread_without_interrupts([this] { encode(); });
         } catch (const std::system_error&) {
-            // No thread to be had (a thread or memory limit): the caller's thread does the work.
-            encode();
+            encode();  // no thread: this one does the work
         }
-        pthread_sigmask(SIG_SETMASK, &previous, nullptr);
     }
     ~PngThread() {
         if (thread_.joinable()) thread_.join();
     }
     PngThread(const PngThread&) = delete;
     PngThread& operator=(const PngThread&) = delete;
-
-    const fs::path& path() const { return path_; }
 
     // Waits for the encoding; returns the file's contents, or throws what stopped it.
     std::string take() {
@@ -69,9 +83,100 @@ class Writers::PngThread {
         drawing_.reset();
     }
 
-    fs::path path_;
     std::shared_ptr<const output::Drawing> drawing_;
     std::string bytes_;
+    std::exception_ptr error_;
+    std::thread thread_;
+};
+
+// One frame's files, made and written on a thread of their own.
+class Writers::FrameFiles {
+  public:
+    FrameFiles(const Writers& writers, core::FrameResult drawn, Written written)
+        : drawn_(std::move(drawn)), written_(std::move(written)), writers_(writers) {
+        drawn_.mesh = nullptr;  // valid only until the pipeline's next frame
+        try {
+            thread_ = thread_without_interrupts([this] { make(); });
+        } catch (const std::system_error&) {
+            make();  // no thread: this one does the work
+        }
+    }
+    ~FrameFiles() {
+        if (thread_.joinable()) thread_.join();
+    }
+    FrameFiles(const FrameFiles&) = delete;
+    FrameFiles& operator=(const FrameFiles&) = delete;
+
+    // Waits for the files to be written; returns how many, or throws what stopped them.
+    size_t wait() {
+        if (thread_.joinable()) thread_.join();
+        if (error_) std::rethrow_exception(error_);
+        return files_;
+    }
+    const core::FrameResult& drawn() const { return drawn_; }
+    const Written& written() const { return written_; }
+
+  private:
+    void make() {
+        try {
+            write(made());
+        } catch (...) {
+            error_ = std::current_exception();
+        }
+    }
+
+    // The frame's files, in the order they are written.
+    std::vector<std::pair<fs::path, std::string>> made() {
+        const Outputs& outputs = writers_.outputs_;
+        const int frame = drawn_.lines.frame;
+        std::vector<std::pair<fs::path, std::string>> files;
+        core::Stopwatch clock;
+        // Shared with the PNG's thread, which only reads it.
+        const auto drawing = std::make_shared<const output::Drawing>(writers_.drawing_of(drawn_));
+        std::optional<PngThread> png;
+        if (!outputs.png.empty()) png.emplace(drawing);
+        if (!outputs.svg.empty()) {
+            files.emplace_back(core::format_frame(outputs.svg, frame),
+                               output::svg_document(*drawing, writers_.svg_options_));
+        }
+        const double svg_ms = clock.lap_ms();
+        if (outputs.pdf_per_frame) {
+            output::PdfDocument page(writers_.pdf_options_);
+            page.add_page(*drawing);
+            files.emplace_back(core::format_frame(outputs.pdf, frame), page.finish());
+        } else if (writers_.pdf_) {
+            writers_.pdf_->add_page(*drawing);
+        }
+        const double pdf_ms = clock.lap_ms();
+        if (png) {
+            // After the SVG, as before: a frame whose SVG cannot be written gets no PNG.
+            files.emplace(files.begin() + (outputs.svg.empty() ? 0 : 1), core::format_frame(outputs.png, frame),
+                          png->take());
+        }
+        core::FrameStats& stats = drawn_.lines.stats;
+        stats.ms.emplace_back("svg", svg_ms);
+        stats.ms.emplace_back("png", clock.lap_ms());
+        stats.ms.emplace_back("pdf", pdf_ms);
+        if (!outputs.json.empty()) {
+            files.emplace_back(core::format_frame(outputs.json, frame),
+                               output::polylines_json(drawn_.lines, &drawn_.strokes, &drawn_.tone));
+        }
+        return files;
+    }
+
+    void write(const std::vector<std::pair<fs::path, std::string>>& files) {
+        core::Stopwatch clock;
+        for (const auto& [path, bytes] : files) {
+            output::write_file_atomically(path, bytes);
+            ++files_;
+        }
+        drawn_.lines.stats.ms.emplace_back("write", clock.lap_ms());
+    }
+
+    core::FrameResult drawn_;
+    Written written_;
+    const Writers& writers_;
+    size_t files_ = 0;  // written
     std::exception_ptr error_;
     std::thread thread_;
 };
@@ -108,17 +213,18 @@ Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Sce
 
 Writers::~Writers() {
     try {
-        write_pending_png();
+        write_pending();
     } catch (...) {
         // The run is stopping with an error of its own, the one to report.
     }
 }
 
-size_t Writers::write_pending_png() {
-    if (!png_) return 0;
-    const std::unique_ptr<PngThread> pending = std::move(png_);
-    output::write_file_atomically(pending->path(), pending->take());
-    return 1;
+size_t Writers::write_pending() {
+    if (!pending_) return 0;
+    const std::unique_ptr<FrameFiles> pending = std::move(pending_);
+    const size_t files = pending->wait();
+    if (pending->written()) pending->written()(pending->drawn(), files);
+    return files;
 }
 
 output::Drawing Writers::drawing_of(const core::FrameResult& drawn) const {
@@ -127,46 +233,10 @@ output::Drawing Writers::drawing_of(const core::FrameResult& drawn) const {
     return drawing;
 }
 
-size_t Writers::write(core::FrameResult& drawn) {
-    core::FrameLines& frame = drawn.lines;
-    size_t files = 0;
-    core::Stopwatch clock;
-    // Shared with the PNG thread, which only reads it.
-    const auto drawing = std::make_shared<const output::Drawing>(drawing_of(drawn));
-    double svg_ms = clock.lap_ms(), png_ms = 0.0;
-    if (!outputs_.png.empty()) {
-        // The previous frame's PNG first: its file, or its error, comes before this frame's files.
-        files += write_pending_png();
-        png_ = std::make_unique<PngThread>(core::format_frame(outputs_.png, frame.frame), drawing);
-        png_ms = clock.lap_ms();
-    }
-    if (!outputs_.svg.empty()) {
-        try {
-            output::write_file_atomically(core::format_frame(outputs_.svg, frame.frame),
-                                          output::svg_document(*drawing, svg_options_));
-        } catch (...) {
-            png_.reset();  // a frame whose SVG failed gets no PNG, as when the PNG followed it
-            throw;
-        }
-        ++files;
-    }
-    svg_ms += clock.lap_ms();
-    frame.stats.ms.emplace_back("svg", svg_ms);
-    frame.stats.ms.emplace_back("png", png_ms);
-    if (outputs_.pdf_per_frame) {
-        output::PdfDocument page(pdf_options_);
-        page.add_page(*drawing);
-        output::write_file_atomically(core::format_frame(outputs_.pdf, frame.frame), page.finish());
-        ++files;
-    } else if (pdf_) {
-        pdf_->add_page(*drawing);
-    }
-    frame.stats.ms.emplace_back("pdf", clock.lap_ms());
-    if (!outputs_.json.empty()) {
-        output::write_file_atomically(core::format_frame(outputs_.json, frame.frame),
-                                      output::polylines_json(frame, &drawn.strokes, &drawn.tone));
-        ++files;
-    }
+size_t Writers::write(core::FrameResult drawn, Written written) {
+    // The previous frame's files first: its files, or its error, come before this frame's.
+    const size_t files = write_pending();
+    pending_ = std::make_unique<FrameFiles>(*this, std::move(drawn), std::move(written));
     return files;
 }
 
@@ -182,8 +252,8 @@ size_t Writers::write_animated_svg(const core::FrameResult& drawn, const core::W
 }
 
 size_t Writers::finish(bool complete, const std::function<void(const std::string&)>& warn) {
-    // The last frame's PNG first: its error stops the run before the PDF, as any frame's does.
-    size_t files = write_pending_png();
+    // The last frame's files first: their error stops the run before the PDF, as any frame's does.
+    size_t files = write_pending();
     if (!pdf_ || pdf_->pages() == 0) return files;
     std::unique_ptr<output::PdfDocument> doc = std::move(pdf_);
     std::error_code ec;

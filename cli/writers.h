@@ -21,39 +21,43 @@
 namespace inkline::cli {
 
 // Writes every per-frame file of a drawn frame; collects pages of a multi-page PDF. A frame's
-// PNG is drawn and encoded on a thread of its own while the caller goes on with the next frame;
-// its file is written at the next write() or at finish(), and its error, if any, is thrown
-// there, before anything of a later frame is written.
+// files are made (drawn, formatted, its PNG encoded) and written on a thread of their own while
+// the caller goes on with the next frame, one frame in flight. The next write() or finish()
+// waits for them and throws their error, if any, before anything of a later frame is written.
 class Writers {
   public:
+    // Told, on the caller's thread, of a frame whose files are all written, and how many.
+    using Written = std::function<void(const core::FrameResult& drawn, size_t files)>;
+
     // Refuses, before any file is written, a background, page, margin or dpi that cannot be
     // used and an image Cairo cannot draw (InputError).
     Writers(const Outputs& outputs, const RenderArgs& args, const core::Scene& scene);
-    // Writes the PNG still being made, if its frame got as far as its SVG (errors ignored: the
-    // run is already stopping with another).
+    // Waits for the frame still being written (errors ignored: the run is already stopping with
+    // another).
     ~Writers();
     Writers(const Writers&) = delete;
     Writers& operator=(const Writers&) = delete;
 
-    // Writes the frame's files, and the previous frame's PNG first; adds the "svg", "png" and
-    // "pdf" times to its stats.ms ("png": waiting for the previous frame's PNG and writing it).
-    // Returns the number of files written.
-    size_t write(core::FrameResult& drawn);
+    // Waits for the previous frame's files (then tells its `written`), and starts making and
+    // writing this frame's. Its stats.ms gain "svg", "png" and "pdf" (the times making them; the
+    // JSON has these) and "write" (writing its files). Returns the number of files written.
+    size_t write(core::FrameResult drawn, Written written = {});
 
     // Writes the frame's animated SVG of its write-on (--animated-svg), if asked. Returns the
     // number of files written.
     size_t write_animated_svg(const core::FrameResult& drawn, const core::WriteOnSchedule& schedule);
 
-    // Writes the last frame's PNG (throwing its error, if any, before anything else), then the
+    // Writes the last frame's files (throwing its error, if any, before anything else), then the
     // multi-page PDF with the pages so far, also after a failure, so no drawn frame is lost; but
     // a run that failed never replaces a PDF already there, which may hold more of the sequence
     // (it says so through `warn`). Returns the number of files written.
     size_t finish(bool complete, const std::function<void(const std::string&)>& warn);
 
   private:
+    class FrameFiles;
     class PngThread;
-    // Waits for the PNG being made and writes it; returns the number of files written.
-    size_t write_pending_png();
+    // Waits for the frame being written and tells its `written`; returns the number of files.
+    size_t write_pending();
     // What SVG, PNG and PDF draw of a frame: its strokes over its tone.
     output::Drawing drawing_of(const core::FrameResult& drawn) const;
 
@@ -63,8 +67,8 @@ class Writers {
     output::DrawStyle style_;
     core::ToneOptions tone_;  // the scene's, --tone applied
     output::PdfOptions pdf_options_;
-    std::unique_ptr<output::PdfDocument> pdf_;
-    std::unique_ptr<PngThread> png_;  // the PNG being made, at most one
+    std::unique_ptr<output::PdfDocument> pdf_;  // pages added by the frames' threads, one at a time
+    std::unique_ptr<FrameFiles> pending_;       // the frame being made, at most one
 };
 
 // A progress line rewritten in place on a terminal: frames done, frames per second, time left.

@@ -4,6 +4,7 @@
 #include "core/error.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include <mutex>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <dirent.h>
@@ -31,13 +33,28 @@ constexpr size_t kMaxEmbeddedName = 100;
 constexpr size_t kUniqueLength = 8;
 constexpr std::string_view kUniqueAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
 
-// The temporary being written, for the signal handler. A signal handler can reach nothing but
-// globals; writes happen one at a time, so one slot suffices.
-char g_temporary[4096];
-volatile std::sig_atomic_t g_writing = 0;
+// Temporaries being written, for the signal handler, which can reach nothing but globals: a
+// slot per temporary, so that several threads may write files at once. A thread holds its slot
+// kCreating while it creates the file (the handler waits for that to end) and kHeld while the
+// file may exist (the handler removes it).
+enum SlotState : int { kFree = 0, kCreating = 1, kHeld = 2 };
+struct TemporarySlot {
+    std::atomic<int> state{kFree};
+    char path[4096];
+};
+static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free);
+constexpr size_t kTemporarySlots = 8;
+TemporarySlot g_temporaries[kTemporarySlots];
+// Set by the handler before it looks at the slots: no temporary is created after it.
+std::atomic<bool> g_stopping{false};
 
 extern "C" void remove_temporary_and_exit(int signal_number) {
-    if (g_writing) ::unlink(g_temporary);
+    g_stopping.store(true);
+    for (TemporarySlot& slot : g_temporaries) {
+        int state = slot.state.load();
+        while (state == kCreating) state = slot.state.load();
+        if (state == kHeld) ::unlink(slot.path);
+    }
     std::signal(signal_number, SIG_DFL);
     std::raise(signal_number);
 }
@@ -66,6 +83,22 @@ class InterruptsBlocked {
     sigset_t previous_;
 };
 
+// A slot of g_temporaries held kCreating for `path`, or null when the path does not fit one.
+// Waits while every slot is taken (each writing thread holds at most one).
+TemporarySlot* claim_slot(const std::string& path) {
+    if (path.size() >= sizeof TemporarySlot::path) return nullptr;
+    for (;;) {
+        for (TemporarySlot& slot : g_temporaries) {
+            int free = kFree;
+            if (slot.state.compare_exchange_strong(free, kCreating)) {
+                std::memcpy(slot.path, path.c_str(), path.size() + 1);
+                return &slot;
+            }
+        }
+        std::this_thread::yield();
+    }
+}
+
 // Owns an open temporary: registered for the signal handler, removed unless committed.
 class Temporary {
   public:
@@ -79,16 +112,19 @@ class Temporary {
             for (size_t i = 0; i < kUniqueLength; ++i) unique += kUniqueAlphabet[pick(random)];
             path_ = temporary_path_for(path, unique);
             const InterruptsBlocked blocked;
-            fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-            if (fd_ >= 0) {
-                const std::string& s = path_.native();
-                if (s.size() < sizeof g_temporary) {
-                    std::memcpy(g_temporary, s.c_str(), s.size() + 1);
-                    g_writing = 1;
-                }
-                break;
+            slot_ = claim_slot(path_.native());
+            if (g_stopping.load()) {
+                // An interrupt is being handled on another thread: the process is ending, and no
+                // temporary may be created once the handler has looked at the slots.
+                release();
+                for (;;) ::pause();
             }
-            if (errno != EEXIST) fail(path, "cannot write", errno);
+            fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+            const int error = errno;
+            if (slot_) slot_->state.store(fd_ >= 0 ? kHeld : kFree);
+            if (fd_ >= 0) break;
+            slot_ = nullptr;
+            if (error != EEXIST) fail(path, "cannot write", error);
         }
         if (fd_ < 0) fail(path, "cannot create a temporary", EEXIST);
         if (mode && ::fchmod(fd_, *mode & 0777) != 0) {
@@ -112,8 +148,8 @@ class Temporary {
     int commit(const fs::path& target) {
         const int result = std::rename(path_.c_str(), target.c_str()) == 0 ? 0 : errno;
         if (result == 0) {
-            g_writing = 0;
             committed_ = true;
+            release();
         }
         return result;
     }
@@ -126,12 +162,17 @@ class Temporary {
             ::unlink(path_.c_str());
             committed_ = true;
         }
-        g_writing = 0;
+        release();
+    }
+    void release() {
+        if (slot_) slot_->state.store(kFree);
+        slot_ = nullptr;
     }
 
     fs::path path_;
     int fd_ = -1;
     bool committed_ = false;
+    TemporarySlot* slot_ = nullptr;
 };
 
 // Writes all of `contents`; returns 0 or errno (ENOSPC when write makes no progress).

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <csignal>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -42,7 +43,8 @@ class BadInput : public ::testing::Test {
             const std::string text = test::read_text(e.path());
             const bool whole = (name.ends_with(".svg") && text.ends_with("</svg>\n")) ||
                                (name.ends_with(".json") && text.ends_with("}\n")) ||
-                               (name.ends_with(".png") && text.ends_with(std::string("IEND\xae\x42\x60\x82", 8)));
+                               (name.ends_with(".png") && text.ends_with(std::string("IEND\xae\x42\x60\x82", 8))) ||
+                               (name.ends_with(".pdf") && text.ends_with("%%EOF\n"));
             if (!whole) bad.push_back(e.path().string());
         }
         return bad;
@@ -115,6 +117,37 @@ TEST_F(BadInput, InterruptedRunLeavesOnlyWholeFiles) {
         ::waitpid(child, &status, 0);
         EXPECT_TRUE(WIFSIGNALED(status)) << "the 48-frame run should still be going when interrupted";
         EXPECT_TRUE(partial_files(dir / "out").empty());
+    }
+}
+
+TEST_F(BadInput, AnInterruptAtAnyMomentLeavesOnlyWholeFiles) {
+    // A frame's files are written on a thread of their own while the next frame is drawn:
+    // interrupted anywhere along the run, no temporary is left.
+    test::write_obj(dir / "torus.obj", test::torus(1.0, 0.4, 96, 48));
+    const std::string input = (dir / "torus.obj").string(), out = (dir / "out").string();
+    const std::string pdf = (dir / "out" / "pdf" / "f%04d.pdf").string();
+    const auto run = [&] {
+        ::execl(INKLINE_EXE, INKLINE_EXE, "render", input.c_str(), "--size", "512x512", "-q", "-o", out.c_str(),
+                "--pdf", pdf.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    };
+    // The whole run, uninterrupted, sets the moments (a sanitizer build runs slower).
+    const auto start = std::chrono::steady_clock::now();
+    const pid_t whole = ::fork();
+    if (whole == 0) run();
+    int status = 0;
+    ::waitpid(whole, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    const double run_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+    for (int k = 1; k <= 8; ++k) {
+        fs::remove_all(dir / "out");
+        const pid_t child = ::fork();
+        if (child == 0) run();
+        ::usleep(useconds_t(run_us * k / 16.0));
+        ::kill(child, k % 2 ? SIGINT : SIGTERM);
+        ::waitpid(child, &status, 0);
+        EXPECT_TRUE(WIFSIGNALED(status)) << k << "/16 of the run: it should still be going";
+        EXPECT_TRUE(partial_files(dir / "out").empty()) << k << "/16 of the run";
     }
 }
 
