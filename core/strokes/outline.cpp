@@ -437,9 +437,12 @@ Ring simplify_ring(const Ring& ring, double tolerance) {
     std::vector<double> bend(blocks, 0.0), block_reach(blocks);
     for (size_t b = 0; b < blocks; ++b) {
         const glm::dvec2 first = ring[b * kSimplifyBlock], last = ring[(b + 1) * kSimplifyBlock - 1];
+        // sqrt is monotone and correctly rounded: the root of the largest square is the largest root.
+        double bend2 = 0.0;
         for (size_t i = b * kSimplifyBlock + 1; i + 1 < (b + 1) * kSimplifyBlock; ++i) {
-            bend[b] = std::max(bend[b], distance_to_segment(ring[i], first, last));
+            bend2 = std::max(bend2, distance2_to_segment(ring[i], first, last));
         }
+        bend[b] = std::sqrt(bend2);
     }
     std::vector<uint8_t> keep(n, 0);
     keep[0] = keep[far] = 1;

@@ -87,13 +87,6 @@ glm::dvec2 closest_on_polyline(const glm::dvec2& p, std::span<const glm::dvec2> 
 
 }  // namespace
 
-double distance_to_segment(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b) {
-    const glm::dvec2 ab = b - a;
-    const double len2 = glm::dot(ab, ab);
-    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-    return glm::length(p - (a + ab * t));
-}
-
 std::vector<size_t> remove_backtracking(std::span<const glm::dvec2> points, bool closed) {
     const size_t n = points.size();
     std::vector<size_t> kept(n);

@@ -6,7 +6,10 @@
 // visibility cuts); they are cleaned like this before a brush is laid along them.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <span>
 #include <vector>
@@ -57,7 +60,18 @@ double removed_extent_px(std::span<const glm::dvec2> points_px, const StrokePath
 // an open path's kernel is cut (and renormalised) at its ends.
 std::vector<double> smooth_samples(std::span<const double> values, double step_px, double sigma_px, bool closed);
 
+// Squared distance from p to the segment ab.
+inline double distance2_to_segment(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b) {
+    const glm::dvec2 ab = b - a;
+    const double len2 = glm::dot(ab, ab);
+    const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    const glm::dvec2 off = p - (a + ab * t);
+    return glm::dot(off, off);
+}
+
 // Distance from p to the segment ab.
-double distance_to_segment(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b);
+inline double distance_to_segment(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b) {
+    return std::sqrt(distance2_to_segment(p, a, b));
+}
 
 }  // namespace inkline::core
