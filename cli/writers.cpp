@@ -28,101 +28,92 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Starts `work` on a thread that takes no SIGINT, SIGTERM or SIGHUP, so that interrupts are
+// Work on a thread of its own that takes no SIGINT, SIGTERM or SIGHUP, so that interrupts are
 // handled on the thread that started the run (the handler removes the temporaries of every
-// thread; write_file_atomically). Throws std::system_error when no thread is to be had (a thread
-// or memory limit).
-std::thread thread_without_interrupts(std::function<void()> work) {
-    sigset_t interrupts, previous;
-    sigemptyset(&interrupts);
-    for (const int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&interrupts, s);
-    // A new thread starts with its creator's signal mask.
-    pthread_sigmask(SIG_BLOCK, &interrupts, &previous);
-    try {
-        std::thread thread(std::move(work));
+// thread; write_file_atomically); on the caller's thread when no thread is to be had (a thread or
+// memory limit). What the work throws is kept for wait().
+class Job {
+  public:
+    explicit Job(std::function<void()> work) : work_(std::move(work)) {
+        sigset_t interrupts, previous;
+        sigemptyset(&interrupts);
+        for (const int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&interrupts, s);
+        // A new thread starts with its creator's signal mask.
+        pthread_sigmask(SIG_BLOCK, &interrupts, &previous);
+        try {
+            thread_ = std::thread([this] { run(); });
+        } catch (const std::system_error&) {
+            // No thread to be had: the work runs below, on this one.
+        }
         pthread_sigmask(SIG_SETMASK, &previous, nullptr);
-        return thread;
-    } catch (...) {
-        pthread_sigmask(SIG_SETMASK, &previous, nullptr);
-        throw;
+        if (!thread_.joinable()) run();
     }
-}
+    ~Job() {
+        if (thread_.joinable()) thread_.join();
+    }
+    Job(const Job&) = delete;
+    Job& operator=(const Job&) = delete;
+
+    // Waits for the work; throws what it threw.
+    void wait() {
+        if (thread_.joinable()) thread_.join();
+        if (error_) std::rethrow_exception(error_);
+    }
+
+  private:
+    void run() {
+        try {
+            work_();
+        } catch (...) {
+            error_ = std::current_exception();
+        }
+        work_ = nullptr;
+    }
+
+    std::function<void()> work_;
+    std::exception_ptr error_;
+    std::thread thread_;
+};
 
 }  // namespace
 
 // One frame's PNG, drawn and encoded on a thread of its own beside the frame's other files.
 class Writers::PngThread {
   public:
-    explicit PngThread(std::shared_ptr<const output::Drawing> drawing) : drawing_(std::move(drawing)) {
-        try {
-            thread_ = thread_without_interrupts([this] { encode(); });
-        } catch (const std::system_error&) {
-            encode();  // no thread: this one does the work
-        }
-    }
-    ~PngThread() {
-        if (thread_.joinable()) thread_.join();
-    }
-    PngThread(const PngThread&) = delete;
-    PngThread& operator=(const PngThread&) = delete;
+    explicit PngThread(std::shared_ptr<const output::Drawing> drawing)
+        : job_([this, drawing = std::move(drawing)] { bytes_ = output::png_image(*drawing); }) {}
 
     // Waits for the encoding; returns the file's contents, or throws what stopped it.
     std::string take() {
-        if (thread_.joinable()) thread_.join();
-        if (error_) std::rethrow_exception(error_);
+        job_.wait();
         return std::move(bytes_);
     }
 
   private:
-    void encode() {
-        try {
-            bytes_ = output::png_image(*drawing_);
-        } catch (...) {
-            error_ = std::current_exception();
-        }
-        drawing_.reset();
-    }
-
-    std::shared_ptr<const output::Drawing> drawing_;
     std::string bytes_;
-    std::exception_ptr error_;
-    std::thread thread_;
+    Job job_;  // last: it starts once the rest is there
 };
 
 // One frame's files, made and written on a thread of their own.
 class Writers::FrameFiles {
   public:
     FrameFiles(const Writers& writers, core::FrameResult drawn, Written written)
-        : drawn_(std::move(drawn)), written_(std::move(written)), writers_(writers) {
-        drawn_.mesh = nullptr;  // valid only until the pipeline's next frame
-        try {
-            thread_ = thread_without_interrupts([this] { make(); });
-        } catch (const std::system_error&) {
-            make();  // no thread: this one does the work
-        }
-    }
-    ~FrameFiles() {
-        if (thread_.joinable()) thread_.join();
-    }
-    FrameFiles(const FrameFiles&) = delete;
-    FrameFiles& operator=(const FrameFiles&) = delete;
+        : drawn_(without_mesh(std::move(drawn))), written_(std::move(written)), writers_(writers),
+          job_([this] { write(made()); }) {}
 
     // Waits for the files to be written; returns how many, or throws what stopped them.
     size_t wait() {
-        if (thread_.joinable()) thread_.join();
-        if (error_) std::rethrow_exception(error_);
+        job_.wait();
         return files_;
     }
     const core::FrameResult& drawn() const { return drawn_; }
     const Written& written() const { return written_; }
 
   private:
-    void make() {
-        try {
-            write(made());
-        } catch (...) {
-            error_ = std::current_exception();
-        }
+    // The mesh is valid only until the pipeline's next frame.
+    static core::FrameResult without_mesh(core::FrameResult drawn) {
+        drawn.mesh = nullptr;
+        return drawn;
     }
 
     // The frame's files, in the order they are written.
@@ -177,8 +168,7 @@ class Writers::FrameFiles {
     Written written_;
     const Writers& writers_;
     size_t files_ = 0;  // written
-    std::exception_ptr error_;
-    std::thread thread_;
+    Job job_;           // last: it starts once the rest is there
 };
 
 Writers::Writers(const Outputs& outputs, const RenderArgs& args, const core::Scene& scene)
