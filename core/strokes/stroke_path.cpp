@@ -11,8 +11,9 @@ namespace inkline::core {
 namespace {
 
 // A function compiled twice on x86-64, once for AVX2 and once for the baseline, the one to run
-// chosen where the program loads (GCC and Clang).
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+// chosen where the program loads (GCC and Clang). Not under ThreadSanitizer, whose instrumented
+// resolver would run before the sanitizer is set up.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(__SANITIZE_THREAD__)
 #define INKLINE_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define INKLINE_AVX2_CLONES
