@@ -4,8 +4,10 @@
 #include "tests/support/pipeline.h"
 #include "tests/support/shapes.h"
 
-#include <nlohmann/json.hpp>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
 
 namespace inkline {
 namespace {
@@ -83,9 +85,9 @@ TEST(PolylinesJson, ListsTheToneDots) {
     EXPECT_TRUE(empty["tone"]["dots"].empty());
 }
 
-// The dots and hatches are written one by one and spliced in (a frame's dots can run to
-// millions): the text is what dumping the whole document would give, even with an object named
-// as the marks the writer splices at.
+// The dots and hatches are written one by one as text (a frame's dots can run to millions): the
+// text is what dumping the whole document would give, also with objects named as the markers an
+// earlier writer spliced them in at.
 TEST(PolylinesJson, ToneIsWrittenAsTheWholeDocumentWouldBe) {
     core::FrameLines frame = cube_frame();
     frame.objects = {{.name = "\x01inkline-dots"}, {.name = "\x01inkline-hatches"}};
@@ -125,6 +127,54 @@ TEST(PolylinesJson, ToneIsWrittenAsTheWholeDocumentWouldBe) {
         }
         EXPECT_NE(text.find("\"\\u0001inkline-dots\""), std::string::npos) << "the object's name is kept";
     }
+}
+
+// The strokes are written as text, not built as a document first: the text is what dumping the
+// whole document gives, with every optional key, names that need escaping, and numbers of every
+// kind (a non-finite one is null).
+TEST(PolylinesJson, StrokesAreWrittenAsTheWholeDocumentWouldBe) {
+    test::Drawn drawn = test::draw(test::torus(1.0, 0.4, 48, 24), test::scene_for({.eye = {0.5, 2.5, 3.0}, .size = 512},
+                                                                                  test::torus(1.0, 0.4, 48, 24)));
+    core::FrameStrokes& strokes = drawn.strokes;
+    ASSERT_GE(strokes.strokes.size(), 3u);
+    drawn.lines.objects = {{.name = "ring \"\xc3\xa4\" \\ tab\t\x01", .node = 4}, {.name = "plain"}};
+    core::StrokeStyle dotted;
+    dotted.name = "dotted \"hidden\"";
+    dotted.rule = 0;
+    strokes.styles.push_back(dotted);
+    core::WriteOnFrame write_on;
+    write_on.time_s = 0.25;
+    write_on.seconds = 1.0 / 3.0;
+    write_on.speed_px_s = 1234.5678;
+    for (size_t k = 0; k < strokes.strokes.size(); ++k) {
+        core::Stroke& s = strokes.strokes[k];
+        s.geometry.object = int32_t(k % 3) - 1;  // none, the first object, the second
+        s.style = uint32_t(k % 2);
+        s.parent = k % 2 ? int64_t(k) : -1;
+        if (k == 0) {
+            s.geometry.bridged.assign(s.geometry.edges.size(), 0);
+            s.geometry.bridged.back() = 1;
+            s.intensity.front() = std::nan("");
+            s.u.back() = 1e21;
+            s.width.front() = -0.0;
+        }
+        write_on.strokes.push_back({.start_s = k % 2 ? -1.0 : k / 7.0, .end_s = k % 2 ? -1.0 : k / 3.0,
+                                    .drawn_px = 12.3456, .length_px = 1.0 / 3.0});
+    }
+    strokes.write_on = write_on;
+    const std::string text = output::polylines_json(drawn.lines, &strokes);
+    const nlohmann::json doc = nlohmann::json::parse(text);
+    EXPECT_EQ(doc.dump() + "\n", text);
+    const nlohmann::json& first = doc["strokes"][0];
+    EXPECT_TRUE(first["intensity"][0].is_null());
+    EXPECT_EQ(first["hidden_segments"], nlohmann::json::array({first["edges"].size() - 1}));
+    EXPECT_EQ(doc["strokes"][1]["object"], drawn.lines.objects[0].name);
+    EXPECT_EQ(doc["strokes"][1]["node"], 4);
+    EXPECT_EQ(doc["strokes"][1]["style"], "dotted \"hidden\"");
+    EXPECT_TRUE(doc["strokes"][1]["write_on"]["start"].is_null());
+    EXPECT_EQ(doc["strokes"][2]["write_on"]["end"], 0.666667);
+    EXPECT_FALSE(doc["strokes"][2].contains("node"));
+    EXPECT_EQ(doc["strokes"].size(), strokes.strokes.size());
 }
 
 TEST(PolylinesJson, NoToneWithoutTone) {
