@@ -180,11 +180,10 @@ int run_render(const RenderArgs& args) {
     size_t files = 0;
     // Once a drawn frame's files are all written: its line with -v.
     const auto written = [&](int frame) -> Writers::Written {
-        return [&, frame](const core::FrameResult& drawn, size_t) {
+        return [&, frame](const core::FrameStats& stats, size_t strokes, size_t) {
             if (!args.verbose) return;
-            const core::FrameStats& stats = drawn.lines.stats;
-            std::fprintf(stderr, "frame %d: %zu strokes, %zu of %zu edges tested", frame, drawn.strokes.strokes.size(),
-                         stats.edges_tested, stats.edges);
+            std::fprintf(stderr, "frame %d: %zu strokes, %zu of %zu edges tested", frame, strokes, stats.edges_tested,
+                         stats.edges);
             for (const auto& [stage, ms] : stats.ms) std::fprintf(stderr, ", %s %.1f ms", stage.c_str(), ms);
             std::fprintf(stderr, "\n");
         };

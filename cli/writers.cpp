@@ -75,6 +75,21 @@ class Job {
     std::thread thread_;
 };
 
+// A frame whose files hold more points than this (dots, hatch points, stroke and outline points:
+// some 100 MB of SVG and JSON text) has them written before the next frame is drawn.
+constexpr size_t kPointsInFlight = 1'000'000;
+
+size_t points_in_files(const core::FrameResult& drawn) {
+    size_t points = drawn.tone.dots.size();
+    for (const core::Hatch& h : drawn.tone.hatches) points += h.points_px.size();
+    for (const core::Polyline& line : drawn.lines.polylines) points += line.points_px.size();
+    for (const core::Stroke& s : drawn.strokes.strokes) {
+        points += s.geometry.points_px.size();
+        for (const core::Ring& ring : s.outline) points += ring.size();
+    }
+    return points;
+}
+
 }  // namespace
 
 // One frame's PNG, drawn and encoded on a thread of its own beside the frame's other files.
@@ -98,16 +113,16 @@ class Writers::PngThread {
 class Writers::FrameFiles {
   public:
     FrameFiles(const Writers& writers, core::FrameResult drawn, Written written)
-        : drawn_(without_mesh(std::move(drawn))), written_(std::move(written)), writers_(writers),
-          job_([this] { write(made()); }) {}
+        : drawn_(without_mesh(std::move(drawn))), strokes_(drawn_.strokes.strokes.size()),
+          written_(std::move(written)), writers_(writers), job_([this] { make_and_write(); }) {}
 
-    // Waits for the files to be written; returns how many, or throws what stopped them.
+    // Waits for the files to be written and tells `written`; returns how many, or throws what
+    // stopped them.
     size_t wait() {
         job_.wait();
+        if (written_) written_(stats_, strokes_, files_);
         return files_;
     }
-    const core::FrameResult& drawn() const { return drawn_; }
-    const Written& written() const { return written_; }
 
   private:
     // The mesh is valid only until the pipeline's next frame.
@@ -116,55 +131,59 @@ class Writers::FrameFiles {
         return drawn;
     }
 
-    // The frame's files, in the order they are written.
-    std::vector<std::pair<fs::path, std::string>> made() {
+    // Makes the frame's files and writes each once made, in order: SVG, PNG, PDF, JSON (so a
+    // frame whose SVG cannot be written gets no PNG, and one file's text is held at a time).
+    void make_and_write() {
         const Outputs& outputs = writers_.outputs_;
         const int frame = drawn_.lines.frame;
-        std::vector<std::pair<fs::path, std::string>> files;
         core::Stopwatch clock;
+        double write_ms = 0.0;
+        const auto put = [&](const std::string& pattern, std::string bytes) {
+            clock.lap_ms();
+            output::write_file_atomically(core::format_frame(pattern, frame), bytes);
+            ++files_;
+            write_ms += clock.lap_ms();
+        };
         // Shared with the PNG's thread, which only reads it.
         const auto drawing = std::make_shared<const output::Drawing>(writers_.drawing_of(drawn_));
         std::optional<PngThread> png;
         if (!outputs.png.empty()) png.emplace(drawing);
-        if (!outputs.svg.empty()) {
-            files.emplace_back(core::format_frame(outputs.svg, frame),
-                               output::svg_document(*drawing, writers_.svg_options_));
-        }
+        std::string svg = outputs.svg.empty() ? std::string() : output::svg_document(*drawing, writers_.svg_options_);
         const double svg_ms = clock.lap_ms();
+        if (!outputs.svg.empty()) put(outputs.svg, std::move(svg));
+        double png_ms = 0.0;
+        if (png) {
+            std::string bytes = png->take();
+            png_ms = clock.lap_ms();
+            put(outputs.png, std::move(bytes));
+        }
+        double pdf_ms = 0.0;
         if (outputs.pdf_per_frame) {
             output::PdfDocument page(writers_.pdf_options_);
             page.add_page(*drawing);
-            files.emplace_back(core::format_frame(outputs.pdf, frame), page.finish());
+            std::string bytes = page.finish();
+            pdf_ms = clock.lap_ms();
+            put(outputs.pdf, std::move(bytes));
         } else if (writers_.pdf_) {
             writers_.pdf_->add_page(*drawing);
-        }
-        const double pdf_ms = clock.lap_ms();
-        if (png) {
-            // After the SVG, as before: a frame whose SVG cannot be written gets no PNG.
-            files.emplace(files.begin() + (outputs.svg.empty() ? 0 : 1), core::format_frame(outputs.png, frame),
-                          png->take());
+            pdf_ms = clock.lap_ms();
         }
         core::FrameStats& stats = drawn_.lines.stats;
         stats.ms.emplace_back("svg", svg_ms);
-        stats.ms.emplace_back("png", clock.lap_ms());
+        stats.ms.emplace_back("png", png_ms);
         stats.ms.emplace_back("pdf", pdf_ms);
         if (!outputs.json.empty()) {
-            files.emplace_back(core::format_frame(outputs.json, frame),
-                               output::polylines_json(drawn_.lines, &drawn_.strokes, &drawn_.tone));
+            std::string json = output::polylines_json(drawn_.lines, &drawn_.strokes, &drawn_.tone);
+            put(outputs.json, std::move(json));
         }
-        return files;
+        stats_ = std::move(stats);
+        stats_.ms.emplace_back("write", write_ms);
+        drawn_ = {};  // only its stats are needed from here on
     }
 
-    void write(const std::vector<std::pair<fs::path, std::string>>& files) {
-        core::Stopwatch clock;
-        for (const auto& [path, bytes] : files) {
-            output::write_file_atomically(path, bytes);
-            ++files_;
-        }
-        drawn_.lines.stats.ms.emplace_back("write", clock.lap_ms());
-    }
-
-    core::FrameResult drawn_;
+    core::FrameResult drawn_;  // until its files are written
+    size_t strokes_;
+    core::FrameStats stats_;   // once they are
     Written written_;
     const Writers& writers_;
     size_t files_ = 0;  // written
@@ -212,9 +231,7 @@ Writers::~Writers() {
 size_t Writers::write_pending() {
     if (!pending_) return 0;
     const std::unique_ptr<FrameFiles> pending = std::move(pending_);
-    const size_t files = pending->wait();
-    if (pending->written()) pending->written()(pending->drawn(), files);
-    return files;
+    return pending->wait();
 }
 
 output::Drawing Writers::drawing_of(const core::FrameResult& drawn) const {
@@ -225,8 +242,11 @@ output::Drawing Writers::drawing_of(const core::FrameResult& drawn) const {
 
 size_t Writers::write(core::FrameResult drawn, Written written) {
     // The previous frame's files first: its files, or its error, come before this frame's.
-    const size_t files = write_pending();
+    size_t files = write_pending();
+    const bool large = points_in_files(drawn) > kPointsInFlight;
     pending_ = std::make_unique<FrameFiles>(*this, std::move(drawn), std::move(written));
+    // Two such frames are not held at once: this one's files are written before the next frame.
+    if (large) files += write_pending();
     return files;
 }
 

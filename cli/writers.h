@@ -22,12 +22,14 @@ namespace inkline::cli {
 
 // Writes every per-frame file of a drawn frame; collects pages of a multi-page PDF. A frame's
 // files are made (drawn, formatted, its PNG encoded) and written on a thread of their own while
-// the caller goes on with the next frame, one frame in flight. The next write() or finish()
-// waits for them and throws their error, if any, before anything of a later frame is written.
+// the caller goes on with the next frame, one frame in flight (a frame with very many points has
+// them written at once). The next write() or finish() waits for them and throws their error, if
+// any, before anything of a later frame is written.
 class Writers {
   public:
-    // Told, on the caller's thread, of a frame whose files are all written, and how many.
-    using Written = std::function<void(const core::FrameResult& drawn, size_t files)>;
+    // Told, on the caller's thread, of a frame whose files are all written: its stats (with the
+    // stages of its files), its number of strokes and of files.
+    using Written = std::function<void(const core::FrameStats& stats, size_t strokes, size_t files)>;
 
     // Refuses, before any file is written, a background, page, margin or dpi that cannot be
     // used and an image Cairo cannot draw (InputError).
