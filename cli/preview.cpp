@@ -37,6 +37,7 @@ Preview::Preview(const gl::Context* shared, const RenderArgs& args, const core::
     const gl::BrushTip tip = scene.brush.tip.empty() ? gl::default_brush_tip() : gl::load_brush_tip(scene.brush.tip);
     renderer_ = std::make_unique<gl::PreviewRenderer>(*context, scene.brush, tip, options);
     tone_ = scene.tone;
+    crease_angle_deg_ = scene.tone.crease_angle_deg.value_or(scene.lines.crease_angle_deg);
     renderer_->prepare(scene.image);
 }
 
@@ -48,7 +49,10 @@ void Preview::write(core::FrameResult& drawn, const std::string& pattern) {
                                .color = tone_.color,
                                .opacity = tone_.opacity};
     const gl::PreviewImage image = renderer_->render(
-        drawn.lines, drawn.strokes, {.mesh = drawn.mesh, .world_from_object = drawn.world_from_object}, tone);
+        drawn.lines, drawn.strokes,
+        {.mesh = drawn.mesh, .world_from_object = drawn.world_from_object, .table = drawn.table,
+         .crease_angle_deg = crease_angle_deg_},
+        tone);
     output::write_file_atomically(core::format_frame(pattern, drawn.lines.frame),
                                   output::png_from_rgba(image.width, image.height, image.rgba));
     drawn.lines.stats.ms.emplace_back("preview", clock.lap_ms());

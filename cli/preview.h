@@ -32,6 +32,7 @@ class Preview {
     std::unique_ptr<gl::Context> own_context_;  // declared first: outlives the renderer
     std::unique_ptr<gl::PreviewRenderer> renderer_;
     core::ToneOptions tone_;  // the scene's: the colour and opacity of the frames' tone
+    double crease_angle_deg_ = 180.0;  // where the toon underlay's normals split, as tone's do
 };
 
 }  // namespace inkline::cli

@@ -210,6 +210,7 @@ int run_render(const RenderArgs& args) {
             shown.strokes.frame = shown_frame;
             shown.tone = result.tone;  // the tone is there from the start, under the strokes being drawn
             shown.mesh = result.mesh;
+            shown.table = result.table;
             shown.world_from_object = result.world_from_object;
             if (preview) {
                 preview->write(shown, outputs.preview);

@@ -2,6 +2,7 @@
 #include "gl/preview.h"
 
 #include "core/error.h"
+#include "core/lines/smooth_pieces.h"
 #include "core/scene/camera.h"
 #include "gl/internal/functions.h"
 #include "gl/internal/quad_strip.h"
@@ -278,13 +279,38 @@ struct StrokeDraw {
     bool closed = false;
 };
 
-// core::vertex_normals in float, for the GL buffers; a vertex without faces faces +z.
-std::vector<glm::vec3> float_vertex_normals(const core::Mesh& mesh) {
-    const std::vector<glm::dvec3> normals = core::vertex_normals(mesh);
+// Unit normals in float, for the GL buffers; a zero normal (no faces, or faces that cancel)
+// faces +z.
+std::vector<glm::vec3> float_normals(const std::vector<glm::dvec3>& normals) {
     std::vector<glm::vec3> out(normals.size(), glm::vec3(0.0f, 0.0f, 1.0f));
     for (size_t v = 0; v < normals.size(); ++v) {
         if (normals[v] != glm::dvec3(0.0)) out[v] = glm::vec3(normals[v]);
     }
+    return out;
+}
+
+// The surface as GL draws it: a vertex per position, or per smooth piece around a vertex.
+struct SurfaceBuffers {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::uvec3> triangles;
+};
+
+// Vertex normals, or with the edge table one normal per smooth piece (creases stay sharp).
+SurfaceBuffers surface_buffers(const core::Mesh& mesh, const PreviewSurface& surface) {
+    SurfaceBuffers out;
+    if (!surface.table) {
+        out.positions = mesh.positions;
+        out.normals = float_normals(core::vertex_normals(mesh));
+        out.triangles = mesh.triangles;
+        return out;
+    }
+    core::SmoothPieces pieces;
+    core::smooth_pieces(mesh, *surface.table, core::face_edges(mesh, *surface.table), surface.crease_angle_deg, pieces);
+    out.positions.reserve(pieces.group_vertex.size());
+    for (const uint32_t v : pieces.group_vertex) out.positions.push_back(mesh.positions[v]);
+    out.normals = float_normals(pieces.normals);
+    out.triangles = std::move(pieces.face_groups);
     return out;
 }
 
@@ -533,16 +559,18 @@ struct PreviewRenderer::Impl {
     }
 
     void draw_surface(const core::FrameLines& frame, const PreviewSurface& surface) {
-        const core::Mesh& mesh = *surface.mesh;
-        const std::vector<glm::vec3> normals = float_vertex_normals(mesh);
+        // Flat shading takes its normals from screen derivatives: vertex normals serve.
+        const SurfaceBuffers buffers = surface_buffers(
+            *surface.mesh, options.underlay == Underlay::kToon ? surface : PreviewSurface{.mesh = surface.mesh});
         fn.BindVertexArray(surface_vao);
         fn.BindBuffer(GL_ARRAY_BUFFER, surface_positions);
-        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data(),
-                      GL_STREAM_DRAW);
+        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(buffers.positions.size() * sizeof(glm::vec3)),
+                      buffers.positions.data(), GL_STREAM_DRAW);
         fn.BindBuffer(GL_ARRAY_BUFFER, surface_normals);
-        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(normals.size() * sizeof(glm::vec3)), normals.data(), GL_STREAM_DRAW);
-        fn.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)),
-                      mesh.triangles.data(), GL_STREAM_DRAW);
+        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(buffers.normals.size() * sizeof(glm::vec3)), buffers.normals.data(),
+                      GL_STREAM_DRAW);
+        fn.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(buffers.triangles.size() * sizeof(glm::uvec3)),
+                      buffers.triangles.data(), GL_STREAM_DRAW);
         // The camera's clip space with y flipped: the framebuffer's rows run down the image.
         const glm::dmat4 flip_y = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0, -1.0, 1.0));
         const glm::mat4 clip_from_object(flip_y * core::clip_from_view(frame.camera, frame.image) *
@@ -563,7 +591,7 @@ struct PreviewRenderer::Impl {
         fn.Enable(GL_DEPTH_TEST);
         fn.DepthFunc(GL_LESS);
         fn.DepthMask(GL_TRUE);
-        fn.DrawElements(GL_TRIANGLES, GLsizei(3 * mesh.triangles.size()), GL_UNSIGNED_INT, nullptr);
+        fn.DrawElements(GL_TRIANGLES, GLsizei(3 * buffers.triangles.size()), GL_UNSIGNED_INT, nullptr);
         fn.Disable(GL_DEPTH_TEST);
     }
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "core/mesh/mesh.h"
+#include "core/mesh/topology.h"
 #include "core/pipeline/frame_lines.h"
 #include "core/strokes/brush_style.h"
 #include "core/strokes/strokes.h"
@@ -29,7 +30,7 @@ namespace inkline::gl {
 enum class Underlay : uint8_t {
     kNone,  // strokes only
     kFlat,  // one shade per face, Lambert
-    kToon,  // smooth normals, three flat bands (lit, mid, shadow)
+    kToon,  // smooth normals (split at creases, with the mesh's edge table), three flat bands
 };
 
 struct PreviewOptions {
@@ -54,6 +55,11 @@ struct PreviewOptions {
 struct PreviewSurface {
     const core::Mesh* mesh = nullptr;
     glm::dmat4 world_from_object{1.0};
+    // With the mesh's edge table (not owned), the toon underlay's normals are split where faces
+    // meet at more than crease_angle_deg, one per smooth piece around a vertex as tone reads them
+    // (core/lines/smooth_pieces.h): a box's faces are flat. Without, vertex normals throughout.
+    const core::EdgeTable* table = nullptr;
+    double crease_angle_deg = 180.0;
 };
 
 // The tone drawn under the strokes (docs/tone.md): the frame's dots and hatches, each sample

@@ -129,8 +129,13 @@ int run(const Args& args) {
         const core::FrameStrokes& strokes = drawn.strokes;
 
         auto start = std::chrono::steady_clock::now();
-        const gl::PreviewImage image =
-            renderer.render(lines, strokes, {.mesh = drawn.mesh, .world_from_object = drawn.world_from_object});
+        // As `inkline render --preview` draws it: toon normals split at the creases tone reads.
+        const gl::PreviewImage image = renderer.render(
+            lines, strokes,
+            {.mesh = drawn.mesh,
+             .world_from_object = drawn.world_from_object,
+             .table = drawn.table,
+             .crease_angle_deg = scene.tone.crease_angle_deg.value_or(scene.lines.crease_angle_deg)});
         const std::string png = output::png_from_rgba(image.width, image.height, image.rgba);
         preview_total.push_back(ms_since(start));
         const gl::PreviewStats& stats = renderer.last_render();

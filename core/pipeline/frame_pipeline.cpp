@@ -377,6 +377,7 @@ FrameResult FramePipeline::run(int frame) {
         }
     }
     out.mesh = &mesh;
+    out.table = &table;
     out.world_from_object = world_from_object;
     const double strokes_ms = step("strokes");
 

@@ -68,6 +68,7 @@ struct FrameResult {
     FrameStrokes strokes;  // brush strokes of lines
     FrameTone tone;        // the tone's dots (mode kNone and none without a scene "tone")
     const Mesh* mesh = nullptr;  // the frame's mesh (object space), valid until the next run()
+    const EdgeTable* table = nullptr;  // its edge table, valid as long as the pipeline
     glm::dmat4 world_from_object{1.0};
     // Drawable but odd input found drawing this frame (the camera inside the mesh's bounds, the
     // mesh wholly outside the view, stippling held back by its sample bound: each said once a

@@ -364,6 +364,47 @@ TEST(Preview, UnderlayShadesTheMeshUnderTheLines) {
     }
 }
 
+// Toon shading reads normals split at creases, as tone does: each face of a box is one band, as
+// the flat underlay shades each face one tone; with vertex normals the bands cross the faces.
+TEST(Preview, ToonBandsFollowTheFacesOfABox) {
+    const Frame cube = cube_frame();
+    const core::EdgeTable table = core::build_edge_table(cube.mesh);
+    const auto context = context_or_skip(gl::Backend::kAuto);
+    const auto render = [&](gl::Underlay underlay, const core::EdgeTable* edges) {
+        gl::PreviewOptions options;
+        options.underlay = underlay;
+        gl::PreviewRenderer renderer(*context, {}, gl::default_brush_tip(), options);
+        return renderer.render(cube.lines, cube.strokes, {.mesh = &cube.mesh, .table = edges, .crease_angle_deg = 60.0});
+    };
+    const gl::PreviewImage flat = render(gl::Underlay::kFlat, nullptr);
+    // The share of neighbouring pixels on one face (the same flat shade, both in a toon band,
+    // so no ink) whose toon bands differ.
+    const auto crossings = [&](const gl::PreviewImage& toon) {
+        const std::array<int, 3> bands = {247, 217, 173};  // red of lit, mid, shadow
+        const auto banded = [&](const uint8_t* p) {
+            return p[3] == 255 && std::any_of(bands.begin(), bands.end(), [&](int b) { return std::abs(p[0] - b) <= 1; });
+        };
+        size_t pairs = 0, differ = 0;
+        for (int y = 0; y < toon.height; ++y) {
+            for (int x = 0; x + 1 < toon.width; ++x) {
+                const uint8_t *a = flat.pixel(x, y), *b = flat.pixel(x + 1, y);
+                if (a[3] != 255 || !std::equal(a, a + 4, b) || !banded(toon.pixel(x, y)) || !banded(toon.pixel(x + 1, y))) {
+                    continue;
+                }
+                ++pairs;
+                differ += std::abs(toon.pixel(x, y)[0] - toon.pixel(x + 1, y)[0]) > 1;
+            }
+        }
+        EXPECT_GT(pairs, size_t(flat.width * flat.height / 20)) << "the box covers a good part of the image";
+        return pairs ? double(differ) / double(pairs) : 1.0;
+    };
+    const double split = crossings(render(gl::Underlay::kToon, &table));
+    const double smooth = crossings(render(gl::Underlay::kToon, nullptr));
+    std::printf("[ preview ] toon band changes inside a face: %.5f split at creases, %.5f vertex normals\n", split, smooth);
+    EXPECT_LT(split, 0.001);
+    EXPECT_GT(smooth, 0.003) << "vertex normals shade across the faces";
+}
+
 // An orthographic camera: the lines land where Cairo draws them, and the shaded surface under
 // them covers the sphere's disc, 1 unit of 3 at 300 px: a radius of 100 px at any distance.
 TEST(Preview, OrthographicViewMatchesCairoAndCoversTheSphere) {
