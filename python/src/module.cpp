@@ -404,6 +404,7 @@ class Shot {
         out->title = title_;
         out->creation_date = creation_date_;
         out->result.mesh = nullptr;  // valid only until the next run
+        out->result.table = nullptr;  // valid only as long as the shot, which a frame may outlive
         return out;
     }
 
