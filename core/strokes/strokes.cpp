@@ -233,9 +233,10 @@ std::vector<double> depth_scales(const StrokeGeometry& g, const std::vector<size
     return out;
 }
 
-// path: the drawn centerline of g when already built, else empty.
+// path: the drawn centerline of g when already built, else empty. Without `ink`, no outline (the
+// stroke is only remembered).
 Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint32_t id, double u_offset,
-                    const StrokeLighting& lighting, const BrushStyle& style, const Camera& camera) {
+                    const StrokeLighting& lighting, const BrushStyle& style, const Camera& camera, bool ink) {
     Stroke stroke;
     stroke.id = id;
     const std::vector<size_t> drawn = g.drawn_indices();
@@ -259,11 +260,11 @@ Stroke style_stroke(StrokeGeometry g, std::optional<StrokePath> path_built, uint
     if (g.closed && !stroke.u.empty()) stroke.u.back() = path.length_px;  // the seam, reached again
 
     stroke.drawn = path.length_px >= style.min_length_px && path.points_px.size() >= 2;
-    if (stroke.drawn) {
-        StrokeInk ink = stroke_ink(path.points_px, brush.width, stroke.centerline_u, path.closed, path.length_px,
-                                   g.ends[1], id, style);
-        stroke.outline = std::move(ink.outline);
-        stroke.darkening = ink.darkening;
+    if (stroke.drawn && ink) {
+        StrokeInk made = stroke_ink(path.points_px, brush.width, stroke.centerline_u, path.closed, path.length_px,
+                                    g.ends[1], id, style);
+        stroke.outline = std::move(made.outline);
+        stroke.darkening = made.darkening;
     }
     stroke.deviation_px = path.deviation_px;
     stroke.removed_px = removed_extent_px(pick(g.points_px, drawn), path);
@@ -321,11 +322,12 @@ StrokeInk stroke_ink(std::span<const glm::dvec2> centerline, std::span<const dou
 
 namespace {
 
-// build_strokes, made once from the memory r_coherence holds.
+// build_strokes, made once from the memory r_coherence holds; without `ink`, the strokes have no
+// outlines (a pass made only to be remembered).
 FrameStrokes build_strokes_once(const FrameLines& frame, const Mesh& mesh, const EdgeTable& table,
                                 const Projection& projection, const BrushStyle& style, StrokeCoherence& r_coherence,
                                 std::span<const StyleRule> rules, const ObjectOfEdges& object_of,
-                                VertexNormalCache* normals) {
+                                VertexNormalCache* normals, bool ink) {
     FrameStrokes out;
     out.frame = frame.frame;
     // Visible lines are stroked alike whether or not hidden lines are output: with hidden lines
@@ -423,7 +425,7 @@ FrameStrokes build_strokes_once(const FrameLines& frame, const Mesh& mesh, const
             path.reset();
         }
         styled[i] = style_stroke(std::move(g), std::move(path), m.id, m.u_offset, lighting,
-                                 sheet.styles()[stroke_style[i]].brush, frame.camera);
+                                 sheet.styles()[stroke_style[i]].brush, frame.camera, ink);
         styled[i].style = stroke_style[i];
         styled[i].geometry.object = objects[i];
         traces[i] = trace_of(styled[i], anchored);
@@ -468,11 +470,11 @@ FrameStrokes build_strokes(const FrameLines& frame, const Mesh& mesh, const Edge
     if (first) {
         // Without memory the repairs join less (gaps up to new_gap_px, no strokes rejoined), and
         // the next frame, with it, would join more: the first frame is drawn as if it followed
-        // itself.
-        build_strokes_once(frame, mesh, table, projection, style, r_coherence, rules, object_of, normals);
+        // itself. That pass is only remembered: it draws no outlines.
+        build_strokes_once(frame, mesh, table, projection, style, r_coherence, rules, object_of, normals, false);
     }
     FrameStrokes out =
-        build_strokes_once(frame, mesh, table, projection, style, r_coherence, rules, object_of, normals);
+        build_strokes_once(frame, mesh, table, projection, style, r_coherence, rules, object_of, normals, true);
     if (first) {
         out.stats.inherited = 0;
         out.stats.inherited_length_px = 0.0;
