@@ -125,7 +125,8 @@ StrokeInk stroke_ink(std::span<const glm::dvec2> centerline, std::span<const dou
 // Reads the previous frame's strokes from r_coherence and leaves this frame's there; short
 // occluded gaps (frame.occluded) are bridged as gap_bridge_options says. With nothing in
 // r_coherence (a first frame), the strokes are made twice, the second time with the first's as
-// memory, so that the frame after joins no more than this one: stats.inherited stays 0.
+// memory (the first pass draws no outlines), so that the frame after joins no more than this one:
+// stats.inherited stays 0.
 // The object (an index into FrameLines::objects) of the first of these mesh edges.
 using ObjectOfEdges = std::function<int32_t(std::span<const uint32_t> edges)>;
 
