@@ -28,6 +28,8 @@ json vec3(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 // in decimal, doubles as nlohmann's own shortest round-trip digits (not finite: null), strings
 // with its escaping. A frame's strokes and tone marks, most of a file, are written this way
 // rather than built as nlohmann values first: the same bytes in a fraction of the time and memory.
+// The digits come from nlohmann::detail::to_chars, the function dump() itself calls (a detail
+// of the library, not its interface: tests/export/json_test.cpp checks the text against dump()).
 class Text {
   public:
     explicit Text(std::string& out) : out_(out) {}
