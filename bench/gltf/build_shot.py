@@ -28,7 +28,7 @@ def args():
         if argv[i] == "--frames":
             frames = int(argv[i + 1])
         elif argv[i] == "--detail":
-            detail = int(argv[i + 1])
+            detail = float(argv[i + 1])
         elif argv[i] == "--ortho":
             ortho = float(argv[i + 1])
         i += 2
@@ -38,6 +38,11 @@ def args():
 def key(obj, path, frame, value):
     setattr(obj, path, value)
     obj.keyframe_insert(path, frame=frame)
+
+
+def count(base, detail):
+    """Segments or cuts at a detail: base times detail, rounded (a detail need not be whole)."""
+    return max(3, round(base * detail))
 
 
 def build(frames, detail, ortho):
@@ -59,7 +64,8 @@ def build(frames, detail, ortho):
     box = bpy.context.object
     box.name = "Box"
     box.parent = pivot
-    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.35, segments=16 * detail, ring_count=8 * detail, location=(-1.5, 0, 1.4))
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.35, segments=count(16, detail), ring_count=count(8, detail),
+                                         location=(-1.5, 0, 1.4))
     ball = bpy.context.object
     ball.name = "Ball"
     bpy.ops.object.shade_smooth()
@@ -69,9 +75,9 @@ def build(frames, detail, ortho):
     # A tube along z, skinned to two bones; the upper bone bends.
     mesh = bpy.data.meshes.new("Tube")
     bm = bmesh.new()
-    bmesh.ops.create_cone(bm, cap_ends=True, segments=16 * detail, radius1=0.3, radius2=0.3, depth=2.0)
+    bmesh.ops.create_cone(bm, cap_ends=True, segments=count(16, detail), radius1=0.3, radius2=0.3, depth=2.0)
     bmesh.ops.subdivide_edges(bm, edges=[e for e in bm.edges if abs(e.verts[0].co.z - e.verts[1].co.z) > 1.0],
-                              cuts=8 * detail, use_grid_fill=False)
+                              cuts=count(8, detail), use_grid_fill=False)
     bmesh.ops.translate(bm, verts=bm.verts, vec=(0, 0, 1.0))
     bm.to_mesh(mesh)
     bm.free()
@@ -106,7 +112,8 @@ def build(frames, detail, ortho):
     bone.keyframe_insert("rotation_euler", frame=frames)
 
     # A sphere sunk into the ground, whose shape key swells its top.
-    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.5, segments=24 * detail, ring_count=12 * detail, location=(0, -2, 0.4))
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.5, segments=count(24, detail), ring_count=count(12, detail),
+                                         location=(0, -2, 0.4))
     blob = bpy.context.object
     blob.name = "Blob"
     bpy.ops.object.shade_smooth()
