@@ -5,9 +5,9 @@
 # (contour, crease and intersection on), per frame, side by side in one run.
 #
 #   bench/gltf/scale.py [--inkline build/cli/inkline] [--details 1,2,4,12,34] [--frames 12] [--runs 3]
+#                       [--work DIR]
 #
 # A detail multiplies the shot's segment counts and need not be whole: 1.4 gives about 2k triangles.
-#                       [--work DIR]
 #
 # Per detail: triangles; inkline's wall ms per frame: the median time from one frame's
 # `render -v` line to the next, over frames 2..N of --runs runs writing SVG (as Line Art's
