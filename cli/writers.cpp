@@ -44,6 +44,9 @@ class Job {
             thread_ = std::thread([this] { run(); });
         } catch (const std::system_error&) {
             // No thread to be had: the work runs below, on this one.
+        } catch (...) {
+            pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+            throw;
         }
         pthread_sigmask(SIG_SETMASK, &previous, nullptr);
         if (!thread_.joinable()) run();
