@@ -195,6 +195,33 @@ TEST_F(Cli, OrthographicCubeIsAnIsometricDrawing) {
     EXPECT_EQ(test::read_text(dir / "p.png").substr(1, 3), "PNG");
 }
 
+// A frame's files are written on a thread of their own while the next frame is drawn: -v says
+// each frame once its files are written, in order, with what writing them took.
+TEST_F(Cli, VerboseLinesComeInOrderOnceTheFilesAreWritten) {
+    const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1:4 --size 256x256 -v -o " +
+                            dir.string() + " --png " + (dir / "png" / "f%04d.png").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    size_t at = 0;
+    for (int f = 1; f <= 4; ++f) {
+        const std::string line = "\nframe " + std::to_string(f) + ": ";
+        const size_t found = r.output.find(line, at);
+        ASSERT_NE(found, std::string::npos) << "frame " << f << " in order\n" << r.output;
+        const std::string text = r.output.substr(found + 1, r.output.find('\n', found + 1) - found - 1);
+        for (const char* stage : {"strokes ", "svg ", "png ", "pdf ", "write "}) {
+            EXPECT_NE(text.find(std::string(", ") + stage), std::string::npos) << stage << " in: " << text;
+        }
+        at = found + 1;
+    }
+    for (int f = 1; f <= 4; ++f) {
+        const std::string n = "000" + std::to_string(f);
+        EXPECT_TRUE(fs::exists(dir / "svg" / ("frame_" + n + ".svg"))) << f;
+        EXPECT_TRUE(fs::exists(dir / "json" / ("frame_" + n + ".json"))) << f;
+        EXPECT_TRUE(fs::exists(dir / "png" / ("f" + n + ".png"))) << f;
+    }
+    EXPECT_NE(r.output.find("4 frame(s), "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(" 12 files "), std::string::npos) << r.output;
+}
+
 TEST_F(Cli, PdfPerFramePattern) {
     const RunResult r = run("render " + std::string(INKLINE_SAMPLES) + "/torus/scene.json --frames 1:2 --size 128x96 -q --pdf " +
                             (dir / "p_%02d.pdf").string());
