@@ -17,7 +17,9 @@
 #include <cmath>
 #include <cstddef>
 #include <new>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace inkline::gl {
 namespace {
@@ -289,31 +291,6 @@ std::vector<glm::vec3> float_normals(const std::vector<glm::dvec3>& normals) {
     return out;
 }
 
-// The surface as GL draws it: a vertex per position, or per smooth piece around a vertex.
-struct SurfaceBuffers {
-    std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;
-    std::vector<glm::uvec3> triangles;
-};
-
-// Vertex normals, or with the edge table one normal per smooth piece (creases stay sharp).
-SurfaceBuffers surface_buffers(const core::Mesh& mesh, const PreviewSurface& surface) {
-    SurfaceBuffers out;
-    if (!surface.table) {
-        out.positions = mesh.positions;
-        out.normals = float_normals(core::vertex_normals(mesh));
-        out.triangles = mesh.triangles;
-        return out;
-    }
-    core::SmoothPieces pieces;
-    core::smooth_pieces(mesh, *surface.table, core::face_edges(mesh, *surface.table), surface.crease_angle_deg, pieces);
-    out.positions.reserve(pieces.group_vertex.size());
-    for (const uint32_t v : pieces.group_vertex) out.positions.push_back(mesh.positions[v]);
-    out.normals = float_normals(pieces.normals);
-    out.triangles = std::move(pieces.face_groups);
-    return out;
-}
-
 }  // namespace
 
 struct PreviewRenderer::Impl {
@@ -329,6 +306,12 @@ struct PreviewRenderer::Impl {
     GLuint tone_vao = 0, tone_vertices = 0;
     GLuint stroke_vao = 0, stroke_vertices = 0, stroke_indices = 0;
     GLuint surface_vao = 0, surface_positions = 0, surface_normals = 0, surface_indices = 0;
+    // The toon underlay split at creases: the sides' edges of the table's faces (constant with
+    // the table), and the smooth pieces, their buffers kept from frame to frame.
+    const core::EdgeTable* split_table = nullptr;
+    std::vector<glm::uvec3> split_face_edges;
+    core::SmoothPieces split_pieces;
+    std::vector<glm::vec3> split_positions;
     GLuint tip_texture = 0;
     GLuint msaa_fbo = 0, msaa_color = 0, msaa_depth_stencil = 0;
     GLuint resolve_fbo = 0, resolve_color = 0;
@@ -559,18 +542,34 @@ struct PreviewRenderer::Impl {
     }
 
     void draw_surface(const core::FrameLines& frame, const PreviewSurface& surface) {
-        // Flat shading takes its normals from screen derivatives: vertex normals serve.
-        const SurfaceBuffers buffers = surface_buffers(
-            *surface.mesh, options.underlay == Underlay::kToon ? surface : PreviewSurface{.mesh = surface.mesh});
+        const core::Mesh& mesh = *surface.mesh;
+        // A vertex per position with vertex normals (flat shading takes its normals from screen
+        // derivatives), or for toon with the edge table a vertex per smooth piece around one.
+        std::span<const glm::vec3> positions = mesh.positions;
+        std::span<const glm::uvec3> triangles = mesh.triangles;
+        std::vector<glm::vec3> normals;
+        if (options.underlay == Underlay::kToon && surface.table) {
+            if (split_table != surface.table || split_face_edges.size() != mesh.triangles.size()) {
+                split_table = surface.table;
+                split_face_edges = core::face_edges(mesh, *surface.table);
+            }
+            core::smooth_pieces(mesh, *surface.table, split_face_edges, surface.crease_angle_deg, split_pieces);
+            split_positions.clear();
+            for (const uint32_t v : split_pieces.group_vertex) split_positions.push_back(mesh.positions[v]);
+            positions = split_positions;
+            triangles = split_pieces.face_groups;
+            normals = float_normals(split_pieces.normals);
+        } else {
+            normals = float_normals(core::vertex_normals(mesh));
+        }
         fn.BindVertexArray(surface_vao);
         fn.BindBuffer(GL_ARRAY_BUFFER, surface_positions);
-        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(buffers.positions.size() * sizeof(glm::vec3)),
-                      buffers.positions.data(), GL_STREAM_DRAW);
-        fn.BindBuffer(GL_ARRAY_BUFFER, surface_normals);
-        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(buffers.normals.size() * sizeof(glm::vec3)), buffers.normals.data(),
+        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(positions.size() * sizeof(glm::vec3)), positions.data(),
                       GL_STREAM_DRAW);
-        fn.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(buffers.triangles.size() * sizeof(glm::uvec3)),
-                      buffers.triangles.data(), GL_STREAM_DRAW);
+        fn.BindBuffer(GL_ARRAY_BUFFER, surface_normals);
+        fn.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(normals.size() * sizeof(glm::vec3)), normals.data(), GL_STREAM_DRAW);
+        fn.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(triangles.size() * sizeof(glm::uvec3)), triangles.data(),
+                      GL_STREAM_DRAW);
         // The camera's clip space with y flipped: the framebuffer's rows run down the image.
         const glm::dmat4 flip_y = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0, -1.0, 1.0));
         const glm::mat4 clip_from_object(flip_y * core::clip_from_view(frame.camera, frame.image) *
@@ -591,7 +590,7 @@ struct PreviewRenderer::Impl {
         fn.Enable(GL_DEPTH_TEST);
         fn.DepthFunc(GL_LESS);
         fn.DepthMask(GL_TRUE);
-        fn.DrawElements(GL_TRIANGLES, GLsizei(3 * buffers.triangles.size()), GL_UNSIGNED_INT, nullptr);
+        fn.DrawElements(GL_TRIANGLES, GLsizei(3 * triangles.size()), GL_UNSIGNED_INT, nullptr);
         fn.Disable(GL_DEPTH_TEST);
     }
 
