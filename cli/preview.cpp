@@ -37,7 +37,7 @@ Preview::Preview(const gl::Context* shared, const RenderArgs& args, const core::
     const gl::BrushTip tip = scene.brush.tip.empty() ? gl::default_brush_tip() : gl::load_brush_tip(scene.brush.tip);
     renderer_ = std::make_unique<gl::PreviewRenderer>(*context, scene.brush, tip, options);
     tone_ = scene.tone;
-    crease_angle_deg_ = scene.tone.crease_angle_deg.value_or(scene.lines.crease_angle_deg);
+    crease_angle_deg_ = core::tone_crease_angle_deg(scene);
     renderer_->prepare(scene.image);
 }
 

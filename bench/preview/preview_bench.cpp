@@ -135,7 +135,7 @@ int run(const Args& args) {
             {.mesh = drawn.mesh,
              .world_from_object = drawn.world_from_object,
              .table = drawn.table,
-             .crease_angle_deg = scene.tone.crease_angle_deg.value_or(scene.lines.crease_angle_deg)});
+             .crease_angle_deg = core::tone_crease_angle_deg(scene)});
         const std::string png = output::png_from_rgba(image.width, image.height, image.rgba);
         preview_total.push_back(ms_since(start));
         const gl::PreviewStats& stats = renderer.last_render();

@@ -392,7 +392,7 @@ FrameResult FramePipeline::run(int frame) {
         }
         if (change != MeshChange::kNone || tone_pieces_.face_groups.size() != mesh.triangles.size()) {
             smooth_pieces(mesh, table, tone_face_edges_,
-                          scene_.tone.crease_angle_deg.value_or(scene_.lines.crease_angle_deg), tone_pieces_);
+                          tone_crease_angle_deg(scene_), tone_pieces_);
         }
         const ToneNormals tone_normals(tone_pieces_.normals, tone_pieces_.face_groups, tone_pieces_.group_vertex);
         out.tone.mode = scene_.tone.mode;

@@ -101,6 +101,12 @@ struct Scene {
     ToneOptions tone;
 };
 
+// Where the normals tone reads (and the preview's toon underlay) split at creases, degrees:
+// tone.crease_angle_deg, else lines.crease_angle_deg.
+inline double tone_crease_angle_deg(const Scene& scene) {
+    return scene.tone.crease_angle_deg.value_or(scene.lines.crease_angle_deg);
+}
+
 // Which kinds of line an object draws: the scene's lines.* with every matching rule applied.
 std::array<bool, kLineKindCount> object_line_kinds(const Scene& scene, const std::string& object_name);
 
